@@ -1,0 +1,1 @@
+"""Behavior tree engine for BehaviorTree.CPP v4 XML (imports no Drake)."""

@@ -1,0 +1,1 @@
+"""Drake LeafSystems of hrc_drake, one system per module."""
