@@ -1,9 +1,11 @@
 """Generators of the model files in models/: `python -m hrc_drake.modelgen` rewrites them all."""
 
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 from hrc_drake.iisy import VARIANTS
+from hrc_drake.modelgen.cell import CELL_OBJECTS, cell_sdf
 from hrc_drake.modelgen.robot import robot_sdf
 from hrc_drake.modelgen.tool import vacuum_gripper_sdf
 from hrc_drake.paths import resource_dir
@@ -13,7 +15,9 @@ def generators() -> dict[str, Callable[[], str]]:
     """Model file path (relative to models/) -> function returning its text."""
     files: dict[str, Callable[[], str]] = {"tools/vacuum_gripper.sdf": vacuum_gripper_sdf}
     for variant in VARIANTS.values():
-        files[f"iisy/{variant.name}.sdf"] = lambda v=variant: robot_sdf(v)
+        files[f"iisy/{variant.name}.sdf"] = partial(robot_sdf, variant)
+    for name in CELL_OBJECTS:
+        files[f"cell/{name}.sdf"] = partial(cell_sdf, name)
     return files
 
 
