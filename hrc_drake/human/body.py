@@ -1,0 +1,157 @@
+"""A person's kinematics on Drake: forward kinematics and a small damped-least-squares IK.
+
+Joint vectors in hrc_drake.human are in the skeleton's canonical order (`Skeleton.joint_names`,
+SI units); `HumanBody.plant_positions` reorders them into the MultibodyPlant's q.
+"""
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import JacobianWrtVariable
+
+from hrc_drake.human.sdf import MODEL_NAME, human_sdf
+from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS, SIDES, build_skeleton
+
+
+def parse_human(plant: MultibodyPlant, height: float, mass: float, name: str = MODEL_NAME):
+    """Add the person to `plant` (not finalized) and return the model instance."""
+    sdf = human_sdf(height, mass).replace(f'<model name="{MODEL_NAME}">', f'<model name="{name}">')
+    (instance,) = Parser(plant).AddModelsFromString(sdf, "sdf")
+    return instance
+
+
+@dataclass(frozen=True)
+class FrameTask:
+    """Drive a frame of the person towards a world pose; zero weights leave an axis free.
+
+    `rotation` is the target orientation; `rotation_weights` weigh the error about the world
+    x, y, z axes (e.g. (1, 1, 0) keeps a sole flat but lets it yaw).
+    """
+
+    frame: str
+    position: np.ndarray
+    rotation: RotationMatrix | None = None
+    position_weights: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    rotation_weights: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+class HumanBody:
+    """Forward and inverse kinematics of one person (own plant, never part of a Diagram)."""
+
+    def __init__(self, height: float = DEFAULT_HEIGHT, mass: float = DEFAULT_MASS):
+        self.skeleton = build_skeleton(height, mass)
+        self.joint_names = self.skeleton.joint_names
+        self.plant = MultibodyPlant(0.0)
+        parse_human(self.plant, height, mass)
+        self.plant.Finalize()
+        self.context = self.plant.CreateDefaultContext()
+        self.plant_index = np.array(
+            [self.plant.GetJointByName(n).position_start() for n in self.joint_names]
+        )
+        dofs = self.skeleton.dofs
+        self.lower = np.array([dof.limits[0] for dof in dofs])
+        self.upper = np.array([dof.limits[1] for dof in dofs])
+        self.is_revolute = np.array([dof.kind == "revolute" for dof in dofs])
+        self.sizes = self.skeleton.dimensions
+
+    def index(self, joint: str) -> int:
+        return self.joint_names.index(joint)
+
+    def plant_positions(self, q: np.ndarray) -> np.ndarray:
+        """Canonical joint vector -> the plant's position vector."""
+        plant_q = np.empty(len(q))
+        plant_q[self.plant_index] = q
+        return plant_q
+
+    def set(self, q: np.ndarray) -> None:
+        self.plant.SetPositions(self.context, self.plant_positions(q))
+
+    def frame_pose(self, frame: str, q: np.ndarray | None = None) -> RigidTransform:
+        if q is not None:
+            self.set(q)
+        return self.plant.GetFrameByName(frame).CalcPoseInWorld(self.context)
+
+    def sole_points(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """World positions of the heel and toe under each foot: `{'left_heel': xyz, ...}`."""
+        self.set(q)
+        half = self.sizes["foot"] / 2
+        points = {}
+        for side in SIDES:
+            frame = self.plant.GetFrameByName(f"{side}_sole")
+            X = frame.CalcPoseInWorld(self.context)
+            points[f"{side}_heel"] = X @ np.array([-half, 0.0, 0.0])
+            points[f"{side}_toe"] = X @ np.array([half, 0.0, 0.0])
+        return points
+
+    def standing_pose(self) -> np.ndarray:
+        """Upright, arms relaxed at the sides, soles on the floor."""
+        q = np.zeros(len(self.joint_names))
+        q[self.index("pelvis_height")] = self.sizes["hip_height"]
+        return q
+
+    def solve(
+        self,
+        q: np.ndarray,
+        tasks: list[FrameTask],
+        free: np.ndarray,
+        iterations: int = 30,
+        posture_weight: float = 1e-3,
+        tolerance: float = 1e-5,
+    ) -> np.ndarray:
+        """Damped least squares over the `free` joint indices, inside the joint limits.
+
+        The posture term keeps unconstrained directions near the start pose `q`, so authored
+        style survives the correction.
+        """
+        q_ref = q.copy()
+        q = q.copy()
+        for _ in range(iterations):
+            error, jacobian = self._task_errors(q, tasks)
+            if np.linalg.norm(error) < tolerance:
+                break
+            J = jacobian[:, free]
+            posture = posture_weight * (q_ref[free] - q[free])
+            lhs = J.T @ J + (posture_weight + 1e-6) * np.eye(len(free))
+            step = np.linalg.solve(lhs, J.T @ error + posture)
+            q[free] = np.clip(q[free] + step, self.lower[free], self.upper[free])
+        return q
+
+    def task_error(self, q: np.ndarray, tasks: list[FrameTask]) -> float:
+        """Largest weighted position error of the tasks (m)."""
+        self.set(q)
+        worst = 0.0
+        for task in tasks:
+            X = self.plant.GetFrameByName(task.frame).CalcPoseInWorld(self.context)
+            weighted = (task.position - X.translation()) * np.array(task.position_weights)
+            worst = max(worst, float(np.linalg.norm(weighted)))
+        return worst
+
+    def _task_errors(self, q: np.ndarray, tasks: list[FrameTask]):
+        self.set(q)
+        world = self.plant.world_frame()
+        errors, rows = [], []
+        for task in tasks:
+            frame = self.plant.GetFrameByName(task.frame)
+            X = frame.CalcPoseInWorld(self.context)
+            J = self.plant.CalcJacobianSpatialVelocity(
+                self.context, JacobianWrtVariable.kQDot, frame, np.zeros(3), world, world
+            )[:, self.plant_index]
+            wp = np.array(task.position_weights)
+            errors.append(wp * (task.position - X.translation()))
+            rows.append(wp[:, None] * J[3:])
+            if task.rotation is not None:
+                wr = np.array(task.rotation_weights)
+                delta = (task.rotation @ X.rotation().transpose()).ToAngleAxis()
+                errors.append(wr * delta.axis() * delta.angle())
+                rows.append(wr[:, None] * J[:3])
+        return np.concatenate(errors), np.vstack(rows)
+
+
+@lru_cache(maxsize=8)
+def human_body(height: float = DEFAULT_HEIGHT, mass: float = DEFAULT_MASS) -> HumanBody:
+    """Shared kinematics of a person of this size (building a plant takes ~50 ms)."""
+    return HumanBody(height, mass)

@@ -1,0 +1,85 @@
+"""The human model: generated file, anthropometry, range of motion, regions, frames, colours."""
+
+import numpy as np
+import pytest
+from pydrake.geometry import Role, SceneGraph
+from pydrake.multibody.plant import MultibodyPlant
+
+from hrc_drake.human.body import HumanBody, parse_human
+from hrc_drake.human.sdf import REGION_SEPARATOR, default_model_path, human_sdf
+from hrc_drake.human.skeleton import COLORS, REGIONS, build_skeleton
+
+
+def test_generator_reproduces_committed_model():
+    assert default_model_path().read_text() == human_sdf(1.75, 75.0)
+
+
+@pytest.mark.parametrize("height", [1.55, 1.75, 1.95])
+def test_standing_heights_follow_anthropometry(height):
+    body = HumanBody(height, 75.0)
+    q = body.standing_pose()
+    soles = body.sole_points(q)
+    assert all(abs(p[2]) < 1e-9 for p in soles.values())
+    eye = body.frame_pose("head_gaze", q).translation()[2]
+    assert eye == pytest.approx(0.936 * height, abs=1e-6)
+    shoulder = body.plant.GetBodyByName("left_upper_arm").EvalPoseInWorld(body.context)
+    assert shoulder.translation()[2] == pytest.approx(0.818 * height, abs=1e-6)
+    knee = body.plant.GetBodyByName("left_shank").EvalPoseInWorld(body.context)
+    assert knee.translation()[2] == pytest.approx(0.285 * height, abs=1e-6)
+
+
+def test_masses_follow_dempster():
+    body = HumanBody(1.75, 82.0)
+    assert body.plant.CalcTotalMass(body.context) == pytest.approx(82.0)
+    assert body.plant.GetBodyByName("left_thigh").default_mass() == pytest.approx(8.2)
+
+
+def test_height_outside_range_is_refused():
+    with pytest.raises(ValueError, match="outside"):
+        build_skeleton(2.3)
+
+
+def test_joint_limits_are_the_range_of_motion():
+    body = HumanBody()
+    deg = np.degrees
+    assert deg(body.upper[body.index("left_shoulder_flexion")]) == pytest.approx(180)
+    assert deg(body.lower[body.index("right_shoulder_flexion")]) == pytest.approx(-60)
+    assert deg(body.upper[body.index("left_knee_flexion")]) == pytest.approx(135)
+    assert deg(body.lower[body.index("right_hip_flexion")]) == pytest.approx(-30)
+    assert deg(body.upper[body.index("left_elbow_flexion")]) == pytest.approx(150)
+    assert deg(body.lower[body.index("left_ankle_flexion")]) == pytest.approx(-50)
+    trunk = ["lumbar_flexion", "thorax_flexion"]
+    assert sum(deg(body.upper[body.index(j)]) for j in trunk) == pytest.approx(80)
+
+
+def test_every_region_is_present_and_colours_are_set():
+    plant = MultibodyPlant(0.0)
+    scene_graph = SceneGraph()
+    plant.RegisterAsSourceForSceneGraph(scene_graph)
+    parse_human(plant, 1.75, 75.0)
+    plant.Finalize()
+    inspector = scene_graph.model_inspector()
+    regions, colours = set(), set()
+    for geometry in inspector.GetAllGeometryIds():
+        name = inspector.GetName(geometry).split("::")[-1]
+        if inspector.GetProximityProperties(geometry) is not None:
+            regions.add(name.split(REGION_SEPARATOR)[0])
+        illustration = inspector.GetIllustrationProperties(geometry)
+        if illustration is not None:
+            rgba = illustration.GetProperty("phong", "diffuse")
+            colours.add((rgba.r(), rgba.g(), rgba.b()))
+    assert regions == set(REGIONS)
+    expected = {tuple(round(c, 6) for c in rgba[:3]) for rgba in COLORS.values()}
+    assert {tuple(round(c, 6) for c in rgb) for rgb in colours} == expected
+    assert inspector.NumGeometriesWithRole(Role.kProximity) == 19
+
+
+def test_frames_for_hands_head_and_feet():
+    body = HumanBody()
+    q = body.standing_pose()
+    for name in ["left_hand_grasp", "right_hand_grasp", "head_gaze", "left_sole", "right_sole"]:
+        assert body.plant.HasFrameNamed(name)
+    left = body.frame_pose("left_hand_grasp", q).translation()
+    right = body.frame_pose("right_hand_grasp", q).translation()
+    assert left[1] > 0 > right[1]
+    assert left[2] == pytest.approx(right[2])
