@@ -1,0 +1,44 @@
+# `make demo` and `make test` set themselves up on a fresh machine (Python + apt only).
+# Re-running them reuses the virtual environment: it is rebuilt only when pyproject.toml changes.
+
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+DEMO_SCENARIO ?= base
+
+.PHONY: demo test lint format graphviz clean
+
+demo: $(STAMP) graphviz
+	$(BIN)/hrc-drake run $(DEMO_SCENARIO)
+
+test: $(STAMP) graphviz lint
+	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+
+format: $(STAMP)
+	$(BIN)/ruff format .
+	$(BIN)/ruff check --fix .
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[dev,dist]'
+	touch $(STAMP)
+
+# Graphviz's `dot` renders system diagrams and trees; it comes from apt, not PyPI.
+graphviz:
+	@command -v dot >/dev/null 2>&1 || { \
+	  if command -v apt-get >/dev/null 2>&1 && [ "$$(id -u)" = 0 ]; then \
+	    apt-get update -qq && apt-get install -y -qq graphviz >/dev/null; \
+	  elif command -v apt-get >/dev/null 2>&1 && sudo -n true 2>/dev/null; then \
+	    sudo apt-get update -qq && sudo apt-get install -y -qq graphviz >/dev/null; \
+	  else \
+	    echo "Graphviz is missing: run 'sudo apt-get install graphviz'"; exit 1; \
+	  fi; }
+
+clean:
+	rm -rf $(VENV) build dist *.egg-info runs

@@ -1,0 +1,88 @@
+"""Cost of the scenario machinery: the base scenario against a bare plant + controller.
+
+Both simulate the same arm holding its home pose for the same time, in this process,
+alternating repetitions so machine noise hits both alike. Prints the real-time factor of
+each, the cost per plant step, and the ratio (base / bare; 1.0 = no overhead).
+
+    .venv/bin/python benchmarks/base_scenario.py [--duration 10] [--repeats 3]
+"""
+
+import argparse
+import statistics
+import time
+
+import numpy as np
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.controllers import InverseDynamicsController
+from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.primitives import ConstantVectorSource
+
+from hrc_drake.builder import add_robot, make_control_plant
+from hrc_drake.iisy import VARIANTS
+from hrc_drake.paths import add_model_package
+from hrc_drake.runner import run
+from hrc_drake.scenario import load_scenario
+
+
+def bare_diagram(scenario):
+    """The arm with its tool, an inverse-dynamics controller and a constant set point: no
+    cell, no visualizer, no loggers, no runner."""
+    variant = VARIANTS[scenario.robot.variant]
+    q0 = scenario.configuration(scenario.robot.initial_configuration)
+    builder = DiagramBuilder()
+    plant, _ = AddMultibodyPlant(
+        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
+        builder,
+    )
+    parser = Parser(plant)
+    add_model_package(parser.package_map())
+    arm = add_robot(plant, parser, scenario.robot)
+    plant.Finalize()
+    plant.SetDefaultPositions(arm, q0)
+    controller = builder.AddSystem(
+        InverseDynamicsController(
+            make_control_plant(scenario), variant.kp, variant.ki, variant.kd, False
+        )
+    )
+    hold = builder.AddSystem(ConstantVectorSource(np.concatenate([q0, 0 * q0])))
+    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
+    builder.Connect(hold.get_output_port(), controller.get_input_port_desired_state())
+    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
+    return builder.Build()
+
+
+def time_bare(scenario, duration: float) -> float:
+    simulator = Simulator(bare_diagram(scenario))
+    start = time.perf_counter()
+    simulator.AdvanceTo(duration)
+    return time.perf_counter() - start
+
+
+def time_base(scenario, duration: float) -> float:
+    return run(scenario, duration=duration).wall_time
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=10.0)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    scenario = load_scenario("base")
+    steps = args.duration / scenario.time_step
+    bare, base = [], []
+    for _ in range(args.repeats):
+        bare.append(time_bare(scenario, args.duration))
+        base.append(time_base(scenario, args.duration))
+    for name, times in (("bare plant + controller", bare), ("base scenario", base)):
+        wall = statistics.median(times)
+        print(
+            f"{name:24s} real-time factor {args.duration / wall:6.2f}   "
+            f"{1e6 * wall / steps:7.1f} µs per plant step"
+        )
+    print(f"ratio base / bare: {statistics.median(base) / statistics.median(bare):.3f}")
+
+
+if __name__ == "__main__":
+    main()

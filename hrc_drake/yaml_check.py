@@ -1,0 +1,144 @@
+"""Checks a YAML document against a dataclass schema before `yaml_load_typed` reads it.
+
+Drake's `yaml_load_typed` reports a bad value without saying where it is. Users need the
+file, the line and the field, so we walk PyYAML's node tree (which keeps line numbers)
+alongside the schema and report the first mismatch as one line.
+"""
+
+import dataclasses
+import difflib
+import types
+import typing
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+
+class InputError(Exception):
+    """A user's file is wrong; the message is one self-contained line."""
+
+
+def located_error(filename, node, field: str, message: str) -> InputError:
+    line = f":{node.start_mark.line + 1}" if node is not None else ""
+    return InputError(f"{filename}{line}: {field}: {message}")
+
+
+def compose(filename: Path, text: str) -> yaml.Node | None:
+    """The YAML node tree of `text`; syntax errors become an InputError with the line."""
+    try:
+        return yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError as e:
+        mark = getattr(e, "problem_mark", None)
+        line = f":{mark.line + 1}" if mark else ""
+        problem = getattr(e, "problem", None) or str(e)
+        raise InputError(f"{filename}{line}: malformed YAML: {problem}") from None
+
+
+def field_path(path: tuple) -> str:
+    return ".".join(str(p) if not isinstance(p, int) else f"[{p}]" for p in path).replace(".[", "[")
+
+
+def node_at(root: yaml.Node | None, path: tuple) -> yaml.Node | None:
+    """The deepest node on `path` that exists (for pointing at a semantic error)."""
+    node = root
+    for key in path:
+        child = _child(node, key)
+        if child is None:
+            return node
+        node = child
+    return node
+
+
+def _child(node, key):
+    if isinstance(node, yaml.MappingNode):
+        return next((v for k, v in node.value if k.value == key), None)
+    if isinstance(node, yaml.SequenceNode) and isinstance(key, int) and key < len(node.value):
+        return node.value[key]
+    return None
+
+
+def schema_fields(schema) -> dict[str, typing.Any] | None:
+    """Field name -> type for our dataclasses and Drake's bound schema classes."""
+    if dataclasses.is_dataclass(schema):
+        hints = typing.get_type_hints(schema)
+        return {f.name: hints[f.name] for f in dataclasses.fields(schema)}
+    if hasattr(schema, "__fields__"):
+        return {f.name: f.type for f in schema.__fields__}
+    return None
+
+
+def check_node(filename, node, schema, path: tuple = ()) -> None:
+    """Raises InputError at the first place where `node` does not fit `schema`."""
+    origin = typing.get_origin(schema)
+    if origin in (typing.Union, types.UnionType):
+        _check_union(filename, node, schema, path)
+    elif origin in (list, typing.List, typing.Sequence):  # noqa: UP006
+        for i, item in enumerate(_expect(filename, node, yaml.SequenceNode, path, "a list")):
+            check_node(filename, item, typing.get_args(schema)[0], (*path, i))
+    elif origin in (dict, typing.Dict, typing.Mapping):  # noqa: UP006
+        for key, value in _expect(filename, node, yaml.MappingNode, path, "a mapping"):
+            check_node(filename, value, typing.get_args(schema)[1], (*path, key.value))
+    elif schema is np.ndarray:
+        for i, item in enumerate(_expect(filename, node, yaml.SequenceNode, path, "a list")):
+            _check_scalar(filename, item, float, (*path, i))
+    elif schema in (float, int, bool, str):
+        _check_scalar(filename, node, schema, path)
+    elif (fields := schema_fields(schema)) is not None:
+        _check_mapping(filename, node, schema, fields, path)
+
+
+def _check_union(filename, node, schema, path):
+    options = [t for t in typing.get_args(schema) if t is not type(None)]
+    if _is_null(node):
+        return
+    if len(options) == 1:
+        check_node(filename, node, options[0], path)
+    # Several options are Drake's tagged variants (e.g. !Rpy); yaml_load_typed checks them.
+
+
+def _check_mapping(filename, node, schema, fields, path):
+    items = _expect(filename, node, yaml.MappingNode, path, "a mapping")
+    for key, value in items:
+        if key.value not in fields:
+            close = difflib.get_close_matches(key.value, list(fields), n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise located_error(
+                filename, key, field_path((*path, key.value)), f"unknown field{hint}"
+            )
+        check_node(filename, value, fields[key.value], (*path, key.value))
+    present = {key.value for key, _ in items}
+    for f in dataclasses.fields(schema) if dataclasses.is_dataclass(schema) else ():
+        if f.metadata.get("required") and f.name not in present:
+            raise located_error(
+                filename, node, field_path((*path, f.name)), "required field is missing"
+            )
+
+
+def _expect(filename, node, node_type, path, what):
+    if not isinstance(node, node_type):
+        raise located_error(filename, node, field_path(path) or "<document>", f"expected {what}")
+    return node.value
+
+
+def _is_null(node) -> bool:
+    return isinstance(node, yaml.ScalarNode) and node.tag.endswith(":null")
+
+
+_BOOL_WORDS = {"true", "false", "yes", "no", "on", "off"}
+
+
+def _check_scalar(filename, node, schema, path):
+    name = field_path(path)
+    if not isinstance(node, yaml.ScalarNode):
+        raise located_error(filename, node, name, f"expected a single {schema.__name__} value")
+    value = node.value
+    try:
+        if schema is bool and value.lower() not in _BOOL_WORDS:
+            raise ValueError
+        if schema is int:
+            int(value)
+        if schema is float:
+            float(value)
+    except ValueError:
+        raise located_error(filename, node, name, f"'{value}' is not a {schema.__name__}") from None
