@@ -1,0 +1,131 @@
+"""Built-in actions, following BehaviorTree.CPP 4.x (src/actions), with Sleep on
+simulation time."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from .decorators import ENTRY_PORT, EntryWatch
+from .node import ConditionNode, EntryRef, NodeConfig, StatefulActionNode, SyncActionNode
+from .ports import BidirectionalPort, InputPort, PortInfo
+from .script import ScriptCode, compile_script
+from .status import FAILURE, RUNNING, SUCCESS, Status
+from .timing import has_elapsed
+
+
+class ConstantAction(SyncActionNode):
+    """AlwaysSuccess / AlwaysFailure."""
+
+    def __init__(self, config: NodeConfig, result: Status):
+        super().__init__(config)
+        self.result = result
+
+    def tick(self) -> Status:
+        return self.result
+
+
+class ScriptAction(SyncActionNode):
+    """Script: run ``code`` against the blackboard; always SUCCESS."""
+
+    ports = (InputPort("code", ScriptCode, description="script to run"),)
+
+    def tick(self) -> Status:
+        compile_script(self.get_input("code"))(self.script_env)
+        return SUCCESS
+
+
+class ScriptCondition(ConditionNode):
+    """ScriptCondition: SUCCESS if ``code`` evaluates to true, else FAILURE."""
+
+    ports = (InputPort("code", ScriptCode, description="script that returns true or false"),)
+
+    def tick(self) -> Status:
+        return (
+            SUCCESS if compile_script(self.get_input("code")).is_true(self.script_env) else FAILURE
+        )
+
+
+class SetBlackboard(SyncActionNode):
+    """Write ``value`` (a literal or ``{other_key}``'s value) into entry ``output_key``."""
+
+    ports = (
+        InputPort("value", description="value to write, or {key} to copy an entry"),
+        BidirectionalPort("output_key", str, description="name of the entry to write"),
+    )
+
+    def tick(self) -> Status:
+        key_binding = self._inputs["output_key"]
+        key = key_binding.key if isinstance(key_binding, EntryRef) else key_binding.value
+        destination = self.blackboard.entry(key, create=True)
+        source = self._inputs["value"]
+        if isinstance(source, EntryRef) and destination.type is None:
+            destination.type = source.entry.type
+        destination.assign(self.get_input("value"))
+        return SUCCESS
+
+
+class UnsetBlackboard(SyncActionNode):
+    """Remove the value of entry ``key``."""
+
+    ports = (InputPort("key", str, description="name of the entry to unset"),)
+
+    def tick(self) -> Status:
+        self.blackboard.unset(self.get_input("key"))
+        return SUCCESS
+
+
+class Sleep(StatefulActionNode):
+    """RUNNING for ``msec`` of simulation time, then SUCCESS."""
+
+    ports = (InputPort("msec", int, description="duration in milliseconds"),)
+
+    def on_start(self) -> Status:
+        self.started_at = self.now
+        return RUNNING if self.get_input("msec") > 0 else SUCCESS
+
+    def on_running(self) -> Status:
+        return (
+            SUCCESS if has_elapsed(self.started_at, self.now, self.get_input("msec")) else RUNNING
+        )
+
+
+class WasEntryUpdated(SyncActionNode):
+    """SUCCESS if the entry changed since this node last looked, else FAILURE."""
+
+    ports = (ENTRY_PORT,)
+
+    def __init__(self, config: NodeConfig):
+        super().__init__(config)
+        self.watch = EntryWatch(config)
+
+    def tick(self) -> Status:
+        return SUCCESS if self.watch.updated(self.blackboard) else FAILURE
+
+    def on_tree_reset(self) -> None:
+        self.watch.seen = 0
+
+
+TickFunction = Callable[[SyncActionNode], Status]
+
+
+class FunctionTick:
+    """Mixin for nodes registered from a plain function ``function(node) -> Status``."""
+
+    def __init__(self, config: NodeConfig, function: TickFunction, ports=()):
+        super().__init__(config)
+        self.function = function
+
+    @classmethod
+    def provided_ports(cls, function: TickFunction, ports: tuple[PortInfo, ...] = ()):
+        return tuple(ports)
+
+    def tick(self) -> Status:
+        return self.function(self)
+
+
+class FunctionAction(FunctionTick, SyncActionNode):
+    """A synchronous action given as a function."""
+
+
+class FunctionCondition(FunctionTick, ConditionNode):
+    """A condition given as a function."""

@@ -1,0 +1,350 @@
+"""Base classes of tree nodes, with BehaviorTree.CPP's tick, halt and status rules.
+
+Authors subclass :class:`SyncActionNode`, :class:`ConditionNode`,
+:class:`StatefulActionNode`, :class:`ControlNode` or :class:`DecoratorNode`, declare
+``ports`` and implement ``tick`` (or ``on_start``/``on_running``/``on_halted``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar
+
+from .blackboard import UNSET, Blackboard, Entry
+from .errors import BTError
+from .ports import PortInfo
+from .script import Script, ScriptEnv
+from .status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
+
+if TYPE_CHECKING:
+    from .tree import Tree
+
+PRECONDITIONS = ("_failureIf", "_successIf", "_skipIf", "_while")
+POSTCONDITIONS = ("_onSuccess", "_onFailure", "_onHalted", "_post")
+
+
+class Literal:
+    """A port given as a constant in the XML, already converted to the port's type."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value: Any):
+        self.value = value
+
+    def read(self) -> Any:
+        return self.value
+
+
+class EntryRef:
+    """A port bound to a blackboard entry (``{key}``), resolved once at construction."""
+
+    __slots__ = ("key", "entry")
+
+    def __init__(self, key: str, entry: Entry):
+        self.key = key
+        self.entry = entry
+
+    def read(self) -> Any:
+        return self.entry.value
+
+
+@dataclass
+class NodeConfig:
+    """Everything the factory knows about one node instance."""
+
+    registration_id: str
+    name: str
+    uid: int
+    path: str
+    tree: Tree
+    blackboard: Blackboard
+    inputs: dict[str, Literal | EntryRef] = field(default_factory=dict)
+    outputs: dict[str, EntryRef] = field(default_factory=dict)
+    attributes: dict[str, str] = field(default_factory=dict)
+    file: str | None = None
+    line: int | None = None
+    tree_id: str | None = None
+    preconditions: list[tuple[str, Script]] = field(default_factory=list)
+    postconditions: dict[str, Script] = field(default_factory=dict)
+
+
+class TreeNode:
+    """A node of an instantiated tree. ``status`` is read by parents; ``tick`` is the
+    node's own logic; ``execute_tick`` wraps it with pre/post-conditions."""
+
+    kind: ClassVar[str] = "Action"
+    ports: ClassVar[tuple[PortInfo, ...]] = ()
+    children_range: ClassVar[tuple[int, int | None]] = (0, 0)
+
+    def __init__(self, config: NodeConfig):
+        self.config = config
+        self.uid = config.uid
+        self.name = config.name
+        self.path = config.path
+        self.tree = config.tree
+        self.blackboard = config.blackboard
+        self.status = IDLE
+        self.tick_counts = [0, 0, 0, 0, 0]
+        self._inputs = config.inputs
+        self._outputs = config.outputs
+        self._preconditions = config.preconditions or None
+        self._postconditions = config.postconditions or None
+        self._script_env: ScriptEnv | None = None
+
+    @classmethod
+    def provided_ports(cls, **params: Any) -> tuple[PortInfo, ...]:
+        """Ports of this node type; parameterised types (Switch3, LoopInt) override."""
+        return cls.ports
+
+    @classmethod
+    def allowed_children(cls, **params: Any) -> tuple[int, int | None]:
+        """Least and most children in the XML (None: no limit)."""
+        return cls.children_range
+
+    @property
+    def registration_id(self) -> str:
+        return self.config.registration_id
+
+    @property
+    def now(self) -> float:
+        """Simulation time of the current tick, in seconds."""
+        return self.tree.now
+
+    @property
+    def rng(self):
+        """The tree's numpy Generator: the only source of randomness for nodes."""
+        return self.tree.rng
+
+    @property
+    def context(self) -> Any:
+        """The application's object set on the tree (e.g. robot status, command outbox)."""
+        return self.tree.context
+
+    @property
+    def script_env(self) -> ScriptEnv:
+        if self._script_env is None:
+            self._script_env = ScriptEnv(self.blackboard, self.tree.enums)
+        return self._script_env
+
+    def children_nodes(self) -> list[TreeNode]:
+        return []
+
+    # ports -------------------------------------------------------------------------
+    def get_input(self, name: str, default: Any = UNSET) -> Any:
+        """Value of input port ``name``; ``default`` if its entry is unset (else error)."""
+        binding = self._inputs.get(name)
+        value = binding.read() if binding is not None else UNSET
+        if value is UNSET:
+            if default is not UNSET:
+                return default
+            raise self.error(
+                "no value: "
+                + (
+                    f"blackboard entry '{binding.key}' is not set"
+                    if binding is not None
+                    else "port is not connected"
+                ),
+                port=name,
+            )
+        return value
+
+    def set_output(self, name: str, value: Any) -> bool:
+        """Write output port ``name``; False when the XML leaves the port unconnected."""
+        binding = self._outputs.get(name)
+        if binding is None:
+            return False
+        try:
+            binding.entry.assign(value)
+        except BTError as error:
+            raise self.error(error.problem, port=name) from None
+        return True
+
+    def error(self, problem: str, port: str | None = None) -> BTError:
+        """A BTError located at this node (file, line, tree, path)."""
+        config = self.config
+        return BTError(
+            problem,
+            file=config.file,
+            line=config.line,
+            tree=config.tree_id,
+            node=self.path,
+            port=port,
+        )
+
+    # ticking -----------------------------------------------------------------------
+    def tick(self) -> Status:
+        raise NotImplementedError
+
+    def execute_tick(self) -> Status:
+        try:
+            if self._preconditions is None:
+                status = self.tick()
+            else:
+                forced = self._check_preconditions()
+                status = self.tick() if forced is None else forced
+            if self._postconditions is not None and (status is SUCCESS or status is FAILURE):
+                self._run_postconditions(status)
+        except BTError as error:
+            if error.node is not None:
+                raise
+            raise self.error(error.problem, port=error.port) from None
+        if status is not SKIPPED and status is not self.status:
+            self.set_status(status)
+        self.tick_counts[status] += 1
+        return status
+
+    def _check_preconditions(self) -> Status | None:
+        env = self.script_env
+        for kind, script in self._preconditions:
+            if self.status is IDLE:
+                holds = script.is_true(env)
+                if kind == "_while":
+                    if not holds:
+                        return SKIPPED
+                elif holds:
+                    return {"_failureIf": FAILURE, "_successIf": SUCCESS, "_skipIf": SKIPPED}[kind]
+            elif self.status is RUNNING and kind == "_while" and not script.is_true(env):
+                self.halt_node()
+                return SKIPPED
+        return None
+
+    def _run_postconditions(self, status: Status) -> None:
+        scripts = self._postconditions
+        specific = scripts.get("_onSuccess" if status is SUCCESS else "_onFailure")
+        if specific is not None:
+            specific(self.script_env)
+        always = scripts.get("_post")
+        if always is not None:
+            always(self.script_env)
+
+    def set_status(self, new_status: Status) -> None:
+        previous = self.status
+        if previous is not new_status:
+            self.status = new_status
+            if self.tree.observers:
+                self.tree.notify(self, previous, new_status)
+
+    def reset_status(self) -> None:
+        self.set_status(IDLE)
+
+    # halting ------------------------------------------------------------------------
+    def halt(self) -> None:
+        """Stop the node's own activity; leaves and composites override this."""
+
+    def halt_node(self) -> None:
+        """Halt, then run the ``_onHalted`` script (as BehaviorTree.CPP's haltNode)."""
+        self.halt()
+        if self._postconditions is not None:
+            on_halted = self._postconditions.get("_onHalted")
+            if on_halted is not None:
+                on_halted(self.script_env)
+
+    def on_tree_reset(self) -> None:
+        """Forget memory that survives a halt (Tree.reset calls this on every node)."""
+
+
+class SyncActionNode(TreeNode):
+    """An action that completes within its tick: ``tick`` returns SUCCESS or FAILURE."""
+
+    def execute_tick(self) -> Status:
+        status = TreeNode.execute_tick(self)
+        if status is RUNNING:
+            raise self.error(f"{type(self).__name__} is synchronous and must not return RUNNING")
+        return status
+
+
+class ConditionNode(SyncActionNode):
+    """A check without side effects: ``tick`` returns SUCCESS or FAILURE."""
+
+    kind: ClassVar[str] = "Condition"
+
+
+class StatefulActionNode(TreeNode):
+    """An asynchronous action: ``on_start`` when first ticked, ``on_running`` on later
+    ticks while RUNNING, ``on_halted`` if it is interrupted while RUNNING."""
+
+    def on_start(self) -> Status:
+        raise NotImplementedError
+
+    def on_running(self) -> Status:
+        raise NotImplementedError
+
+    def on_halted(self) -> None:
+        """Cancel whatever the action started (default: nothing)."""
+
+    def tick(self) -> Status:
+        if self.status is IDLE:
+            status = self.on_start()
+        elif self.status is RUNNING:
+            status = self.on_running()
+        else:
+            return self.status
+        if status is IDLE:
+            raise self.error(f"{type(self).__name__} must not return IDLE")
+        return status
+
+    def halt(self) -> None:
+        if self.status is RUNNING:
+            self.on_halted()
+        self.reset_status()
+
+
+class ControlNode(TreeNode):
+    """A node with one or more children, ticked in an order the subclass decides."""
+
+    kind: ClassVar[str] = "Control"
+    children_range: ClassVar[tuple[int, int | None]] = (1, None)
+
+    def __init__(self, config: NodeConfig):
+        super().__init__(config)
+        self.children: list[TreeNode] = []
+
+    def children_nodes(self) -> list[TreeNode]:
+        return self.children
+
+    def halt_child(self, index: int) -> None:
+        child = self.children[index]
+        if child.status is RUNNING:
+            child.halt_node()
+        child.reset_status()
+
+    def reset_children(self) -> None:
+        for child in self.children:
+            if child.status is RUNNING:
+                child.halt_node()
+            child.reset_status()
+
+    def halt(self) -> None:
+        self.reset_children()
+        self.reset_status()
+
+
+class DecoratorNode(TreeNode):
+    """A node with exactly one child, whose result it transforms."""
+
+    kind: ClassVar[str] = "Decorator"
+    children_range: ClassVar[tuple[int, int | None]] = (1, 1)
+
+    def __init__(self, config: NodeConfig):
+        super().__init__(config)
+        self.child: TreeNode | None = None
+
+    def children_nodes(self) -> list[TreeNode]:
+        return [self.child] if self.child is not None else []
+
+    def reset_child(self) -> None:
+        child = self.child
+        if child.status is RUNNING:
+            child.halt_node()
+        child.reset_status()
+
+    def halt(self) -> None:
+        self.reset_child()
+        self.reset_status()
+
+    def execute_tick(self) -> Status:
+        status = TreeNode.execute_tick(self)
+        child_status = self.child.status
+        if child_status is SUCCESS or child_status is FAILURE:
+            self.child.reset_status()
+        return status
