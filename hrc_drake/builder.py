@@ -97,6 +97,8 @@ def _add_controller(builder, scenario, plant, robot) -> InverseDynamicsControlle
 
 def _add_visualizer(builder, scene_graph, meshcat, scenario) -> None:
     options = scenario.visualization
+    meshcat.SetCameraPose(options.camera_position, options.camera_target)
+    meshcat.SetProperty("/Grid", "visible", False)  # the cell has its own floor
     roles = [Role.kIllustration] + ([Role.kProximity] if options.show_collision else [])
     for role in roles:
         params = MeshcatVisualizerParams(

@@ -52,6 +52,8 @@ class VisualizationOptions:
     publish_period: float = 1.0 / 32.0
     record: bool = True
     show_collision: bool = False
+    camera_position: list[float] = field(default_factory=lambda: [1.7, -1.4, 1.5])
+    camera_target: list[float] = field(default_factory=lambda: [0.0, 0.35, 0.9])
 
 
 @dataclass
