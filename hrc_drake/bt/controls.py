@@ -237,6 +237,7 @@ class IfThenElse(ControlNode):
             elif len(self.children) == 3:
                 self.branch = 2
             else:
+                self.reset_children()  # BT.CPP leaves the condition in FAILURE here
                 return FAILURE
         status = self.children[self.branch].execute_tick()
         if status is RUNNING:

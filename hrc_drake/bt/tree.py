@@ -73,7 +73,8 @@ class Tree:
         root = self.root
         if root.status is not IDLE:
             root.halt_node()
-        root.reset_status()
+        for node in self.node_list:  # completed children that no parent reset (as BT.CPP)
+            node.reset_status()
 
     def reset(self, rng: np.random.Generator | None = None) -> None:
         """Back to the state after construction: halted, node memory and blackboards

@@ -12,7 +12,8 @@ from hrc_drake.bt import (
     load_tree,
 )
 
-S, F, R, I, K = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.IDLE, Status.SKIPPED
+S, F, R, K = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.SKIPPED
+IDLE = Status.IDLE
 
 
 class Mock(SyncActionNode):
@@ -105,4 +106,4 @@ def statuses(tree):
 
 
 def all_idle(tree):
-    return all(node.status is I for _, _, node in tree.nodes())
+    return all(node.status is IDLE for _, _, node in tree.nodes())

@@ -1,7 +1,7 @@
 """Decorators, modelled on BT.CPP tests/gtest_decorator.cpp, gtest_loop.cpp,
 gtest_updates.cpp and gtest_preconditions.cpp (Precondition node)."""
 
-from bt_helpers import F, I, K, R, S, all_idle, ticks, tree_of
+from bt_helpers import IDLE, F, K, R, S, all_idle, ticks, tree_of
 
 
 def test_inverter_and_force_nodes():
@@ -116,4 +116,4 @@ def test_halting_a_decorator_chain_halts_leaf_once():
     tree.halt()
     assert tree.node("A").halts == 1
     assert all_idle(tree)
-    assert tree.root.status is I
+    assert tree.root.status is IDLE

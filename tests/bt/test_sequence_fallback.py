@@ -1,7 +1,7 @@
 """Sequence / Fallback family, modelled on BT.CPP tests/gtest_sequence.cpp,
 gtest_fallback.cpp and gtest_reactive.cpp."""
 
-from bt_helpers import F, I, K, R, S, all_idle, statuses, ticks, tree_of
+from bt_helpers import IDLE, F, K, R, S, all_idle, statuses, ticks, tree_of
 
 
 def test_sequence_resumes_at_running_child_without_reticking_earlier_ones():
@@ -83,7 +83,7 @@ def test_reactive_sequence_reevaluates_conditions_and_halts_running_action():
     )
     assert ticks(tree, 2) == [R, R]
     assert tree.node("C1").ticks == 2
-    assert statuses(tree)["C1"] is I  # halted by the running sibling
+    assert statuses(tree)["C1"] is IDLE  # halted by the running sibling
     tree.node("C2").result = F
     assert tree.tick(1.0) is F
     assert tree.node("A").halts == 1
