@@ -40,6 +40,7 @@ from .actions import FunctionAction, FunctionCondition
 from .blackboard import Blackboard
 from .errors import BTError
 from .factory import TreeFactory, load_tree, validate
+from .model_xml import tree_nodes_model_xml, tree_to_xml
 from .node import (
     ConditionNode,
     ControlNode,
@@ -48,6 +49,7 @@ from .node import (
     SyncActionNode,
     TreeNode,
 )
+from .observers import BtlogWriter, JsonLinesWriter, NodeCount, NodeCounters
 from .ports import (
     BidirectionalPort,
     InputPort,
@@ -58,11 +60,16 @@ from .ports import (
     register_type,
 )
 from .registry import NodeModel, NodeRegistry, default_registry
+from .render import render_tree, tree_graph
 from .status import Status
 from .tree import TransitionObserver, Tree
 
 __all__ = [
     "BTError",
+    "BtlogWriter",
+    "JsonLinesWriter",
+    "NodeCount",
+    "NodeCounters",
     "BidirectionalPort",
     "Blackboard",
     "ConditionNode",
@@ -87,5 +94,9 @@ __all__ = [
     "default_registry",
     "load_tree",
     "register_type",
+    "render_tree",
+    "tree_graph",
+    "tree_nodes_model_xml",
+    "tree_to_xml",
     "validate",
 ]
