@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .node import ControlNode, NodeConfig
+from .node import ControlNode, NodeConfig, halt_and_reset
 from .ports import InputPort, value_to_text
 from .script import EPSILON
 from .status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
@@ -95,9 +95,9 @@ class ReactiveControl(ControlNode):
         for index, child in enumerate(children):
             status = child.execute_tick()
             if status is RUNNING:
-                for other in range(len(children)):
-                    if other != index:
-                        self.halt_child(other)
+                for other in children:
+                    if other is not child and other.status is not IDLE:
+                        halt_and_reset(other)
                 return RUNNING
             if status is self.stops_on:
                 self.reset_children()

@@ -75,6 +75,7 @@ class TreeNode:
     kind: ClassVar[str] = "Action"
     ports: ClassVar[tuple[PortInfo, ...]] = ()
     children_range: ClassVar[tuple[int, int | None]] = (0, 0)
+    synchronous: ClassVar[bool] = False
 
     def __init__(self, config: NodeConfig):
         self.config = config
@@ -85,6 +86,7 @@ class TreeNode:
         self.blackboard = config.blackboard
         self.status = IDLE
         self.tick_counts = [0, 0, 0, 0, 0]
+        self._observers = config.tree.observers  # the tree's list, shared
         self._inputs = config.inputs
         self._outputs = config.outputs
         self._preconditions = config.preconditions or None
@@ -188,8 +190,15 @@ class TreeNode:
             if error.node is not None:
                 raise
             raise self.error(error.problem, port=error.port) from None
-        if status is not SKIPPED and status is not self.status:
-            self.set_status(status)
+        previous = self.status
+        if status is not previous and status is not SKIPPED:  # SKIPPED keeps IDLE
+            if status is RUNNING and self.synchronous:
+                raise self.error(
+                    f"{type(self).__name__} is synchronous and must not return RUNNING"
+                )
+            self.status = status  # set_status, inlined: this is the hottest line
+            if self._observers:
+                self.tree.notify(self, previous, status)
         self.tick_counts[status] += 1
         return status
 
@@ -221,11 +230,12 @@ class TreeNode:
         previous = self.status
         if previous is not new_status:
             self.status = new_status
-            if self.tree.observers:
+            if self._observers:
                 self.tree.notify(self, previous, new_status)
 
     def reset_status(self) -> None:
-        self.set_status(IDLE)
+        if self.status is not IDLE:
+            self.set_status(IDLE)
 
     # halting ------------------------------------------------------------------------
     def halt(self) -> None:
@@ -243,14 +253,18 @@ class TreeNode:
         """Forget memory that survives a halt (Tree.reset calls this on every node)."""
 
 
+def halt_and_reset(node: TreeNode) -> None:
+    """Halt ``node`` if it is RUNNING, then make it IDLE (BT.CPP's haltChild)."""
+    if node.status is RUNNING:
+        node.halt_node()
+    if node.status is not IDLE:
+        node.set_status(IDLE)
+
+
 class SyncActionNode(TreeNode):
     """An action that completes within its tick: ``tick`` returns SUCCESS or FAILURE."""
 
-    def execute_tick(self) -> Status:
-        status = TreeNode.execute_tick(self)
-        if status is RUNNING:
-            raise self.error(f"{type(self).__name__} is synchronous and must not return RUNNING")
-        return status
+    synchronous: ClassVar[bool] = True
 
 
 class ConditionNode(SyncActionNode):
@@ -303,16 +317,12 @@ class ControlNode(TreeNode):
         return self.children
 
     def halt_child(self, index: int) -> None:
-        child = self.children[index]
-        if child.status is RUNNING:
-            child.halt_node()
-        child.reset_status()
+        halt_and_reset(self.children[index])
 
     def reset_children(self) -> None:
         for child in self.children:
-            if child.status is RUNNING:
-                child.halt_node()
-            child.reset_status()
+            if child.status is not IDLE:
+                halt_and_reset(child)
 
     def halt(self) -> None:
         self.reset_children()
@@ -333,10 +343,7 @@ class DecoratorNode(TreeNode):
         return [self.child] if self.child is not None else []
 
     def reset_child(self) -> None:
-        child = self.child
-        if child.status is RUNNING:
-            child.halt_node()
-        child.reset_status()
+        halt_and_reset(self.child)
 
     def halt(self) -> None:
         self.reset_child()
