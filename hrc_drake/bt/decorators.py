@@ -95,60 +95,58 @@ class RepeatUntil(DecoratorNode):
         super().halt()
 
 
-class Timeout(DecoratorNode):
+class TimedDecorator(DecoratorNode):
+    """Shared clock handling of Timeout and Delay: started at the first tick, cleared
+    when the child completes or the node is halted."""
+
+    def __init__(self, config: NodeConfig):
+        super().__init__(config)
+        self.started_at: float | None = None
+
+    def start_if_idle(self) -> bool:
+        """Start the clock on the first tick; True if it was already running."""
+        if self.started_at is not None:
+            return True
+        self.started_at = self.now
+        self.set_status(RUNNING)
+        return False
+
+    def tick_child(self) -> Status:
+        status = self.child.execute_tick()
+        if status in COMPLETED:
+            self.started_at = None
+            self.reset_child()
+        return status
+
+    def halt(self) -> None:
+        self.started_at = None
+        super().halt()
+
+
+class Timeout(TimedDecorator):
     """Halt the child and return FAILURE if it is still RUNNING ``msec`` after start."""
 
     ports = (InputPort("msec", int, description="time limit in milliseconds (0: none)"),)
 
-    def __init__(self, config: NodeConfig):
-        super().__init__(config)
-        self.started_at: float | None = None
-
     def tick(self) -> Status:
         msec = self.get_input("msec")
-        if self.started_at is None:
-            self.started_at = self.now
-            self.set_status(RUNNING)
-        elif msec > 0 and has_elapsed(self.started_at, self.now, msec):
+        if self.start_if_idle() and msec > 0 and has_elapsed(self.started_at, self.now, msec):
             self.started_at = None
             self.reset_child()
             return FAILURE
-        status = self.child.execute_tick()
-        if status in COMPLETED:
-            self.started_at = None
-            self.reset_child()
-        return status
-
-    def halt(self) -> None:
-        self.started_at = None
-        super().halt()
+        return self.tick_child()
 
 
-class Delay(DecoratorNode):
+class Delay(TimedDecorator):
     """Return RUNNING for ``delay_msec`` of simulation time, then tick the child."""
 
     ports = (InputPort("delay_msec", int, description="delay in milliseconds"),)
 
-    def __init__(self, config: NodeConfig):
-        super().__init__(config)
-        self.started_at: float | None = None
-
     def tick(self) -> Status:
-        msec = self.get_input("delay_msec")
-        if self.started_at is None:
-            self.started_at = self.now
-            self.set_status(RUNNING)
-        if not has_elapsed(self.started_at, self.now, msec):
+        self.start_if_idle()
+        if not has_elapsed(self.started_at, self.now, self.get_input("delay_msec")):
             return RUNNING
-        status = self.child.execute_tick()
-        if status in COMPLETED:
-            self.started_at = None
-            self.reset_child()
-        return status
-
-    def halt(self) -> None:
-        self.started_at = None
-        super().halt()
+        return self.tick_child()
 
 
 class RunOnce(DecoratorNode):

@@ -16,7 +16,7 @@ S, F, R, K = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.SKIPPED
 IDLE = Status.IDLE
 
 
-class Mock(SyncActionNode):
+class SettableResult:
     """Returns ``result`` (settable from the test) and counts its ticks."""
 
     def __init__(self, config):
@@ -29,15 +29,12 @@ class Mock(SyncActionNode):
         return self.result
 
 
-class MockCondition(ConditionNode):
-    def __init__(self, config):
-        super().__init__(config)
-        self.result = S
-        self.ticks = 0
+class Mock(SettableResult, SyncActionNode):
+    """A synchronous action with a settable result."""
 
-    def tick(self):
-        self.ticks += 1
-        return self.result
+
+class MockCondition(SettableResult, ConditionNode):
+    """A condition with a settable result."""
 
 
 class AsyncMock(StatefulActionNode):
