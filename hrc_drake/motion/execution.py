@@ -1,0 +1,90 @@
+"""Speed-scaled execution of a timed path: the path parameter and its rate.
+
+A planned motion is a timed path q(τ) that respects the joint limits at nominal speed
+(τ is the planned time). Execution advances τ at a rate r = dτ/dt, the effective speed
+scale, so the robot always stays on the planned path whatever the scale does:
+
+    q̇ = q'(τ) r,    q̈ = q''(τ) r² + q'(τ) ṙ.
+
+With 0 ≤ r ≤ 1 the velocities are at most the limits × r, and the first acceleration term at
+most the limits × r². At every update RobotMotion picks ṙ, held until the next update, to
+bring r to the commanded scale within one period where it can, and otherwise as fast as the
+joint acceleration limits allow (the second term uses what the first leaves over).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+ACCELERATION_MARGIN = 0.95
+"""Share of the joint acceleration limits that a speed change may use: the rest absorbs the
+change of q'(τ) and q''(τ) within one update period."""
+AT_REST_RATE = 1e-9
+"""Path rates below this count as standing still (the rate never goes negative)."""
+
+
+@dataclass(frozen=True)
+class Progress:
+    """Where execution is on the path: τ, r and ṙ as set by the update at time `since`."""
+
+    tau: float
+    rate: float
+    rate_change: float
+    since: float
+
+    def at(self, t: float, duration: float) -> "Progress":
+        """Extrapolated to time t (ṙ constant, r never below 0, τ never past the end)."""
+        dt = max(0.0, t - self.since)
+        if self.rate_change < 0.0:
+            dt_rest = self.rate / -self.rate_change
+            if dt_rest < dt:
+                return self._moved(dt_rest, duration, t, rate_change=0.0)
+        return self._moved(dt, duration, t, rate_change=self.rate_change)
+
+    def _moved(self, dt: float, duration: float, t: float, rate_change: float) -> "Progress":
+        tau = self.tau + self.rate * dt + 0.5 * self.rate_change * dt * dt
+        rate = max(0.0, self.rate + self.rate_change * dt)
+        return Progress(min(tau, duration), rate, rate_change, t)
+
+    @property
+    def at_rest(self) -> bool:
+        return self.rate < AT_REST_RATE
+
+    def finished(self, duration: float) -> bool:
+        return self.tau >= duration
+
+
+def desired_motion(path, progress: Progress) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Desired q, q̇ and q̈ on `path` at `progress` (zero velocity once at the end)."""
+    q = path.position(progress.tau)
+    if progress.finished(path.duration):
+        return q, np.zeros_like(q), np.zeros_like(q)
+    dq = path.velocity(progress.tau)
+    ddq = path.acceleration(progress.tau)
+    r, dr = progress.rate, progress.rate_change
+    return q, dq * r, ddq * r * r + dq * dr
+
+
+def rate_change(
+    path, progress: Progress, target: float, period: float, acceleration_limits: np.ndarray
+) -> float:
+    """ṙ for the next period: reaches `target` in one period if the limits allow it.
+
+    The feasible range is the intersection, over the joints and over τ now and τ one period
+    ahead, of |q''(τ) r² + q'(τ) ṙ| ≤ margin × limit, with r the larger of now and target.
+    """
+    wanted = (target - progress.rate) / period
+    limits = ACCELERATION_MARGIN * acceleration_limits
+    rate = max(progress.rate, target)
+    ahead = min(path.duration, progress.tau + rate * period)
+    low, high = -np.inf, np.inf
+    for tau in (progress.tau, ahead):
+        dq = path.velocity(tau)
+        curvature_term = path.acceleration(tau) * rate * rate
+        moving = np.abs(dq) > 1e-9
+        bound_a = (-limits - curvature_term)[moving] / dq[moving]
+        bound_b = (limits - curvature_term)[moving] / dq[moving]
+        low = max(low, np.max(np.minimum(bound_a, bound_b), initial=-np.inf))
+        high = min(high, np.min(np.maximum(bound_a, bound_b), initial=np.inf))
+    chosen = min(max(wanted, low), high) if low <= high else min(0.0, wanted)
+    return max(chosen, -progress.rate / period)

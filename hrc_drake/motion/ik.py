@@ -1,0 +1,130 @@
+"""Inverse kinematics for tool targets: joint positions that put the tcp at a pose.
+
+Solutions respect the joint limits, keep the clearance to the static cell, keep the wrist
+(A5) on the side it is on (no wrist flips), and prefer postures near both the current one
+and the nominal posture (home), which also keeps A4 and A6 from turning a full circle.
+"""
+
+import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.multibody.inverse_kinematics import InverseKinematics
+from pydrake.solvers import Solve
+
+from hrc_drake.motion.deadline import Deadline, PlanningFailed
+
+POSITION_TOLERANCE = 2e-4
+"""m: IK accuracy; the robot's arrival error comes on top of it."""
+ANGLE_TOLERANCE = np.radians(0.1)
+WRIST_MARGIN = np.radians(2.0)
+"""A5 stays at least this far from its singular zero."""
+WRIST = 4
+"""Index of A5."""
+RANDOM_SEEDS = 6
+SEED_SPREAD = 0.6
+"""rad: standard deviation of the extra seeds around the nominal posture."""
+TOOL_REACH_MARGIN = 0.25
+"""m beyond the nominal reach that still counts as maybe reachable (tool, offsets)."""
+CLEARANCE_INFLUENCE = 0.1
+
+
+class ToolTargetSolver:
+    """Solves tool targets on one PlanningModel."""
+
+    def __init__(self, model, q_nominal: np.ndarray):
+        self.model = model
+        self.q_nominal = np.asarray(q_nominal, dtype=float)
+        self.shoulder = model.plant.GetBodyByName("link_2", model.arm).body_frame()
+
+    def solve(
+        self,
+        pose: RigidTransform,
+        q_start: np.ndarray,
+        free_rotation: bool,
+        rng: np.random.Generator,
+        deadline: Deadline,
+    ) -> np.ndarray:
+        """A collision-free solution, trying the current posture, home, then random seeds."""
+        self._check_reach(pose, q_start)
+        seeds = [q_start, self.q_nominal] + [
+            np.clip(
+                self.q_nominal + rng.normal(0.0, SEED_SPREAD, q_start.size),
+                self.model.lower,
+                self.model.upper,
+            )
+            for _ in range(RANDOM_SEEDS)
+        ]
+        wrist_sign = self._wrist_side(q_start)
+        for seed in seeds:
+            deadline.check("solving inverse kinematics")
+            q = self._solve_from(pose, seed, q_start, free_rotation, wrist_sign)
+            if q is not None:
+                return q
+        raise PlanningFailed(
+            f"target unreachable: no collision-free inverse kinematics solution for the tool at "
+            f"{np.round(pose.translation(), 3).tolist()}"
+        )
+
+    def solve_near(self, pose: RigidTransform, q_near: np.ndarray) -> np.ndarray | None:
+        """The solution nearest `q_near`, seeded there, without the clearance check."""
+        return self._solve(pose, q_near, q_near, False, self._wrist_side(q_near), None)
+
+    def _solve_from(self, pose, seed, q_start, free_rotation, wrist_sign) -> np.ndarray | None:
+        """Without the clearance constraint first (fast); with it when that collides."""
+        q_reference = 0.5 * (q_start + self.q_nominal)
+        for clearance in (None, self.model.clearance_required):
+            q = self._solve(pose, seed, q_reference, free_rotation, wrist_sign, clearance)
+            if q is not None and self.model.collision_free(q):
+                return q
+            if q is None:
+                return None
+        return None
+
+    def _solve(self, pose, seed, q_reference, free_rotation, wrist_sign, clearance):
+        model = self.model
+        ik = InverseKinematics(model.plant, model.plant_context, with_joint_limits=True)
+        world = model.plant.world_frame()
+        p = pose.translation()
+        ik.AddPositionConstraint(
+            model.tcp, np.zeros(3), world, p - POSITION_TOLERANCE, p + POSITION_TOLERANCE
+        )
+        if free_rotation:
+            z_target = pose.rotation().col(2)
+            ik.AddAngleBetweenVectorsConstraint(
+                world, z_target, model.tcp, [0.0, 0.0, 1.0], 0.0, ANGLE_TOLERANCE
+            )
+        else:
+            ik.AddOrientationConstraint(
+                world, pose.rotation(), model.tcp, RotationMatrix(), ANGLE_TOLERANCE
+            )
+        if clearance is not None:
+            ik.AddMinimumDistanceLowerBoundConstraint(clearance, CLEARANCE_INFLUENCE)
+        q = ik.q()
+        program = ik.get_mutable_prog()
+        program.AddQuadraticErrorCost(np.eye(q.size), q_reference, q)
+        wrist_low, wrist_high = _wrist_bounds(model, wrist_sign)
+        program.AddBoundingBoxConstraint(wrist_low, wrist_high, q[WRIST])
+        program.SetInitialGuess(q, seed)
+        result = Solve(program)
+        return result.GetSolution(q) if result.is_success() else None
+
+    def _check_reach(self, pose: RigidTransform, q_start: np.ndarray) -> None:
+        self.model.plant.SetPositions(self.model.plant_context, q_start)
+        shoulder = self.shoulder.CalcPoseInWorld(self.model.plant_context).translation()
+        distance = np.linalg.norm(pose.translation() - shoulder)
+        limit = self.model.variant.reach + TOOL_REACH_MARGIN
+        if distance > limit:
+            raise PlanningFailed(
+                f"target unreachable: {distance:.2f} m from the shoulder, beyond the "
+                f"{self.model.variant.name}'s reach"
+            )
+
+    def _wrist_side(self, q: np.ndarray) -> float:
+        """+1 or -1: the side of A5 to stay on (the current one, else the nominal one)."""
+        reference = q[WRIST] if abs(q[WRIST]) > WRIST_MARGIN else self.q_nominal[WRIST]
+        return 1.0 if reference >= 0.0 else -1.0
+
+
+def _wrist_bounds(model, wrist_sign: float) -> tuple[float, float]:
+    if wrist_sign > 0:
+        return WRIST_MARGIN, model.upper[WRIST]
+    return model.lower[WRIST], -WRIST_MARGIN

@@ -1,0 +1,180 @@
+"""Robot command and status messages (abstract-valued ports of RobotMotion).
+
+A BehaviorTreeSystem holds its latest command on the `robot_command` port; RobotMotion acts
+on a command whose `seq` is newer than the last one it saw. Every command's outcome uses the
+shared vocabulary of `hrc_drake.messages` (running, succeeded, failed, rejected, cancelled).
+
+Poses are `RigidTransform`s of the tool's `tcp` frame (the suction cup face, z out of the
+cup) in the world frame.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from hrc_drake.messages import OUTCOMES
+
+IDLE = "idle"
+PLANNING = "planning"
+MOVING = "moving"
+STOPPING = "stopping"
+STOPPED = "stopped"
+MODES = (IDLE, PLANNING, MOVING, STOPPING, STOPPED)
+"""RobotMotion's state: `stopped` is a paused move (speed scale 0); `idle` holds still."""
+
+GRIP = "grip"
+RELEASE = "release"
+
+
+@dataclass(frozen=True)
+class MoveTo:
+    """Move the tool to `pose` along a collision-free joint-space path.
+
+    With `free_tool_rotation`, only the tool axis (z) must match: the rotation about it is
+    left to the planner, which picks the one nearest the robot's posture.
+    """
+
+    seq: int
+    pose: RigidTransform
+    free_tool_rotation: bool = False
+
+
+@dataclass(frozen=True)
+class MoveJoints:
+    """Move to joint positions `q` (radians, A1..A6) or to a named configuration of the
+    scenario (`home` or one of `robot.configurations_deg`)."""
+
+    seq: int
+    q: tuple[float, ...] | None = None
+    configuration: str | None = None
+
+
+@dataclass(frozen=True)
+class MoveLinear:
+    """Move the tool to `pose` along a straight Cartesian line (approach and retreat)."""
+
+    seq: int
+    pose: RigidTransform
+
+
+@dataclass(frozen=True)
+class Stop:
+    """Cancel the running move: decelerate on its path and hold. Succeeds at rest."""
+
+    seq: int
+
+
+@dataclass(frozen=True)
+class Grip:
+    """Switch the vacuum on: attach the object whose grasp surface is at the suction cup."""
+
+    seq: int
+
+
+@dataclass(frozen=True)
+class Release:
+    """Switch the vacuum off: hand the held object back to the workpieces system."""
+
+    seq: int
+
+
+@dataclass(frozen=True)
+class SetSpeed:
+    """Speed override, a fraction in [0, 1] of the planned speed; applies to running moves."""
+
+    seq: int
+    fraction: float
+
+
+RobotCommand = MoveTo | MoveJoints | MoveLinear | Stop | Grip | Release | SetSpeed
+MOTION_COMMANDS = (MoveTo, MoveJoints, MoveLinear)
+
+
+@dataclass(frozen=True)
+class CommandResult:
+    """Outcome of one accepted (or rejected) command."""
+
+    seq: int
+    outcome: str
+    reason: str = ""
+
+    def __post_init__(self):
+        if self.outcome not in OUTCOMES:
+            raise ValueError(f"unknown outcome '{self.outcome}'")
+
+
+@dataclass(frozen=True)
+class RobotStatus:
+    """What RobotMotion reports, computed at its last update.
+
+    `results` holds the outcomes of the most recent commands, newest last, so that a move's
+    outcome stays visible after a later SetSpeed or a rejected command: a behavior tree node
+    looks up its own command with `outcome_of(seq)`. `last_seq`, `outcome` and `reason`
+    describe the newest command. `speed_fraction` is the SetSpeed override, `safety_scale`
+    the safety monitor's scale, `speed_scale` the effective scale the path is traversed at
+    (it follows their product with bounded acceleration).
+    """
+
+    mode: str
+    results: tuple[CommandResult, ...]
+    tool_pose: RigidTransform
+    tool_speed: float
+    speed_fraction: float
+    safety_scale: float
+    speed_scale: float
+    held_object: str | None = None
+
+    @property
+    def last_seq(self) -> int:
+        return self.results[-1].seq if self.results else -1
+
+    @property
+    def outcome(self) -> str | None:
+        return self.results[-1].outcome if self.results else None
+
+    @property
+    def reason(self) -> str:
+        return self.results[-1].reason if self.results else ""
+
+    def result_of(self, seq: int) -> CommandResult | None:
+        """The result of command `seq`, if it is still among the recent ones."""
+        return next((r for r in reversed(self.results) if r.seq == seq), None)
+
+    def outcome_of(self, seq: int) -> str | None:
+        result = self.result_of(seq)
+        return result.outcome if result else None
+
+
+@dataclass(frozen=True)
+class GripperRequest:
+    """RobotMotion → workpieces: switch the vacuum on (`grip`) or off (`release`).
+
+    The workpieces system attaches the object whose grasp frame is within its tolerance of
+    `tcp_pose` and whose mass is at most `max_payload`, and answers with a GripperResult of
+    the same `seq`.
+    """
+
+    seq: int
+    action: str
+    tcp_pose: RigidTransform
+    max_payload: float
+
+
+@dataclass(frozen=True)
+class GripperResult:
+    """Workpieces → RobotMotion: the answer to GripperRequest `seq`.
+
+    `held_object` is the attached object's name after a successful grip, None after a
+    release; `reason` says why a grip failed (nothing at the cup, too heavy).
+    """
+
+    seq: int
+    outcome: str
+    held_object: str | None = None
+    reason: str = ""
+
+
+def joint_tuple(q) -> tuple[float, ...]:
+    """Joint positions as the plain tuple the messages carry."""
+    return tuple(float(x) for x in np.asarray(q).ravel())

@@ -1,0 +1,88 @@
+"""The planner's own model of the robot and the static cell, built from the scenario.
+
+It is a RobotDiagram (plant + SceneGraph) inside a SceneGraphCollisionChecker, separate from
+the simulated station: planning never touches the station's context.
+"""
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.parsing import ModelDirectives, ProcessModelDirectives
+from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
+
+from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
+from hrc_drake.paths import add_model_package
+from hrc_drake.scenario import NO_TOOL, Scenario
+
+EDGE_STEP = 0.01
+"""Joint-space resolution (rad) of edge collision checks: about 1 cm at the tool."""
+
+
+class PlanningModel:
+    """Robot + tool + static cell: kinematics, limits and collision checks for planning."""
+
+    def __init__(self, scenario: Scenario, clearance: float):
+        self.variant = VARIANTS[scenario.robot.variant]
+        self.clearance_required = clearance
+        builder = RobotDiagramBuilder(time_step=0.0)
+        arm, robot_instances = add_station_models(builder.plant(), builder.parser(), scenario)
+        builder.plant().Finalize()
+        self.checker = SceneGraphCollisionChecker(
+            model=builder.Build(),
+            robot_model_instances=robot_instances,
+            edge_step_size=EDGE_STEP,
+            env_collision_padding=clearance,
+            self_collision_padding=0.0,
+        )
+        self.plant = self.checker.plant()
+        self.arm = arm
+        if self.plant.num_positions() != len(self.variant.joint_names):
+            raise ValueError("the static cell must be welded: the planner plans the arm alone")
+        self.diagram_context = self.checker.model().CreateDefaultContext()
+        self.plant_context = self.checker.model().mutable_plant_context(self.diagram_context)
+        tcp_instance = robot_instances[-1]
+        self.tcp = self.plant.GetFrameByName(
+            TCP_FRAME if scenario.robot.tool != NO_TOOL else FLANGE_FRAME, tcp_instance
+        )
+        self.lower = np.array(self.variant.position_lower)
+        self.upper = np.array(self.variant.position_upper)
+        self.velocity_limits = np.array(self.variant.velocity_limits)
+        self.acceleration_limits = np.array(self.variant.acceleration_limits)
+
+    def tool_pose(self, q) -> RigidTransform:
+        self.plant.SetPositions(self.plant_context, q)
+        return self.tcp.CalcPoseInWorld(self.plant_context)
+
+    def tool_speed(self, q, v) -> float:
+        """Translational speed (m/s) of the tool centre point."""
+        self.plant.SetPositions(self.plant_context, q)
+        self.plant.SetVelocities(self.plant_context, v)
+        velocity = self.tcp.CalcSpatialVelocityInWorld(self.plant_context)
+        return float(np.linalg.norm(velocity.translational()))
+
+    def clearance(self, q) -> float:
+        """Smallest robot-cell and robot-robot distance (m) at q, padding not subtracted."""
+        distances = self.checker.CalcRobotClearance(q, 1.0).distances()
+        return float(distances.min()) if distances.size else np.inf
+
+    def collision_free(self, q) -> bool:
+        return self.checker.CheckConfigCollisionFree(q)
+
+    def edge_collision_free(self, q_from, q_to) -> bool:
+        return self.checker.CheckEdgeCollisionFree(q_from, q_to)
+
+    def within_limits(self, q) -> bool:
+        return bool(np.all(q >= self.lower - 1e-9) and np.all(q <= self.upper + 1e-9))
+
+
+def add_station_models(plant, parser, scenario: Scenario):
+    """The station's robot (as the builder adds it) and the scenario's static cell; returns
+    the arm and the robot's model instances (arm, then tool if any). Does not finalize."""
+    from hrc_drake.builder import ROBOT_MODEL, TOOL_MODEL, add_robot  # builder imports us
+
+    add_model_package(parser.package_map())
+    arm = add_robot(plant, parser, scenario.robot)
+    directives = ModelDirectives()
+    directives.directives = scenario.cell
+    ProcessModelDirectives(directives, plant, parser)
+    names = [ROBOT_MODEL] + ([TOOL_MODEL] if scenario.robot.tool != NO_TOOL else [])
+    return arm, [plant.GetModelInstanceByName(name) for name in names]

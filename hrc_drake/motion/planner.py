@@ -1,0 +1,102 @@
+"""Motion planning with Drake alone: inverse kinematics, collision-free joint paths, timing.
+
+`MotionPlanner.plan(command, q_start)` turns a move command into a TimedPath at nominal
+speed, or raises PlanningFailed with a reason a person can act on. Planning is deterministic:
+its random sampling draws from a Generator seeded afresh for every plan.
+"""
+
+import numpy as np
+
+from hrc_drake.motion.deadline import Deadline, PlanningFailed
+from hrc_drake.motion.ik import ToolTargetSolver
+from hrc_drake.motion.linear import linear_waypoints
+from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
+from hrc_drake.motion.model import PlanningModel
+from hrc_drake.motion.options import MotionOptions
+from hrc_drake.motion.roadmap import collision_free_waypoints
+from hrc_drake.motion.timing import TimedPath, polyline_path, spline_path, time_path
+from hrc_drake.scenario import Scenario
+
+ARRIVED = 1e-6
+"""Joint distance (rad) below which a target counts as the start: nothing to move."""
+
+
+class MotionPlanner:
+    """Plans the moves of one scenario's robot among its static cell."""
+
+    def __init__(self, scenario: Scenario, options: MotionOptions):
+        self.scenario = scenario
+        self.options = options
+        self.model = PlanningModel(scenario, options.clearance)
+        self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
+
+    def plan(self, command, q_start) -> TimedPath | None:
+        """The timed path for `command` from `q_start`; None when already there."""
+        q_start = np.asarray(q_start, dtype=float)
+        deadline = Deadline(self.options.planning_time_budget)
+        rng = np.random.default_rng(self.options.seed)
+        if isinstance(command, MoveLinear):
+            waypoints = self._linear(command, q_start, deadline)
+            return self._timed(spline_path(waypoints)) if len(waypoints) > 1 else None
+        q_goal = self._goal(command, q_start, deadline, rng)
+        if np.linalg.norm(q_goal - q_start) < ARRIVED:
+            return None
+        waypoints = collision_free_waypoints(self.model, q_start, q_goal, rng, deadline)
+        if waypoints is None:
+            raise PlanningFailed("no collision-free path to the target was found")
+        return self._timed(self._smoothest_safe_path(waypoints))
+
+    def _goal(self, command, q_start, deadline, rng) -> np.ndarray:
+        if isinstance(command, MoveJoints):
+            return self._joint_goal(command)
+        if isinstance(command, MoveTo):
+            return self.ik.solve(command.pose, q_start, command.free_tool_rotation, rng, deadline)
+        raise PlanningFailed(f"not a move command: {type(command).__name__}")
+
+    def _joint_goal(self, command: MoveJoints) -> np.ndarray:
+        if command.q is not None:
+            q = np.asarray(command.q, dtype=float)
+            if q.shape != self.model.lower.shape:
+                raise PlanningFailed(f"MoveJoints needs {self.model.lower.size} joint positions")
+        else:
+            q = self._named_configuration(command.configuration)
+        if not self.model.within_limits(q):
+            raise PlanningFailed("target joint positions are outside the joint limits")
+        if not self.model.collision_free(q):
+            raise PlanningFailed("target joint positions collide with the cell")
+        return q
+
+    def _named_configuration(self, name: str | None) -> np.ndarray:
+        known = {"home", *self.scenario.robot.configurations_deg}
+        if name not in known:
+            raise PlanningFailed(
+                f"unknown configuration '{name}' (known: {', '.join(sorted(known))})"
+            )
+        return self.scenario.configuration(name)
+
+    def _linear(self, command: MoveLinear, q_start, deadline) -> list[np.ndarray]:
+        return linear_waypoints(
+            self.model, self.ik, q_start, command.pose, self.options.linear_tolerance, deadline
+        )
+
+    def _smoothest_safe_path(self, waypoints: list[np.ndarray]):
+        """The C² spline when it stays collision-free, else the exact polyline."""
+        if len(waypoints) > 2:
+            spline = spline_path(waypoints)
+            if self._sampled_path_collision_free(spline):
+                return spline
+        return polyline_path(waypoints)
+
+    def _sampled_path_collision_free(self, path) -> bool:
+        length = path.end_time() - path.start_time()
+        samples = [path.value(s).ravel() for s in np.linspace(0.0, length, int(length / 0.01) + 2)]
+        return all(
+            self.model.within_limits(q) and self.model.edge_collision_free(a, b)
+            for a, b, q in zip(samples, samples[1:], samples[1:], strict=False)
+        )
+
+    def _timed(self, path) -> TimedPath:
+        timed = time_path(path, self.model, self.options.tool_speed_limit)
+        if timed is None:
+            raise PlanningFailed("time-parameterisation of the path failed")
+        return timed

@@ -1,0 +1,398 @@
+"""RobotMotion: the robot's motion planner and executor as one Drake system.
+
+It replaces MoveIt, ros_control and the original's re-planning hack: a move command is
+planned (inverse kinematics, collision-free path, TOPP-RA timing) inside a periodic update,
+then executed by advancing a path parameter whose rate is the product of the SetSpeed
+fraction and the safety monitor's scale. The desired state for the inverse-dynamics
+controller is evaluated from that parameter and the time since the last update, so it is
+smooth between updates and the system has no per-step Python events and no direct
+feedthrough. See hrc_drake/motion/messages.py for the commands and the status.
+"""
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
+
+from hrc_drake.iisy import VARIANTS
+from hrc_drake.messages import CANCELLED, FAILED, FINISHED, REJECTED, RUNNING, SUCCEEDED
+from hrc_drake.motion.deadline import PlanningFailed
+from hrc_drake.motion.execution import Progress, desired_motion, rate_change
+from hrc_drake.motion.messages import (
+    GRIP,
+    IDLE,
+    MOTION_COMMANDS,
+    MOVING,
+    PLANNING,
+    RELEASE,
+    STOPPED,
+    STOPPING,
+    CommandResult,
+    Grip,
+    GripperRequest,
+    GripperResult,
+    Release,
+    RobotStatus,
+    SetSpeed,
+    Stop,
+)
+from hrc_drake.motion.options import MotionOptions
+from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.motion.timing import TimedPath
+from hrc_drake.scenario import Scenario
+
+RESULTS_KEPT = 16
+"""How many recent command results the status carries."""
+ARRIVAL_SPEED = 0.01
+"""rad/s: joint speeds below which a finished move counts as at rest."""
+
+
+@dataclass(frozen=True)
+class MotionState:
+    """Everything RobotMotion remembers between updates (immutable; replaced each update).
+
+    `path`/`progress` exist while the robot executes or stops on a path; `move_seq` is the
+    running move (None while a Stop decelerates), `pending` an accepted move waiting to be
+    planned (it is planned once the robot is at rest).
+    """
+
+    hold: tuple[float, ...]
+    tool_pose: RigidTransform
+    results: tuple[CommandResult, ...] = ()
+    seen_seq: int = -1
+    path: TimedPath | None = None
+    progress: Progress | None = None
+    move_seq: int | None = None
+    stop_seq: int | None = None
+    pending: object = None
+    arrived_since: float | None = None
+    speed_fraction: float = 1.0
+    safety_scale: float = 1.0
+    tool_speed: float = 0.0
+    gripper_request: GripperRequest | None = None
+    gripper_waiting: bool = False
+    gripper_since: float = 0.0
+    held_object: str | None = None
+    mode: str = IDLE
+
+    def __deepcopy__(self, memo):
+        return self  # immutable: contexts may share it
+
+    def with_result(self, seq: int, outcome: str, reason: str = "") -> "MotionState":
+        kept = tuple(r for r in self.results if r.seq != seq)
+        results = (*kept, CommandResult(seq, outcome, reason))[-RESULTS_KEPT:]
+        return dataclasses.replace(self, results=results)
+
+    def replace(self, **changes) -> "MotionState":
+        return dataclasses.replace(self, **changes)
+
+
+class RobotMotion(LeafSystem):
+    """Plans and executes the robot's moves; see the module docstring.
+
+    Inputs: `robot_command` (latest command or None), `speed_scale` (safety scale, 1.0 when
+    unconnected), `robot_state` (arm q, v), `gripper_result` (GripperResult or None).
+    Outputs: `desired_state` (q, v), `desired_acceleration`, `robot_status` (RobotStatus),
+    `gripper_request` (GripperRequest or None).
+    """
+
+    def __init__(self, scenario: Scenario, options: MotionOptions | None = None):
+        super().__init__()
+        self._options = options or MotionOptions()
+        self._planner = MotionPlanner(scenario, self._options)
+        self._model = self._planner.model
+        self._variant = VARIANTS[scenario.robot.variant]
+        self._n = len(self._variant.joint_names)
+        q0 = scenario.configuration(scenario.robot.initial_configuration)
+        initial = MotionState(hold=tuple(q0), tool_pose=self._model.tool_pose(q0))
+        self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
+
+        self._command = self.DeclareAbstractInputPort("robot_command", AbstractValue.Make(None))
+        self._speed_scale = self.DeclareVectorInputPort("speed_scale", 1)
+        self._robot_state = self.DeclareVectorInputPort("robot_state", 2 * self._n)
+        self._gripper_result = self.DeclareAbstractInputPort(
+            "gripper_result", AbstractValue.Make(None)
+        )
+        self.DeclareVectorOutputPort(
+            "desired_state",
+            2 * self._n,
+            self._calc_desired_state,
+            {self.time_ticket(), self.all_state_ticket()},
+        )
+        self.DeclareVectorOutputPort(
+            "desired_acceleration",
+            self._n,
+            self._calc_desired_acceleration,
+            {self.time_ticket(), self.all_state_ticket()},
+        )
+        self.DeclareAbstractOutputPort(
+            "robot_status",
+            lambda: AbstractValue.Make(None),
+            self._calc_status,
+            {self.all_state_ticket()},
+        )
+        self.DeclareAbstractOutputPort(
+            "gripper_request",
+            lambda: AbstractValue.Make(None),
+            self._calc_gripper_request,
+            {self.all_state_ticket()},
+        )
+        self.DeclarePeriodicUnrestrictedUpdateEvent(self._options.update_period, 0.0, self._update)
+
+    @property
+    def planner(self) -> MotionPlanner:
+        return self._planner
+
+    # Outputs: from state and time only.
+
+    def _state(self, context) -> MotionState:
+        return context.get_abstract_state(self._state_index).get_value()
+
+    def _desired(self, context) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        state = self._state(context)
+        if state.path is None:
+            hold = np.array(state.hold)
+            return hold, np.zeros(self._n), np.zeros(self._n)
+        progress = state.progress.at(context.get_time(), state.path.duration)
+        return desired_motion(state.path, progress)
+
+    def _calc_desired_state(self, context, output: BasicVector) -> None:
+        q, v, _ = self._desired(context)
+        output.SetFromVector(np.concatenate([q, v]))
+
+    def _calc_desired_acceleration(self, context, output: BasicVector) -> None:
+        output.SetFromVector(self._desired(context)[2])
+
+    def _calc_status(self, context, output: AbstractValue) -> None:
+        state = self._state(context)
+        output.set_value(
+            RobotStatus(
+                mode=state.mode,
+                results=state.results,
+                tool_pose=state.tool_pose,
+                tool_speed=state.tool_speed,
+                speed_fraction=state.speed_fraction,
+                safety_scale=state.safety_scale,
+                speed_scale=self._effective_scale(state),
+                held_object=state.held_object,
+            )
+        )
+
+    def _calc_gripper_request(self, context, output: AbstractValue) -> None:
+        output.set_value(self._state(context).gripper_request)
+
+    @staticmethod
+    def _effective_scale(state: MotionState) -> float:
+        if state.path is not None:
+            return state.progress.rate
+        return state.speed_fraction * state.safety_scale
+
+    # The periodic update: measure, accept a command, answer the gripper, plan, advance.
+
+    def _update(self, context, new_state) -> EventStatus:
+        t = context.get_time()
+        x = self._robot_state.Eval(context)
+        q, v = x[: self._n], x[self._n :]
+        state = self._measured(self._state(context), q, v, self._safety_scale(context), t)
+        command = self._command.Eval(context) if self._command.HasValue(context) else None
+        if command is not None and command.seq > state.seen_seq:
+            state = self._accept(state.replace(seen_seq=command.seq), command, context, t)
+        state = self._gripper_answered(state, context, t)
+        state = self._planned_when_at_rest(state, t)
+        state = self._advanced(state, q, v, t)
+        new_state.get_mutable_abstract_state(self._state_index).set_value(state)
+        return EventStatus.Succeeded()
+
+    def _safety_scale(self, context) -> float:
+        if not self._speed_scale.HasValue(context):
+            return 1.0
+        return float(np.clip(self._speed_scale.Eval(context)[0], 0.0, 1.0))
+
+    def _measured(self, state: MotionState, q, v, safety: float, t: float) -> MotionState:
+        progress = state.progress
+        if state.path is not None:
+            progress = progress.at(t, state.path.duration)
+        return state.replace(
+            tool_pose=self._model.tool_pose(q),
+            tool_speed=self._model.tool_speed(q, v),
+            safety_scale=safety,
+            progress=progress,
+        )
+
+    def _accept(self, state: MotionState, command, context, t: float) -> MotionState:
+        if isinstance(command, SetSpeed):
+            return self._set_speed(state, command)
+        if isinstance(command, Stop):
+            return self._stop(state, command)
+        if isinstance(command, MOTION_COMMANDS):
+            return self._queue_move(state, command)
+        if isinstance(command, Grip | Release):
+            return self._switch_gripper(state, command, self._gripper_result.HasValue(context), t)
+        return state.with_result(command.seq, REJECTED, f"unknown command {type(command).__name__}")
+
+    @staticmethod
+    def _set_speed(state: MotionState, command: SetSpeed) -> MotionState:
+        if not 0.0 <= command.fraction <= 1.0:
+            reason = f"speed fraction must be in [0, 1], got {command.fraction}"
+            return state.with_result(command.seq, REJECTED, reason)
+        return state.replace(speed_fraction=float(command.fraction)).with_result(
+            command.seq, SUCCEEDED
+        )
+
+    @staticmethod
+    def _stop(state: MotionState, command: Stop) -> MotionState:
+        """Cancels the running or pending move; succeeds once the robot is at rest."""
+        for seq in (state.move_seq, state.stop_seq, getattr(state.pending, "seq", None)):
+            if seq is not None:
+                state = state.with_result(seq, CANCELLED, f"cancelled by Stop {command.seq}")
+        state = state.replace(move_seq=None, pending=None, stop_seq=None)
+        if state.path is None:
+            return state.with_result(command.seq, SUCCEEDED)
+        return state.replace(stop_seq=command.seq).with_result(command.seq, RUNNING)
+
+    def _queue_move(self, state: MotionState, command) -> MotionState:
+        busy = self._busy(state)
+        if busy:
+            return state.with_result(command.seq, REJECTED, busy)
+        return state.replace(pending=command).with_result(command.seq, RUNNING)
+
+    @staticmethod
+    def _busy(state: MotionState) -> str:
+        """Why a new move or gripper command cannot start now ("" when it can)."""
+        if state.move_seq is not None:
+            return f"busy: move {state.move_seq} is running"
+        if state.pending is not None:
+            return f"busy: move {state.pending.seq} is being planned"
+        if state.gripper_waiting:
+            return f"busy: gripper command {state.gripper_request.seq} is running"
+        return ""
+
+    def _switch_gripper(self, state: MotionState, command, connected: bool, t) -> MotionState:
+        busy = self._busy(state) or ("busy: the robot is stopping" if state.path else "")
+        if busy:
+            return state.with_result(command.seq, REJECTED, busy)
+        if not connected:
+            return state.with_result(command.seq, FAILED, "no workpieces system is connected")
+        gripping = isinstance(command, Grip)
+        if gripping and state.held_object is not None:
+            return state.with_result(command.seq, FAILED, f"already holding {state.held_object}")
+        if not gripping and state.held_object is None:
+            return state.with_result(command.seq, SUCCEEDED, "nothing was held")
+        request = GripperRequest(
+            seq=command.seq,
+            action=GRIP if gripping else RELEASE,
+            tcp_pose=state.tool_pose,
+            max_payload=self._variant.payload,
+        )
+        state = state.replace(gripper_request=request, gripper_waiting=True, gripper_since=t)
+        return state.with_result(command.seq, RUNNING)
+
+    def _gripper_answered(self, state: MotionState, context, t: float) -> MotionState:
+        if not state.gripper_waiting:
+            return state
+        seq = state.gripper_request.seq
+        answer = (
+            self._gripper_result.Eval(context) if self._gripper_result.HasValue(context) else None
+        )
+        if isinstance(answer, GripperResult) and answer.seq == seq and answer.outcome in FINISHED:
+            held = answer.held_object if answer.outcome == SUCCEEDED else state.held_object
+            state = state.replace(gripper_waiting=False, held_object=held)
+            return state.with_result(seq, answer.outcome, answer.reason)
+        if t - state.gripper_since > self._options.gripper_timeout:
+            state = state.replace(gripper_waiting=False)
+            return state.with_result(seq, FAILED, "the workpieces system did not answer")
+        return state
+
+    def _planned_when_at_rest(self, state: MotionState, t: float) -> MotionState:
+        if state.pending is None or state.path is not None:
+            return state
+        command = state.pending
+        state = state.replace(pending=None)
+        try:
+            path = self._planner.plan(command, np.array(state.hold))
+        except PlanningFailed as failure:
+            return state.with_result(command.seq, FAILED, str(failure))
+        if path is None:
+            return state.with_result(command.seq, SUCCEEDED, "already at the target")
+        return state.replace(
+            path=path,
+            progress=Progress(0.0, 0.0, 0.0, t),
+            move_seq=command.seq,
+            arrived_since=None,
+        )
+
+    def _advanced(self, state: MotionState, q, v, t: float) -> MotionState:
+        """Chooses the path rate's change for the next period, or ends the path."""
+        if state.path is None:
+            return state.replace(mode=PLANNING if state.pending is not None else IDLE)
+        progress = state.progress
+        if state.stop_seq is not None and progress.at_rest:
+            return self._ended(state, state.path.position(progress.tau)).with_result(
+                state.stop_seq, SUCCEEDED
+            )
+        if state.move_seq is not None and progress.finished(state.path.duration):
+            return self._arriving(state, q, v, t)
+        target = 0.0 if state.stop_seq is not None else state.speed_fraction * state.safety_scale
+        change = rate_change(
+            state.path,
+            progress,
+            target,
+            self._options.update_period,
+            self._model.acceleration_limits,
+        )
+        progress = dataclasses.replace(progress, rate_change=change, since=t)
+        mode = MOVING if target > 0.0 else (STOPPED if progress.at_rest else STOPPING)
+        return state.replace(progress=progress, mode=mode)
+
+    def _arriving(self, state: MotionState, q, v, t: float) -> MotionState:
+        """A finished path succeeds when the robot has arrived and come to rest."""
+        error = float(np.max(np.abs(q - state.path.end)))
+        if error < self._options.settle_tolerance and np.max(np.abs(v)) < ARRIVAL_SPEED:
+            return self._ended(state, state.path.end).with_result(state.move_seq, SUCCEEDED)
+        since = t if state.arrived_since is None else state.arrived_since
+        if t - since > self._options.settle_timeout:
+            reason = f"the robot did not arrive: joint error {error:.4f} rad"
+            return self._ended(state, state.path.end).with_result(state.move_seq, FAILED, reason)
+        return state.replace(arrived_since=since, mode=MOVING)
+
+    @staticmethod
+    def _ended(state: MotionState, hold: np.ndarray) -> MotionState:
+        return state.replace(
+            hold=tuple(hold),
+            path=None,
+            progress=None,
+            move_seq=None,
+            stop_seq=None,
+            arrived_since=None,
+            mode=PLANNING if state.pending is not None else IDLE,
+        )
+
+
+def add_robot_motion(
+    builder, scenario: Scenario, plant, arm, controller, options: MotionOptions | None = None
+) -> RobotMotion:
+    """Adds RobotMotion as "robot_motion" between the plant and its InverseDynamicsController.
+
+    Feeds the acceleration forward when the controller takes a reference acceleration, and
+    exports `robot_command`, `speed_scale`, `gripper_result` (inputs) and `robot_status`,
+    `gripper_request`, `robot_desired_state` (outputs).
+    """
+    motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
+    builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
+    builder.Connect(
+        motion.GetOutputPort("desired_state"), controller.get_input_port_desired_state()
+    )
+    if controller.HasInputPort("desired_acceleration"):
+        builder.Connect(
+            motion.GetOutputPort("desired_acceleration"),
+            controller.get_input_port_desired_acceleration(),
+        )
+    for name in ("robot_command", "speed_scale", "gripper_result"):
+        builder.ExportInput(motion.GetInputPort(name), name)
+    for name in ("robot_status", "gripper_request"):
+        builder.ExportOutput(motion.GetOutputPort(name), name)
+    builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
+    return motion

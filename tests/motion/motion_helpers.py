@@ -1,0 +1,129 @@
+"""Test scenarios and a robot-only station (plant, cell, controller, RobotMotion).
+
+The station is assembled from the builder's public pieces with the controller taking
+RobotMotion's acceleration feed-forward, as the builder does.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from hrc_drake.systems.robot_motion import add_robot_motion
+from pydrake.common.yaml import yaml_load_typed
+from pydrake.math import RigidTransform
+from pydrake.multibody.parsing import Parser
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.controllers import InverseDynamicsController
+from pydrake.systems.framework import DiagramBuilder
+
+from hrc_drake.builder import make_control_plant
+from hrc_drake.iisy import VARIANTS
+from hrc_drake.messages import FINISHED
+from hrc_drake.motion.model import add_station_models
+from hrc_drake.scenario import Scenario
+
+PEDESTAL_TOP = 0.8
+TABLE_Y = {"lbr_iisy3_r760": 0.65, "lbr_iisy11_r1300": 0.9, "lbr_iisy15_r930": 0.75}
+"""Work table centre in front of each variant (its top is 0.9 m high, 0.8 m deep)."""
+
+CELL = """
+  - add_model: {{name: floor, file: package://hrc_drake_models/cell/floor.sdf}}
+  - add_weld: {{parent: world, child: floor::body}}
+  - add_model: {{name: pedestal, file: package://hrc_drake_models/cell/robot_pedestal.sdf}}
+  - add_weld: {{parent: world, child: pedestal::body}}
+  - add_model: {{name: work_table, file: package://hrc_drake_models/cell/work_table.sdf}}
+  - add_weld:
+      parent: world
+      child: work_table::body
+      X_PC: {{translation: [0.0, {table_y}, 0.0]}}
+"""
+
+BOX = """
+  - add_model: {{name: obstacle, file: package://hrc_drake_models/cell/box_small.sdf}}
+  - add_weld:
+      parent: world
+      child: obstacle::body
+      X_PC: {{translation: [{x}, {y}, 1.0], rotation: !Rpy {{deg: [0, 0, 90]}}}}
+"""
+
+
+def make_scenario(variant: str = "lbr_iisy3_r760", box_at: tuple | None = None) -> Scenario:
+    """The robot on its pedestal with a work table in front; optionally a box on the table."""
+    cell = CELL.format(table_y=TABLE_Y[variant])
+    if box_at is not None:
+        cell += BOX.format(x=box_at[0], y=box_at[1])
+    text = f"""
+name: motion_test_{variant}
+robot:
+  variant: {variant}
+  base_pose: {{translation: [0.0, 0.0, {PEDESTAL_TOP}]}}
+  configurations_deg:
+    ready: [0, -45, 90, 0, 45, 0]
+cell:{cell}"""
+    return yaml_load_typed(schema=Scenario, data=text)
+
+
+@dataclass
+class Station:
+    diagram: object
+    simulator: Simulator
+    motion: object
+    plant: object
+
+    @property
+    def context(self):
+        return self.simulator.get_context()
+
+    def command(self, command) -> None:
+        self.diagram.GetInputPort("robot_command").FixValue(self.context, command)
+
+    def set_safety_scale(self, scale: float) -> None:
+        self.diagram.GetInputPort("speed_scale").FixValue(self.context, [scale])
+
+    def status(self):
+        return self.diagram.GetOutputPort("robot_status").Eval(self.context)
+
+    def q(self) -> np.ndarray:
+        return self.diagram.GetOutputPort("robot_state").Eval(self.context)[:6].copy()
+
+    def tool_pose(self) -> RigidTransform:
+        return self.motion.planner.model.tool_pose(self.q())
+
+    def run_until_finished(self, seq: int, timeout: float = 10.0, on_step=None) -> str:
+        """Advances in 10 ms steps until command `seq` finished; returns its outcome."""
+        end = self.context.get_time() + timeout
+        while self.context.get_time() < end:
+            self.simulator.AdvanceTo(self.context.get_time() + 0.01)
+            if on_step is not None:
+                on_step(self)
+            outcome = self.status().outcome_of(seq)
+            if outcome in FINISHED:
+                return outcome
+        return "timeout"
+
+
+def build_station(scenario: Scenario, options=None) -> Station:
+    builder = DiagramBuilder()
+    config = MultibodyPlantConfig(
+        time_step=scenario.time_step, discrete_contact_approximation="sap"
+    )
+    plant, scene_graph = AddMultibodyPlant(config, builder)
+    arm, _ = add_station_models(plant, Parser(plant), scenario)
+    plant.Finalize()
+    plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
+    variant = VARIANTS[scenario.robot.variant]
+    controller = builder.AddNamedSystem(
+        "robot_controller",
+        InverseDynamicsController(
+            make_control_plant(scenario), variant.kp, variant.ki, variant.kd, True
+        ),
+    )
+    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
+    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
+    motion = add_robot_motion(builder, scenario, plant, arm, controller, options)
+    builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
+    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    simulator.Initialize()
+    return Station(diagram, simulator, motion, plant)
