@@ -85,7 +85,7 @@ class TreeNode:
         self.tree = config.tree
         self.blackboard = config.blackboard
         self.status = IDLE
-        self.tick_counts = [0, 0, 0, 0, 0]
+        self.tick_counts: list[int] | None = None  # results by status, once NodeCounters attach
         self._observers = config.tree.observers  # the tree's list, shared
         self._inputs = config.inputs
         self._outputs = config.outputs
@@ -199,7 +199,8 @@ class TreeNode:
             self.status = status  # set_status, inlined: this is the hottest line
             if self._observers:
                 self.tree.notify(self, previous, status)
-        self.tick_counts[status] += 1
+        if self.tick_counts is not None:
+            self.tick_counts[status] += 1
         return status
 
     def _check_preconditions(self) -> Status | None:

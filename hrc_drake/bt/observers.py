@@ -82,14 +82,14 @@ class NodeCounters:
 
     def __init__(self) -> None:
         self.tree: Tree | None = None
-        self._baseline: dict[int, list[int]] = {}
         self._running_since: dict[int, float] = {}
         self._time_running: dict[int, float] = {}
         self._last_status: dict[int, Status] = {}
 
     def attach(self, tree: Tree) -> None:
         self.tree = tree
-        self._baseline = {node.uid: list(node.tick_counts) for node in tree.node_list}
+        for node in tree.node_list:
+            node.tick_counts = [0] * len(Status)
 
     def on_transition(self, time: float, node: TreeNode, previous: Status, new: Status) -> None:
         if new is RUNNING:
@@ -101,12 +101,7 @@ class NodeCounters:
             self._last_status[node.uid] = new
 
     def count(self, node: TreeNode) -> NodeCount:
-        counts = [
-            now - before
-            for now, before in zip(
-                node.tick_counts, self._baseline.get(node.uid, [0] * 5), strict=True
-            )
-        ]
+        counts = node.tick_counts or [0] * len(Status)
         running = self._time_running.get(node.uid, 0.0)
         if node.uid in self._running_since:
             running += self.tree.now - self._running_since[node.uid]
