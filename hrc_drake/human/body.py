@@ -37,6 +37,8 @@ class FrameTask:
     rotation: RotationMatrix | None = None
     position_weights: tuple[float, float, float] = (1.0, 1.0, 1.0)
     rotation_weights: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    point: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """The point of the frame that should reach `position` (frame coordinates)."""
 
 
 class HumanBody:
@@ -126,7 +128,7 @@ class HumanBody:
         worst = 0.0
         for task in tasks:
             X = self.plant.GetFrameByName(task.frame).CalcPoseInWorld(self.context)
-            weighted = (task.position - X.translation()) * np.array(task.position_weights)
+            weighted = (task.position - X @ np.array(task.point)) * np.array(task.position_weights)
             worst = max(worst, float(np.linalg.norm(weighted)))
         return worst
 
@@ -137,11 +139,12 @@ class HumanBody:
         for task in tasks:
             frame = self.plant.GetFrameByName(task.frame)
             X = frame.CalcPoseInWorld(self.context)
+            point = np.array(task.point)
             J = self.plant.CalcJacobianSpatialVelocity(
-                self.context, JacobianWrtVariable.kQDot, frame, np.zeros(3), world, world
+                self.context, JacobianWrtVariable.kQDot, frame, point, world, world
             )[:, self.plant_index]
             wp = np.array(task.position_weights)
-            errors.append(wp * (task.position - X.translation()))
+            errors.append(wp * (task.position - X @ point))
             rows.append(wp[:, None] * J[3:])
             if task.rotation is not None:
                 wr = np.array(task.rotation_weights)

@@ -1,0 +1,147 @@
+"""Motion clips: joint trajectories sampled at a fixed frame rate, with events and a loop flag.
+
+Frames hold every joint of the skeleton in canonical order and SI units. Between frames a
+clip is interpolated with a Catmull-Rom spline (continuous joint speeds), clamped between
+the two frames so that it never overshoots a joint limit. A looping clip's
+last frame equals its first plus a constant root displacement (`root_shift`, the distance a
+walk cycle covers), so it can be played forever without jumps.
+
+Files (models/human/animations/<name>.json) store revolute joints in degrees and the base
+translations in metres, one frame per line.
+"""
+
+import json
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from hrc_drake.paths import resource_dir
+
+ROOT_MOTION = ("base_x", "base_y", "base_yaw")
+"""Joints a looping clip may advance per cycle (walking forwards, turning on the spot)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Clip:
+    """One animation. `events` maps a name to the clip time (s) at which it fires."""
+
+    name: str
+    joint_names: tuple[str, ...]
+    frames: np.ndarray
+    fps: float
+    loop: bool = False
+    events: dict[str, float] = field(default_factory=dict)
+    animation_distance: float = 0.0
+    description: str = ""
+
+    @property
+    def duration(self) -> float:
+        return (len(self.frames) - 1) / self.fps
+
+    @property
+    def root_shift(self) -> np.ndarray:
+        """Displacement of the root over one loop (zero for clips that stay in place)."""
+        shift = np.zeros(self.frames.shape[1])
+        if self.loop:
+            for joint in ROOT_MOTION:
+                i = self.joint_names.index(joint)
+                shift[i] = self.frames[-1, i] - self.frames[0, i]
+        return shift
+
+    def sample(self, t: float) -> np.ndarray:
+        """Joint positions at clip time t; loops wrap (adding root_shift), others clamp."""
+        n = len(self.frames) - 1
+        if self.loop:
+            cycles = np.floor(t / self.duration)
+            offset = cycles * self.root_shift
+            u = (t - cycles * self.duration) * self.fps
+        else:
+            offset = 0.0
+            u = float(np.clip(t, 0.0, self.duration)) * self.fps
+        k = min(int(np.floor(u)), n - 1)
+        s = u - k
+        p0, p1, p2, p3 = (self._frame(k + j) for j in (-1, 0, 1, 2))
+        between = np.clip(_catmull_rom(p0, p1, p2, p3, s), np.minimum(p1, p2), np.maximum(p1, p2))
+        return offset + between
+
+    def _frame(self, k: int) -> np.ndarray:
+        """Frame k, extended past the ends: by wrapping for loops, by clamping otherwise."""
+        n = len(self.frames) - 1
+        if not self.loop:
+            return self.frames[min(max(k, 0), n)]
+        cycles, index = divmod(k, n)
+        return self.frames[index] + cycles * self.root_shift
+
+
+def _catmull_rom(p0, p1, p2, p3, s):
+    return 0.5 * (
+        2 * p1
+        + (p2 - p0) * s
+        + (2 * p0 - 5 * p1 + 4 * p2 - p3) * s**2
+        + (3 * p1 - p0 - 3 * p2 + p3) * s**3
+    )
+
+
+def animations_dir() -> Path:
+    return resource_dir("models") / "human" / "animations"
+
+
+def _angle_columns(joint_names) -> np.ndarray:
+    return np.array([name not in ("base_x", "base_y", "pelvis_height") for name in joint_names])
+
+
+def clip_to_json(clip: Clip) -> str:
+    """File text: metadata, then one frame per line (degrees / metres, 5 decimals)."""
+    stored = clip.frames.copy()
+    angles = _angle_columns(clip.joint_names)
+    stored[:, angles] = np.degrees(stored[:, angles])
+    header = {
+        "name": clip.name,
+        "description": clip.description,
+        "fps": clip.fps,
+        "loop": clip.loop,
+        "animation_distance": round(clip.animation_distance, 5),
+        "events": {k: round(v, 5) for k, v in clip.events.items()},
+        "units": "degrees; metres for base_x, base_y, pelvis_height",
+        "joints": list(clip.joint_names),
+    }
+    body = json.dumps(header, indent=1)[:-2]
+    rows = ",\n  ".join(json.dumps([round(float(v), 5) + 0.0 for v in row]) for row in stored)
+    return f'{body},\n "frames": [\n  {rows}\n ]\n}}\n'
+
+
+def clip_from_json(text: str) -> Clip:
+    data = json.loads(text)
+    joints = tuple(data["joints"])
+    frames = np.array(data["frames"], dtype=float)
+    angles = _angle_columns(joints)
+    frames[:, angles] = np.radians(frames[:, angles])
+    return Clip(
+        name=data["name"],
+        joint_names=joints,
+        frames=frames,
+        fps=float(data["fps"]),
+        loop=bool(data["loop"]),
+        events={k: float(v) for k, v in data["events"].items()},
+        animation_distance=float(data["animation_distance"]),
+        description=data.get("description", ""),
+    )
+
+
+def save_clip(clip: Clip, directory: Path | None = None) -> Path:
+    path = (directory or animations_dir()) / f"{clip.name}.json"
+    path.write_text(clip_to_json(clip))
+    return path
+
+
+def load_clip(path: Path) -> Clip:
+    return clip_from_json(Path(path).read_text())
+
+
+@lru_cache(maxsize=4)
+def load_clips(directory: Path | None = None) -> dict[str, Clip]:
+    """Every clip in the animations folder, by name (read once per process)."""
+    folder = directory or animations_dir()
+    return {path.stem: load_clip(path) for path in sorted(folder.glob("*.json"))}
