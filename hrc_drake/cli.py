@@ -5,6 +5,7 @@ nothing the run already wrote is removed.
 """
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -45,7 +46,19 @@ def _make_parser() -> argparse.ArgumentParser:
     run.add_argument(
         "--meshcat", action="store_true", help="show the run live in Meshcat, at real time"
     )
+    _add_set_option(run)
     run.set_defaults(command=_run)
+
+    sweep = commands.add_parser("sweep", help="run many seeds (and parameter grids) of a scenario")
+    sweep.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
+    sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
+    _add_set_option(sweep)
+    sweep.add_argument(
+        "--workers", type=_positive_int, default=os.cpu_count(), help="local worker processes"
+    )
+    sweep.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
+    sweep.add_argument("--out", type=Path, help="sweep directory (default: sweeps/<scenario>)")
+    sweep.set_defaults(command=_sweep)
 
     diagram = commands.add_parser("diagram", help="export the scenario's system diagram")
     diagram.add_argument("scenario")
@@ -59,6 +72,26 @@ def _make_parser() -> argparse.ArgumentParser:
     listing = commands.add_parser("list", help="bundled scenarios and robot variants")
     listing.set_defaults(command=_list)
     return parser
+
+
+def _add_set_option(parser) -> None:
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="PATH=VALUE[,VALUE...]",
+        help="change a scenario field, e.g. duration=5 or safety.v_h=1.6,2.0 (a sweep grid)",
+    )
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
+    return value
 
 
 def _positive_float(text: str) -> float:
@@ -81,8 +114,13 @@ def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
     from hrc_drake.runner import run
+    from hrc_drake.scenario import Scenario
+    from hrc_drake.sweep.overrides import apply, parse_sets
 
-    scenario = _load(args.scenario)
+    axes = parse_sets(args.set, Scenario)
+    if any(len(values) > 1 for _, values in axes):
+        raise InputError("run: --set takes one value per field (use sweep for grids)")
+    scenario = apply(_load(args.scenario), tuple((path, values[0]) for path, values in axes))
     seed = scenario.seed if args.seed is None else args.seed
     out = args.out or Path("runs") / f"{scenario.name}-seed{seed}"
     meshcat = Meshcat() if args.meshcat else None
@@ -99,9 +137,30 @@ def _run(args) -> int:
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
     )
-    for name, path in report.files.items():
-        print(f"  {name:8s} {path}")
+    _print_files(report.files)
     return 0
+
+
+def _sweep(args) -> int:
+    from hrc_drake.scenario import resolve_scenario_path
+    from hrc_drake.sweep import parse_seeds, plan, sweep
+
+    scenario = _load(args.scenario)
+    specs = plan(resolve_scenario_path(args.scenario), parse_seeds(args.seeds), args.set)
+    out = args.out or Path("sweeps") / scenario.name
+    result = sweep(specs, out, args.workers, args.dask, progress=True, scenario_name=scenario.name)
+    print(
+        f"{scenario.name}: {len(result.rows)} runs ({result.skipped} already done, "
+        f"{len(result.failed)} failed)"
+    )
+    _print_files(result.files)
+    return 0
+
+
+def _print_files(files: dict[str, Path]) -> None:
+    width = max(map(len, files), default=0)
+    for name, path in files.items():
+        print(f"  {name:{width}s} {path}")
 
 
 def _diagram(args) -> int:

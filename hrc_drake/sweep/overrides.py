@@ -1,0 +1,105 @@
+"""`--set path=value[,value…]`: dotted scenario fields changed from the command line.
+
+Paths are checked against the Scenario schema and values converted to the field's type, so
+a typo is one clear line (InputError) before any run starts. Several values make a grid
+axis; several `--set` options make the Cartesian product.
+"""
+
+import dataclasses
+import difflib
+import itertools
+import types
+import typing
+
+import yaml
+
+from hrc_drake.yaml_check import InputError, schema_fields
+
+SCALARS = (bool, int, float, str)
+Overrides = tuple[tuple[str, typing.Any], ...]
+"""((dotted path, value), …) in the order given; hashable, so it names a grid point."""
+
+
+def parse_sets(texts: list[str], schema) -> list[tuple[str, list]]:
+    """`["a.b=1,2", "c=x"]` → `[("a.b", [1.0, 2.0]), ("c", ["x"])]`, typed by `schema`."""
+    axes = []
+    for text in texts:
+        path, sep, values = text.partition("=")
+        path = path.strip()
+        if not sep or not path or not values.strip():
+            raise InputError(f"--set {text}: expected PATH=VALUE[,VALUE...]")
+        kind = field_type(schema, path)
+        axes.append((path, [convert(path, kind, v.strip()) for v in values.split(",")]))
+    return axes
+
+
+def grid(axes: list[tuple[str, list]]) -> list[Overrides]:
+    """Every combination of the axes' values (one empty grid point without axes)."""
+    paths = [path for path, _ in axes]
+    return [
+        tuple(zip(paths, combo, strict=True)) for combo in itertools.product(*(v for _, v in axes))
+    ]
+
+
+def field_type(schema, path: str):
+    """The type of the scalar field at dotted `path`; InputError naming the bad part."""
+    kind = schema
+    for depth, name in enumerate(path.split(".")):
+        fields = schema_fields(kind)
+        if fields is None:
+            done = ".".join(path.split(".")[:depth])
+            raise InputError(f"--set {path}: '{done}' has no fields")
+        if name not in fields:
+            close = difflib.get_close_matches(name, list(fields), n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise InputError(f"--set {path}: unknown field '{name}'{hint}")
+        kind = fields[name]
+    if _scalar(kind) is None:
+        raise InputError(f"--set {path}: only number, boolean and text fields can be set")
+    return kind
+
+
+def convert(path: str, kind, text: str):
+    """`text` as a value of the scalar (or optional scalar) type `kind`."""
+    if text in ("null", "~") and _optional(kind):
+        return None
+    scalar = _scalar(kind)
+    value = yaml.safe_load(text) if scalar is not str else text
+    if scalar is float and isinstance(value, int) and not isinstance(value, bool):
+        value = float(value)
+    if not isinstance(value, scalar) or (scalar is int and isinstance(value, bool)):
+        raise InputError(f"--set {path}: '{text}' is not a {scalar.__name__}")
+    return value
+
+
+def apply(scenario, overrides: Overrides):
+    """A copy of the scenario dataclass with the dotted fields replaced."""
+    for path, value in overrides:
+        scenario = _replace(scenario, path.split("."), value)
+    return scenario
+
+
+def label(overrides: Overrides) -> str:
+    """`a.b=1.6 c=x` (empty for the scenario as written)."""
+    return " ".join(f"{path}={value}" for path, value in overrides)
+
+
+def _replace(obj, names: list[str], value):
+    head, rest = names[0], names[1:]
+    new = _replace(getattr(obj, head), rest, value) if rest else value
+    return dataclasses.replace(obj, **{head: new})
+
+
+def _scalar(kind):
+    options = _options(kind)
+    return options[0] if len(options) == 1 and options[0] in SCALARS else None
+
+
+def _optional(kind) -> bool:
+    return type(None) in typing.get_args(kind)
+
+
+def _options(kind) -> list:
+    if typing.get_origin(kind) in (typing.Union, types.UnionType):
+        return [t for t in typing.get_args(kind) if t is not type(None)]
+    return [kind]
