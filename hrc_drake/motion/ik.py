@@ -7,12 +7,15 @@ and the nominal posture (home), which also keeps A4 and A6 from turning a full c
 
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
-from pydrake.multibody.inverse_kinematics import InverseKinematics
+from pydrake.multibody.inverse_kinematics import (
+    InverseKinematics,
+    MinimumDistanceLowerBoundConstraint,
+)
 from pydrake.solvers import Solve
 
 from hrc_drake.motion.deadline import Deadline, PlanningFailed
 
-POSITION_TOLERANCE = 2e-4
+POSITION_TOLERANCE = 1e-4
 """m: IK accuracy; the robot's arrival error comes on top of it."""
 ANGLE_TOLERANCE = np.radians(0.1)
 WRIST_MARGIN = np.radians(2.0)
@@ -24,7 +27,8 @@ SEED_SPREAD = 0.6
 """rad: standard deviation of the extra seeds around the nominal posture."""
 TOOL_REACH_MARGIN = 0.25
 """m beyond the nominal reach that still counts as maybe reachable (tool, offsets)."""
-CLEARANCE_INFLUENCE = 0.1
+CLEARANCE_INFLUENCE = 0.05
+"""m beyond the clearance (the checker's padding) at which distances start to count."""
 
 
 class ToolTargetSolver:
@@ -34,6 +38,9 @@ class ToolTargetSolver:
         self.model = model
         self.q_nominal = np.asarray(q_nominal, dtype=float)
         self.shoulder = model.plant.GetBodyByName("link_2", model.arm).body_frame()
+        self._clearance_constraint = MinimumDistanceLowerBoundConstraint(
+            model.checker, 0.0, model.checker_context, None, CLEARANCE_INFLUENCE
+        )
 
     def solve(
         self,
@@ -66,20 +73,20 @@ class ToolTargetSolver:
 
     def solve_near(self, pose: RigidTransform, q_near: np.ndarray) -> np.ndarray | None:
         """The solution nearest `q_near`, seeded there, without the clearance check."""
-        return self._solve(pose, q_near, q_near, False, self._wrist_side(q_near), None)
+        return self._solve(pose, q_near, q_near, False, self._wrist_side(q_near), False)
 
     def _solve_from(self, pose, seed, q_start, free_rotation, wrist_sign) -> np.ndarray | None:
         """Without the clearance constraint first (fast); with it when that collides."""
         q_reference = 0.5 * (q_start + self.q_nominal)
-        for clearance in (None, self.model.clearance_required):
-            q = self._solve(pose, seed, q_reference, free_rotation, wrist_sign, clearance)
+        for with_clearance in (False, True):
+            q = self._solve(pose, seed, q_reference, free_rotation, wrist_sign, with_clearance)
             if q is not None and self.model.collision_free(q):
                 return q
             if q is None:
                 return None
         return None
 
-    def _solve(self, pose, seed, q_reference, free_rotation, wrist_sign, clearance):
+    def _solve(self, pose, seed, q_reference, free_rotation, wrist_sign, with_clearance):
         model = self.model
         ik = InverseKinematics(model.plant, model.plant_context, with_joint_limits=True)
         world = model.plant.world_frame()
@@ -96,10 +103,10 @@ class ToolTargetSolver:
             ik.AddOrientationConstraint(
                 world, pose.rotation(), model.tcp, RotationMatrix(), ANGLE_TOLERANCE
             )
-        if clearance is not None:
-            ik.AddMinimumDistanceLowerBoundConstraint(clearance, CLEARANCE_INFLUENCE)
         q = ik.q()
         program = ik.get_mutable_prog()
+        if with_clearance:
+            program.AddConstraint(self._clearance_constraint, q)
         program.AddQuadraticErrorCost(np.eye(q.size), q_reference, q)
         wrist_low, wrist_high = _wrist_bounds(model, wrist_sign)
         program.AddBoundingBoxConstraint(wrist_low, wrist_high, q[WRIST])

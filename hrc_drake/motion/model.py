@@ -22,7 +22,6 @@ class PlanningModel:
 
     def __init__(self, scenario: Scenario, clearance: float):
         self.variant = VARIANTS[scenario.robot.variant]
-        self.clearance_required = clearance
         builder = RobotDiagramBuilder(time_step=0.0)
         arm, robot_instances = add_station_models(builder.plant(), builder.parser(), scenario)
         builder.plant().Finalize()
@@ -37,6 +36,8 @@ class PlanningModel:
         self.arm = arm
         if self.plant.num_positions() != len(self.variant.joint_names):
             raise ValueError("the static cell must be welded: the planner plans the arm alone")
+        self._unpad_mounting(scenario.configuration(scenario.robot.initial_configuration))
+        self.checker_context = self.checker.MakeStandaloneModelContext()
         self.diagram_context = self.checker.model().CreateDefaultContext()
         self.plant_context = self.checker.model().mutable_plant_context(self.diagram_context)
         tcp_instance = robot_instances[-1]
@@ -47,6 +48,23 @@ class PlanningModel:
         self.upper = np.array(self.variant.position_upper)
         self.velocity_limits = np.array(self.variant.velocity_limits)
         self.acceleration_limits = np.array(self.variant.acceleration_limits)
+
+    def _unpad_mounting(self, q_initial) -> None:
+        """No clearance for pairs already closer than it where the scenario starts.
+
+        Those are how the robot is mounted (the first link turning just above the pedestal
+        it stands on); with the clearance they would make every configuration collide.
+        They are still checked for contact.
+        """
+        clearance = self.checker.CalcRobotClearance(q_initial, 0.0)
+        for robot_body, other_body, distance in zip(
+            clearance.robot_indices(),
+            clearance.other_indices(),
+            clearance.distances(),
+            strict=True,
+        ):
+            if distance < 0.0:
+                self.checker.SetPaddingBetween(robot_body, other_body, 0.0)
 
     def tool_pose(self, q) -> RigidTransform:
         self.plant.SetPositions(self.plant_context, q)

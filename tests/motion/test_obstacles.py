@@ -1,0 +1,48 @@
+"""A target behind a box on the table is reached without touching anything on the way."""
+
+import numpy as np
+from motion_helpers import build_station, make_scenario
+from pydrake.math import RigidTransform, RollPitchYaw
+
+from hrc_drake.builder import ROBOT_MODEL, TOOL_MODEL
+from hrc_drake.messages import SUCCEEDED
+from hrc_drake.motion.deadline import Deadline
+from hrc_drake.motion.messages import MoveTo
+
+BOX_AT = (0.3, 0.35)
+BEHIND_THE_BOX = RigidTransform(RollPitchYaw(np.pi, 0.0, 0.0), [-0.1, 0.42, 0.96])
+
+
+def robot_cell_distance(station) -> float:
+    """Smallest signed distance between the robot (arm, tool) and the rest of the scene."""
+    query = station.diagram.GetOutputPort("query_object").Eval(station.context)
+    inspector = query.inspector()
+    plant = station.plant
+    robot = {plant.GetModelInstanceByName(name) for name in (ROBOT_MODEL, TOOL_MODEL)}
+
+    def on_robot(geometry) -> bool:
+        return plant.GetBodyFromFrameId(inspector.GetFrameId(geometry)).model_instance() in robot
+
+    distances = [
+        pair.distance
+        for pair in query.ComputeSignedDistancePairwiseClosestPoints(0.2)
+        if on_robot(pair.id_A) != on_robot(pair.id_B)
+    ]
+    return min(distances, default=np.inf)
+
+
+def test_target_behind_box_is_reached_around_it():
+    station = build_station(make_scenario(box_at=BOX_AT))
+    planner = station.motion.planner
+    q_start = station.q()
+    q_goal = planner.ik.solve(BEHIND_THE_BOX, q_start, False, np.random.default_rng(0), Deadline(5))
+    assert not planner.model.edge_collision_free(q_start, q_goal), "the straight path must collide"
+
+    closest = []
+    station.command(MoveTo(seq=1, pose=BEHIND_THE_BOX))
+    outcome = station.run_until_finished(
+        1, on_step=lambda s: closest.append(robot_cell_distance(s))
+    )
+    assert outcome == SUCCEEDED, station.status().reason
+    assert min(closest) > 0.0
+    assert np.linalg.norm(station.tool_pose().translation() - BEHIND_THE_BOX.translation()) < 2e-3
