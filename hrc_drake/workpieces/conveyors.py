@@ -1,0 +1,99 @@
+"""Belt conveyors: objects resting on a belt move along it at its speed.
+
+Along a belt, positions are measured from its start towards its end. Each update plans how
+far every object on the belt may advance: at most speed x period, never past the end of a
+queueing belt, never into the object ahead of it (objects whose lateral extents overlap
+queue behind each other). On a removing belt an object leaves once its centre passes the end.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hrc_drake.workpieces.config import QUEUE, ConveyorConfig
+from hrc_drake.workpieces.geometry import OVERLAP_MARGIN
+from hrc_drake.workpieces.surfaces import Surface
+
+
+@dataclass(frozen=True)
+class Extent:
+    """An outline's extent in belt coordinates: along the belt and across it."""
+
+    back: float
+    front: float
+    right: float
+    left: float
+
+    def beside(self, other: "Extent") -> bool:
+        """Whether the two pass each other without touching (their lanes do not overlap)."""
+        return self.left < other.right + OVERLAP_MARGIN or other.left < self.right + OVERLAP_MARGIN
+
+
+@dataclass(frozen=True)
+class Belt:
+    name: str
+    start: np.ndarray
+    height: float
+    axis: np.ndarray
+    length: float
+    width: float
+    speed: float
+    queues: bool
+    queue_gap: float
+
+    @staticmethod
+    def of(name: str, config: ConveyorConfig) -> "Belt":
+        start, end = np.asarray(config.start, float), np.asarray(config.end, float)
+        length = float(np.linalg.norm(end[:2] - start[:2]))
+        return Belt(
+            name=name,
+            start=start[:2],
+            height=float(start[2]),
+            axis=(end[:2] - start[:2]) / length,
+            length=length,
+            width=config.width,
+            speed=config.speed,
+            queues=config.at_end == QUEUE,
+            queue_gap=config.queue_gap,
+        )
+
+    @property
+    def across(self) -> np.ndarray:
+        return np.array([-self.axis[1], self.axis[0]])
+
+    @property
+    def surface(self) -> Surface:
+        corners = [(0.0, -1.0), (self.length, -1.0), (self.length, 1.0), (0.0, 1.0)]
+        half = self.width / 2 * self.across
+        outline = np.array([self.start + s * self.axis + side * half for s, side in corners])
+        return Surface(self.name, self.height, outline)
+
+    def extent(self, outline: np.ndarray) -> Extent:
+        along = (outline - self.start) @ self.axis
+        across = (outline - self.start) @ self.across
+        return Extent(along.min(), along.max(), across.min(), across.max())
+
+    def past_end(self, p_W: np.ndarray) -> bool:
+        return float((p_W[:2] - self.start) @ self.axis) > self.length
+
+    def velocity(self, speed: float) -> np.ndarray:
+        return np.array([*(speed * self.axis), 0.0])
+
+    def plan(self, riders: dict[int, np.ndarray], dt: float) -> dict[int, float]:
+        """Speed along the belt of each rider (id -> outline) for the next `dt`."""
+        extents = {i: self.extent(outline) for i, outline in riders.items()}
+        speeds: dict[int, float] = {}
+        moved_ahead: list[Extent] = []
+        for i in sorted(extents, key=lambda i: (-extents[i].front, i)):
+            extent = extents[i]
+            limit = self.length if self.queues else math.inf
+            for ahead in moved_ahead:
+                if not extent.beside(ahead):
+                    limit = min(limit, ahead.back - self.queue_gap)
+            advance = min(self.speed * dt, max(limit - extent.front, 0.0))
+            speeds[i] = advance / dt
+            moved_ahead.append(
+                Extent(extent.back + advance, extent.front + advance, extent.right, extent.left)
+            )
+        return speeds

@@ -1,0 +1,175 @@
+"""Workpieces command and status messages (abstract-valued ports of the Workpieces system).
+
+Several issuers (the robot's and the person's behavior trees, the robot's vacuum gripper) each
+hold their latest command on their own input port. Workpieces acts on a command whose `seq`
+is newer than the last one it saw from that issuer; every command finishes within one update,
+so its outcome is `succeeded`, `failed` (sound, but not possible now: capacity, unknown id,
+too far, too heavy) or `rejected` (meaningless: unknown type, holder or area), from the shared
+vocabulary of `hrc_drake.messages`.
+
+Holders are the robot's vacuum cup (grasp frame: the tool's `tcp`, z out of the cup) and the
+person's hands. An object's frame is at its centre; its grasp surface is its top face.
+"""
+
+import math
+from dataclasses import dataclass, field
+
+from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialVelocity
+
+from hrc_drake.messages import OUTCOMES
+
+ROBOT = "robot"
+LEFT_HAND = "left_hand"
+RIGHT_HAND = "right_hand"
+BOTH_HANDS = "both_hands"
+PERSON_HOLDERS = (LEFT_HAND, RIGHT_HAND, BOTH_HANDS)
+HOLDERS = (ROBOT, *PERSON_HOLDERS)
+
+GRASPABLE = "graspable"
+"""Attribute: an object whose `graspable` attribute is false cannot be attached."""
+
+Attributes = dict[str, float | bool | str]
+
+
+@dataclass(frozen=True)
+class HandPoses:
+    """The person's hand grasp frames in the world (the builder adapts the human's status)."""
+
+    left: RigidTransform
+    right: RigidTransform
+
+
+@dataclass(frozen=True)
+class Spawn:
+    """Create an object of `type` at `pose`, or at a random place in the scenario area `area`.
+
+    The object settles onto the highest surface below it; `attributes` override the type's.
+    The new object's id is the command result's `object_id`.
+    """
+
+    seq: int
+    type: str
+    pose: RigidTransform | None = None
+    area: str = ""
+    attributes: Attributes = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Despawn:
+    """Remove object `object_id` from the simulation (wherever it is, even when held)."""
+
+    seq: int
+    object_id: int
+
+
+@dataclass(frozen=True)
+class Attach:
+    """`holder` grasps an object: `object_id`, or with None the graspable object at its grasp
+    frame (for the vacuum cup: whose top face is at the cup). Fails when the object is out of
+    reach, held by someone else, or heavier than `max_mass` (kg)."""
+
+    seq: int
+    holder: str
+    object_id: int | None = None
+    max_mass: float = math.inf
+
+
+@dataclass(frozen=True)
+class Release:
+    """`holder` lets go of `object_id` (None: whatever it holds); the object drops and settles."""
+
+    seq: int
+    holder: str
+    object_id: int | None = None
+
+
+@dataclass(frozen=True)
+class Transfer:
+    """Hand-over of a held object between the robot and the person, to `to_holder`.
+
+    Allowed only while both parties' grasp frames are within the hand-over tolerance of the
+    object; `max_mass` limits what the receiver takes (the robot's payload).
+    """
+
+    seq: int
+    object_id: int
+    to_holder: str
+    max_mass: float = math.inf
+
+
+WorkpiecesCommand = Spawn | Despawn | Attach | Release | Transfer
+
+
+@dataclass(frozen=True)
+class CommandResult:
+    """The outcome of one issuer's latest command; `object_id` names the object it concerned
+    (for Spawn: the new object)."""
+
+    seq: int
+    command: str
+    outcome: str
+    reason: str = ""
+    object_id: int | None = None
+
+    def __post_init__(self):
+        if self.outcome not in OUTCOMES:
+            raise ValueError(f"unknown outcome '{self.outcome}'")
+
+
+@dataclass(frozen=True)
+class ObjectStatus:
+    """One live object. `velocity` is spatial (angular, linear) in the world frame at the
+    object's origin; `holder` is None when the object is free; `support` names what a free
+    object rests on (a surface or model name, a conveyor, or `object:<id>`), None while it
+    is held or falling."""
+
+    id: int
+    type: str
+    pose: RigidTransform
+    velocity: SpatialVelocity
+    holder: str | None
+    support: str | None
+    attributes: Attributes
+
+    @property
+    def supporting_object(self) -> int | None:
+        return object_id_of_support(self.support)
+
+
+@dataclass(frozen=True)
+class WorkpiecesStatus:
+    """Every live object (by increasing id), each issuer's last command result, and how many
+    more objects of each type can be spawned."""
+
+    time: float
+    objects: tuple[ObjectStatus, ...]
+    results: dict[str, CommandResult]
+    free_slots: dict[str, int]
+
+    def object(self, object_id: int) -> ObjectStatus | None:
+        return next((o for o in self.objects if o.id == object_id), None)
+
+    def held_by(self, holder: str) -> ObjectStatus | None:
+        return next((o for o in self.objects if o.holder == holder), None)
+
+    def result(self, issuer: str) -> CommandResult | None:
+        return self.results.get(issuer)
+
+    def outcome_of(self, issuer: str, seq: int) -> str | None:
+        """The outcome of `issuer`'s command `seq`, if that is its latest one."""
+        result = self.results.get(issuer)
+        return result.outcome if result is not None and result.seq == seq else None
+
+
+OBJECT_SUPPORT_PREFIX = "object:"
+
+
+def object_support(object_id: int) -> str:
+    return f"{OBJECT_SUPPORT_PREFIX}{object_id}"
+
+
+def object_id_of_support(support: str | None) -> int | None:
+    if support is None or not support.startswith(OBJECT_SUPPORT_PREFIX):
+        return None
+    return int(support[len(OBJECT_SUPPORT_PREFIX) :])

@@ -1,0 +1,137 @@
+"""Horizontal support surfaces: from the cell's static collision geometry and the scenario.
+
+A surface is a convex outline in the floor plane at a height. The cell's are the top faces
+of collision boxes (with one axis vertical) and of vertical cylinders on anchored bodies of
+the plant, named after their model instance (`work_table`, `conveyor`, `euro_pallet`, ...).
+The floor (z = 0, unbounded) is always there.
+"""
+
+import heapq
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from pydrake.geometry import Box, Cylinder, SceneGraph
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import BodyIndex
+
+from hrc_drake.workpieces.config import SurfaceConfig
+from hrc_drake.workpieces.geometry import CIRCLE_SIDES, overlaps
+
+FLOOR = "floor"
+VERTICAL = 1.0 - 1e-9
+"""|cos| of the angle between an axis and world z above which the axis counts as vertical."""
+TIE_TOLERANCE = 1e-4
+"""m: supports this close in height count as level."""
+
+
+@dataclass(frozen=True)
+class Surface:
+    """A horizontal face at `height`; `outline` is convex (n, 2), None for the whole plane."""
+
+    name: str
+    height: float
+    outline: np.ndarray | None
+
+    @cached_property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """Lower and upper corner of the outline's bounding box (None: unbounded)."""
+        if self.outline is None:
+            return None
+        return self.outline.min(axis=0), self.outline.max(axis=0)
+
+    def may_overlap(self, low: np.ndarray, high: np.ndarray) -> bool:
+        """A cheap test before the exact one: do the bounding boxes overlap?"""
+        if self.bounds is None:
+            return True
+        own_low, own_high = self.bounds
+        return bool((own_high > low).all() and (own_low < high).all())
+
+
+FLOOR_SURFACE = Surface(FLOOR, 0.0, None)
+
+
+def named_surfaces(surfaces: dict[str, SurfaceConfig]) -> list[Surface]:
+    """The scenario's explicit rectangles."""
+    return [
+        _rectangle(name, config.pose.GetDeterministicValue(), config.size)
+        for name, config in surfaces.items()
+    ]
+
+
+def cell_surfaces(plant: MultibodyPlant, scene_graph: SceneGraph) -> list[Surface]:
+    """Top faces of the static (anchored) collision geometry of a finalized plant."""
+    context = plant.CreateDefaultContext()
+    inspector = scene_graph.model_inspector()
+    found = []
+    for index in range(plant.num_bodies()):
+        body = plant.get_body(BodyIndex(index))
+        if not plant.IsAnchored(body):
+            continue
+        name = plant.GetModelInstanceName(body.model_instance())
+        X_WB = plant.EvalBodyPoseInWorld(context, body)
+        for geometry in plant.GetCollisionGeometriesForBody(body):
+            X_WG = X_WB @ inspector.GetPoseInFrame(geometry)
+            surface = top_face(name, inspector.GetShape(geometry), X_WG)
+            if surface is not None:
+                found.append(surface)
+    return found
+
+
+def top_face(name: str, shape, X_WG: RigidTransform) -> Surface | None:
+    """The upward face of a box with a vertical axis or of a vertical cylinder, else None."""
+    R = X_WG.rotation().matrix()
+    vertical = [axis for axis in range(3) if abs(R[2, axis]) >= VERTICAL]
+    if not vertical:
+        return None
+    axis = vertical[0]
+    if isinstance(shape, Box):
+        size = np.array([shape.width(), shape.depth(), shape.height()])
+        half = np.delete(size / 2, axis)
+        sides = np.delete(R[:2, :], axis, axis=1) * half
+        corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+        outline = np.array([X_WG.translation()[:2] + sides @ c for c in corners])
+        return Surface(name, X_WG.translation()[2] + size[axis] / 2, outline)
+    if isinstance(shape, Cylinder) and axis == 2:
+        return _disk(name, X_WG.translation(), shape.radius(), shape.length())
+    return None
+
+
+def _rectangle(name: str, X_WS: RigidTransform, size) -> Surface:
+    half = np.asarray(size, dtype=float) / 2
+    corners = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]) * [*half, 0]
+    outline = np.array([(X_WS @ c)[:2] for c in corners])
+    return Surface(name, X_WS.translation()[2], outline)
+
+
+def _disk(name: str, center: np.ndarray, radius: float, length: float) -> Surface:
+    angles = np.arange(CIRCLE_SIDES) * 2 * math.pi / CIRCLE_SIDES
+    outline = center[:2] + radius * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    return Surface(name, center[2] + length / 2, outline)
+
+
+class Supports:
+    """The fixed supports (highest first) and the search for what an outline rests on."""
+
+    def __init__(self, surfaces: list[Surface], belts: set[str]):
+        self.fixed = sorted([FLOOR_SURFACE, *surfaces], key=lambda s: -s.height)
+        self.belts = belts
+
+    def under(self, outline: np.ndarray, below: float, others: list[Surface]) -> Surface:
+        """The highest support overlapping `outline` with its top at most at `below` (a belt
+        wins over level fixed surfaces); the floor when nothing is below."""
+        low, high = outline.min(axis=0), outline.max(axis=0)
+        movable = sorted(others, key=lambda s: -s.height)
+        level: list[Surface] = []
+        for surface in heapq.merge(self.fixed, movable, key=lambda s: -s.height):
+            if surface.height > below:
+                continue
+            if level and surface.height < level[0].height - TIE_TOLERANCE:
+                break
+            if surface.may_overlap(low, high) and overlaps(outline, surface.outline):
+                level.append(surface)
+        if not level:
+            return FLOOR_SURFACE
+        return next((s for s in level if s.name in self.belts), level[0])

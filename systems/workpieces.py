@@ -1,0 +1,228 @@
+"""Workpieces: kinematic objects that behavior trees spawn, robot and person carry and hand
+over, conveyors transport, and every other system can track through the `status` port.
+
+The objects are a SceneGraph source of their own (proximity + illustration geometry), not
+bodies of the dynamic plant, so they must be collision-filtered against everything else
+that has proximity geometry (the discrete plant throws on contact pairs it does not own);
+`add_workpieces` does that and the wiring. The physics is deliberately light (see
+`hrc_drake.workpieces.world`): carried objects follow their holder's grasp frame, released
+ones fall and rest on the highest support below them, belts move what rests on them.
+
+Geometry cannot be added once a Context exists, so capacity is fixed: every object type
+reserves `capacity` slots, each a SceneGraph frame with that type's geometry, registered at
+construction. A slot without a live object is parked far below the floor, 10 m from the
+next, and is not reported.
+"""
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.geometry import (
+    CollisionFilterDeclaration,
+    FramePoseVector,
+    GeometryFrame,
+    GeometryInstance,
+    GeometrySet,
+    MakePhongIllustrationProperties,
+    ProximityProperties,
+    Role,
+    SceneGraph,
+)
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import Frame
+from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
+
+from hrc_drake.areas import Area
+from hrc_drake.workpieces.config import WorkpiecesConfig
+from hrc_drake.workpieces.messages import HandPoses
+from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
+from hrc_drake.workpieces.world import Workcell, World, holder_frames
+
+DEFAULT_ISSUERS = ("robot_tree", "human_tree", "robot_gripper")
+PARKING_DEPTH = -1000.0
+PARKING_SPACING = 10.0
+
+
+def parked_pose(slot: int) -> RigidTransform:
+    """Where an unused slot waits: far below the floor and far from the other slots."""
+    return RigidTransform([PARKING_SPACING * slot, 0.0, PARKING_DEPTH])
+
+
+def seed_sequence(seed: int | np.random.SeedSequence) -> np.random.SeedSequence:
+    return seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
+
+
+class Workpieces(LeafSystem):
+    """Moving objects of a scenario.
+
+    Inputs: `<issuer>_command` for each issuer (the issuer's latest command or None),
+    `tool_pose` (RigidTransform of the robot's `tcp` in the world) and `human_hands`
+    (HandPoses); an unconnected holder input means that holder does not exist.
+    Outputs: `geometry_pose` (FramePoseVector for SceneGraph) and `status`
+    (WorkpiecesStatus), both from state only, extrapolated from the last update to the
+    context's time. State: one immutable World, updated every `config.update_period`.
+    """
+
+    def __init__(
+        self,
+        config: WorkpiecesConfig,
+        scene_graph: SceneGraph,
+        seed: int | np.random.SeedSequence = 0,
+        issuers: tuple[str, ...] = DEFAULT_ISSUERS,
+        surfaces: list[Surface] = (),
+        areas: dict[str, Area] | None = None,
+        name: str = "workpieces",
+    ):
+        super().__init__()
+        all_surfaces = [*surfaces, *named_surfaces(config.surfaces)]
+        self.cell = Workcell(config, all_surfaces, seed_sequence(seed), issuers, areas)
+        self.source_id = scene_graph.RegisterSource(name)
+        self.frame_ids = self._register_slots(scene_graph, config)
+        initial = self.cell.initial_world()
+        self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
+        self._commands = {
+            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))
+            for issuer in self.cell.issuers
+        }
+        self._tool = self.DeclareAbstractInputPort(
+            "tool_pose", AbstractValue.Make(RigidTransform())
+        )
+        neutral_hands = HandPoses(RigidTransform(), RigidTransform())
+        self._hands = self.DeclareAbstractInputPort(
+            "human_hands", AbstractValue.Make(neutral_hands)
+        )
+        from_state = {self.time_ticket(), self.abstract_state_ticket(self._state)}
+        self.DeclareAbstractOutputPort(
+            "geometry_pose",
+            lambda: AbstractValue.Make(FramePoseVector()),
+            self._calc_poses,
+            prerequisites_of_calc=from_state,
+        )
+        self.DeclareAbstractOutputPort(
+            "status",
+            lambda: AbstractValue.Make(self.cell.status(initial, 0.0)),
+            self._calc_status,
+            prerequisites_of_calc=from_state,
+        )
+        self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period, 0.0, self._update)
+
+    def _register_slots(self, scene_graph: SceneGraph, config: WorkpiecesConfig) -> list:
+        frame_ids = []
+        for slot, type_name in enumerate(self.cell.slot_types):
+            object_type = config.types[type_name]
+            name = f"{type_name}_{slot - self.cell.kinds[type_name].slots.start}"
+            frame_id = scene_graph.RegisterFrame(self.source_id, GeometryFrame(name))
+            shape = self.cell.kinds[type_name].solid.drake_shape()
+            instance = GeometryInstance(RigidTransform(), shape, name)
+            instance.set_proximity_properties(ProximityProperties())
+            instance.set_illustration_properties(MakePhongIllustrationProperties(object_type.color))
+            scene_graph.RegisterGeometry(self.source_id, frame_id, instance)
+            frame_ids.append(frame_id)
+        return frame_ids
+
+    def geometry_set(self, scene_graph: SceneGraph) -> GeometrySet:
+        """All the workpieces' geometry (for collision filters)."""
+        inspector = scene_graph.model_inspector()
+        return GeometrySet([g for f in self.frame_ids for g in inspector.GetGeometries(f)])
+
+    def world(self, context: Context) -> World:
+        return context.get_abstract_state(self._state).get_value()
+
+    def _update(self, context: Context, state) -> None:
+        commands = {
+            issuer: port.Eval(context) if port.HasValue(context) else None
+            for issuer, port in self._commands.items()
+        }
+        tool = self._tool.Eval(context) if self._tool.HasValue(context) else None
+        hands = self._hands.Eval(context) if self._hands.HasValue(context) else None
+        world = self.cell.update(
+            self.world(context), context.get_time(), commands, holder_frames(tool, hands)
+        )
+        state.get_mutable_abstract_state(self._state).set_value(world)
+
+    def _calc_poses(self, context: Context, output: AbstractValue) -> None:
+        world = self.world(context)
+        poses = FramePoseVector()
+        for slot, frame_id in enumerate(self.frame_ids):
+            poses.set_value(frame_id, parked_pose(slot))
+        for piece in world.pieces.values():
+            poses.set_value(
+                self.frame_ids[piece.slot], self.cell.pose_at(piece, world, context.get_time())
+            )
+        output.set_value(poses)
+
+    def _calc_status(self, context: Context, output: AbstractValue) -> None:
+        output.set_value(self.cell.status(self.world(context), context.get_time()))
+
+
+class TcpPose(LeafSystem):
+    """The pose of one plant frame in the world, from the plant's `body_poses` output."""
+
+    def __init__(self, plant: MultibodyPlant, frame: Frame):
+        super().__init__()
+        self._body_index = int(frame.body().index())
+        self._X_BF = frame.GetFixedPoseInBodyFrame()
+        model = plant.get_body_poses_output_port().Allocate()
+        self.DeclareAbstractInputPort("body_poses", model)
+        self.DeclareAbstractOutputPort(
+            "tool_pose", lambda: AbstractValue.Make(RigidTransform()), self._calc
+        )
+
+    def _calc(self, context: Context, output: AbstractValue) -> None:
+        X_WB = self.get_input_port().Eval(context)[self._body_index]
+        output.set_value(X_WB @ self._X_BF)
+
+
+def filter_against(scene_graph: SceneGraph, geometry: GeometrySet, others: GeometrySet) -> None:
+    """No contact between `geometry` and `others` nor within `geometry` (distances between
+    them are still available through QueryObject's pair queries)."""
+    scene_graph.collision_filter_manager().Apply(
+        CollisionFilterDeclaration().ExcludeWithin(geometry).ExcludeBetween(geometry, others)
+    )
+
+
+def other_proximity_geometry(scene_graph: SceneGraph, source_id) -> GeometrySet:
+    """Every proximity geometry registered so far by sources other than `source_id`."""
+    inspector = scene_graph.model_inspector()
+    return GeometrySet(
+        [
+            g
+            for g in inspector.GetAllGeometryIds(Role.kProximity)
+            if not inspector.BelongsToSource(g, source_id)
+        ]
+    )
+
+
+def add_workpieces(
+    builder: DiagramBuilder,
+    scene_graph: SceneGraph,
+    plant: MultibodyPlant,
+    config: WorkpiecesConfig,
+    seed: int | np.random.SeedSequence = 0,
+    tool_frame: Frame | None = None,
+    areas: dict[str, Area] | None = None,
+    issuers: tuple[str, ...] = DEFAULT_ISSUERS,
+) -> Workpieces:
+    """Adds Workpieces beside a finalized plant: its support surfaces come from the plant's
+    static geometry, its poses go to SceneGraph, it is collision-filtered against all the
+    proximity geometry registered so far (add it after the plant and the person's geometry,
+    or filter later geometry against `geometry_set()`), and, given the robot's `tcp` frame,
+    its `tool_pose` input is fed from the plant's body poses."""
+    surfaces = cell_surfaces(plant, scene_graph) if config.derive_surfaces else []
+    workpieces = builder.AddNamedSystem(
+        "workpieces", Workpieces(config, scene_graph, seed, issuers, surfaces, areas)
+    )
+    builder.Connect(
+        workpieces.GetOutputPort("geometry_pose"),
+        scene_graph.get_source_pose_port(workpieces.source_id),
+    )
+    filter_against(
+        scene_graph,
+        workpieces.geometry_set(scene_graph),
+        other_proximity_geometry(scene_graph, workpieces.source_id),
+    )
+    if tool_frame is not None:
+        tcp = builder.AddNamedSystem("tool_pose", TcpPose(plant, tool_frame))
+        builder.Connect(plant.get_body_poses_output_port(), tcp.get_input_port())
+        builder.Connect(tcp.get_output_port(), workpieces.GetInputPort("tool_pose"))
+    return workpieces

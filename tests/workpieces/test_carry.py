@@ -1,0 +1,86 @@
+"""The robot's vacuum cup carries an object and releases it onto a table, a stack, the floor."""
+
+import numpy as np
+import pytest
+from pydrake.common.eigen_geometry import AngleAxis
+from pydrake.common.schema import Transform
+from pydrake.math import RollPitchYaw
+from workpieces_rig import (
+    PART_HEIGHT,
+    TABLE_TOP,
+    TOOL_DOWN,
+    WORK_TABLE_XY,
+    build_rig,
+    config_with,
+    part_on_table,
+    path,
+)
+
+from hrc_drake.messages import SUCCEEDED
+from hrc_drake.workpieces.config import GridLayout
+from hrc_drake.workpieces.messages import ROBOT, Attach, Release
+
+X, Y = WORK_TABLE_XY
+PART_TOP = TABLE_TOP + PART_HEIGHT
+TURNED = RollPitchYaw(np.pi, 0.0, np.pi / 2)
+GRIP = [(0.3, Attach(seq=1, holder=ROBOT, max_mass=3.0))]
+
+
+def carry_to(destination, release_at: float = 3.2):
+    """Tool path: down onto the part at the table centre, grip, lift, turn, carry, release."""
+    tool = path(
+        [
+            (0.0, (X, Y, PART_TOP), TOOL_DOWN),
+            (0.5, (X, Y, PART_TOP), TOOL_DOWN),
+            (1.5, (X + 0.2, Y + 0.1, 1.3), TURNED),
+            (2.8, destination, TURNED),
+            (4.0, destination, TURNED),
+        ]
+    )
+    commands = {"robot_gripper": [*GRIP, (release_at, Release(seq=2, holder=ROBOT))]}
+    return tool, commands
+
+
+def test_gripped_object_follows_the_tool_and_rests_on_the_table_when_released():
+    tool, commands = carry_to((X + 0.4, Y - 0.2, PART_TOP + 0.03))
+    rig = build_rig(config_with(objects=[part_on_table()]), commands, tool)
+    X_TO = tool(0.0).inverse() @ rig.status().object(1).pose
+    frame_id = rig.workpieces.frame_ids[0]
+    position_errors, angle_errors = [], []
+    for t in np.arange(0.5, 3.1, 0.0173):  # between the 10 ms updates too
+        status = rig.advance(t)
+        assert status.object(1).holder == ROBOT
+        expected = tool(t) @ X_TO
+        for pose in (status.object(1).pose, rig.query().GetPoseInWorld(frame_id)):
+            error = expected.inverse() @ pose
+            position_errors.append(np.linalg.norm(error.translation()))
+            angle_errors.append(AngleAxis(error.rotation().matrix()).angle())
+    assert max(position_errors) < 1e-3
+    assert max(angle_errors) < 1e-2
+    resting = rig.advance(4.0).object(1)
+    assert resting.holder is None and resting.support == "work_table"
+    assert abs(resting.pose.translation()[2] - (TABLE_TOP + PART_HEIGHT / 2)) < 1e-3
+    np.testing.assert_allclose(resting.pose.translation()[:2], [X + 0.4, Y - 0.2], atol=1e-9)
+    assert resting.velocity.get_coeffs() == pytest.approx(np.zeros(6))
+
+
+def test_released_over_a_stack_rests_on_the_top_object():
+    stack = GridLayout(type="part", origin=Transform(translation=[X + 0.4, Y, TABLE_TOP]), layers=3)
+    stack_top = TABLE_TOP + 3 * PART_HEIGHT
+    tool, commands = carry_to((X + 0.41, Y + 0.01, stack_top + PART_HEIGHT + 0.05))
+    config = config_with(objects=[part_on_table()], grids=[stack])
+    rig = build_rig(config, commands, tool)
+    status = rig.advance(4.0)
+    carried = status.object(1)
+    assert status.result("robot_gripper").outcome == SUCCEEDED
+    assert carried.support == "object:4"
+    assert abs(carried.pose.translation()[2] - (stack_top + PART_HEIGHT / 2)) < 1e-3
+    assert [status.object(i).support for i in (2, 3, 4)] == ["work_table", "object:2", "object:3"]
+
+
+def test_released_over_the_floor_rests_on_the_floor():
+    tool, commands = carry_to((X + 0.2, Y - 0.9, 0.6))
+    rig = build_rig(config_with(objects=[part_on_table()]), commands, tool)
+    carried = rig.advance(4.0).object(1)
+    assert carried.support == "floor"
+    assert abs(carried.pose.translation()[2] - PART_HEIGHT / 2) < 1e-3
