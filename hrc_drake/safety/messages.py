@@ -5,6 +5,7 @@ The status carries the current measurement and the run's running totals, so the 
 the end of a run is enough for its safety metrics.
 """
 
+import math
 from dataclasses import dataclass
 
 from hrc_drake.safety.pfl import ContactAssessment
@@ -55,11 +56,32 @@ class SafetyStatus:
     zone: str = FREE
     human_speed: float = 0.0
     robot_speed: float = 0.0
+    """fastest point of the robot (m/s)"""
+    approach_speed: float = 0.0
     """speed of the robot's closest point towards the person (m/s)"""
     violation: bool = False
     contact: tuple[ContactAssessment, ...] = ()
     ssm_enabled: bool = True
     totals: SafetyTotals = SafetyTotals()
+
+    def __deepcopy__(self, memo):
+        return self  # immutable: Drake's state copies may share it
+
+    def signals(self, person_xy: tuple[float, float]) -> list[float]:
+        """The `safety_signals` vector (order of SIGNALS)."""
+        separation = self.separation if math.isfinite(self.separation) else math.nan
+        return [
+            separation,
+            self.protective,
+            self.scale,
+            self.robot_speed,
+            self.approach_speed,
+            self.human_speed,
+            ZONES.index(self.zone),
+            float(self.violation),
+            float(bool(self.contact)),
+            *person_xy,
+        ]
 
 
 SIGNALS = (
@@ -67,6 +89,7 @@ SIGNALS = (
     "protective",
     "scale",
     "robot_speed",
+    "approach_speed",
     "human_speed",
     "zone",
     "violation",
@@ -76,7 +99,3 @@ SIGNALS = (
 )
 """Entries of the `safety_signals` vector; `zone` is the index in ZONES, flags are 0/1, and
 an infinite separation (no person) is logged as NaN."""
-
-
-def zone_index(zone: str) -> int:
-    return ZONES.index(zone)

@@ -1,0 +1,163 @@
+"""SafetyMonitor: ISO/TS 15066 speed and separation monitoring and contact assessment.
+
+Periodically (default 100 Hz) it measures, from the shared SceneGraph's QueryObject, the
+signed distance between every body region of the person and every robot part (links,
+tool, carried object), the approach speeds at the closest points (from poses over time),
+and judges them (`hrc_drake.safety.judge`). Outputs, all computed from state:
+
+- `speed_scale` (size 1): for RobotMotion; 1 when far, 0 = monitored stop; 1 always when
+  SSM is disabled (the monitor then only measures).
+- `safety_status`: a `hrc_drake.safety.messages.SafetyStatus` for trees and reports.
+- `safety_signals`: the status as a vector (`SIGNALS`) for loggers, timelines, heat maps.
+
+Optional input `robot_status` (RobotMotion's status): its `held_object` switches that
+object's geometry into the robot parts and adds its mass to the payload.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.geometry import QueryObject
+from pydrake.systems.framework import EventStatus, LeafSystem
+
+from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.geometry import Part, body_parts, human_parts
+from hrc_drake.safety.judge import Judge
+from hrc_drake.safety.messages import SafetyStatus
+from hrc_drake.safety.pfl import robot_effective_mass
+from hrc_drake.safety.proximity import ProximityMeter, Reading
+from hrc_drake.safety.stopping import ssm_parameters
+
+
+@dataclass(frozen=True)
+class CarriedObject:
+    """An object the robot may carry: its geometries (named after the object) and mass."""
+
+    geometries: tuple = ()
+    mass: float = 0.0
+
+
+@dataclass(frozen=True)
+class RobotModel:
+    """The robot as the monitor sees it: its geometry parts and its masses (kg)."""
+
+    parts: list[Part]
+    moving_mass: float
+    tool_mass: float
+    carried: dict[str, CarriedObject] = field(default_factory=dict)
+
+
+class SafetyMonitor(LeafSystem):
+    def __init__(
+        self,
+        inspector,
+        human: list[Part],
+        robot: RobotModel,
+        config: SafetyConfig,
+        variant: str,
+    ):
+        super().__init__()
+        carried_parts = [
+            Part(g, name) for name, obj in robot.carried.items() for g in obj.geometries
+        ]
+        self._meter = ProximityMeter(inspector, human, robot.parts + carried_parts)
+        self._always_active = np.array([True] * len(robot.parts) + [False] * len(carried_parts))
+        self._carried_names = np.array([p.name for p in robot.parts + carried_parts])
+        self._carried = robot.carried
+        self._judge = Judge(
+            config,
+            ssm_parameters(config, variant),
+            robot_effective_mass(robot.moving_mass, robot.tool_mass),
+        )
+        self._query = self.DeclareAbstractInputPort(
+            "query_object", AbstractValue.Make(QueryObject())
+        )
+        self._robot_status = self.DeclareAbstractInputPort(
+            "robot_status", AbstractValue.Make(object())
+        )
+        self._scale = self.DeclareDiscreteState(np.ones(1))
+        self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
+        self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
+        self._reading = self.DeclareAbstractState(AbstractValue.Make(None))
+        self.DeclareStateOutputPort("speed_scale", self._scale)
+        self.DeclareStateOutputPort("safety_signals", self._signals)
+        self.DeclareStateOutputPort("safety_status", self._status)
+        self.DeclarePeriodicUnrestrictedUpdateEvent(config.period, 0.0, self._update)
+
+    def get_query_object_input_port(self):
+        return self._query
+
+    def get_robot_status_input_port(self):
+        return self._robot_status
+
+    def _update(self, context, state) -> EventStatus:
+        before: SafetyStatus = context.get_abstract_state(self._status).get_value()
+        last: Reading | None = context.get_abstract_state(self._reading).get_value()
+        held = self._held_object(context)
+        time = context.get_time()
+        reading = self._meter.measure(
+            self._query.Eval(context),
+            last.poses if last else None,
+            time - before.time if last else 0.0,
+            self._always_active | (self._carried_names == held),
+        )
+        payload = self._carried[held].mass if held in self._carried else 0.0
+        status = self._judge.status(time, reading, before, payload)
+        state.get_mutable_abstract_state(self._status).set_value(status)
+        state.get_mutable_abstract_state(self._reading).set_value(reading)
+        state.get_mutable_discrete_state(self._scale).set_value([status.scale])
+        state.get_mutable_discrete_state(self._signals).set_value(status.signals(reading.person_xy))
+        return EventStatus.Succeeded()
+
+    def _held_object(self, context) -> str | None:
+        if not self._robot_status.HasValue(context):
+            return None
+        return getattr(self._robot_status.Eval(context), "held_object", None)
+
+
+def robot_model(plant, arm, tool=None, carried=None) -> RobotModel:
+    """The arm (and tool) of `plant`: geometry parts and moving mass (bodies not welded to
+    the world)."""
+    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
+    moving = [plant.get_body(b) for b in plant.GetBodyIndices(arm) if b not in fixed]
+    tools = [plant.get_body(b) for b in plant.GetBodyIndices(tool)] if tool is not None else []
+    return RobotModel(
+        parts=body_parts(plant, [arm] + ([tool] if tool is not None else [])),
+        moving_mass=sum(body.default_mass() for body in moving),
+        tool_mass=sum(body.default_mass() for body in tools),
+        carried=dict(carried or {}),
+    )
+
+
+def add_safety_monitor(
+    builder,
+    scene_graph,
+    plant,
+    human_plant,
+    human_instance,
+    config: SafetyConfig,
+    variant: str,
+    carried: dict[str, CarriedObject] | None = None,
+) -> SafetyMonitor:
+    """Adds the monitor named `safety` and connects its QueryObject input.
+
+    `plant` holds the robot as model instances `iisy` and `tool` (if present); the person's
+    geometry belongs to `human_instance` of `human_plant`. The caller connects
+    `speed_scale` to RobotMotion and, if objects are carried, `robot_status`.
+    """
+    arm = plant.GetModelInstanceByName("iisy")
+    tool = plant.GetModelInstanceByName("tool") if plant.HasModelInstanceNamed("tool") else None
+    inspector = scene_graph.model_inspector()
+    monitor = builder.AddNamedSystem(
+        "safety",
+        SafetyMonitor(
+            inspector,
+            human_parts(human_plant, inspector, human_instance),
+            robot_model(plant, arm, tool, carried),
+            config,
+            variant,
+        ),
+    )
+    builder.Connect(scene_graph.get_query_output_port(), monitor.get_query_object_input_port())
+    return monitor
