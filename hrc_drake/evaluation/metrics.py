@@ -1,0 +1,122 @@
+"""Run metrics for report.json, from the monitor's final status and logged signals and,
+when the scenario has them, the behavior trees' task events and node statistics.
+
+Every value is rounded (`rounded`) so the report is byte-identical for the same scenario and
+seed. Sections whose source is absent are empty, never missing.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hrc_drake.safety.messages import SIGNALS, SafetyStatus
+from hrc_drake.safety.ssm import ZONES
+
+WAITING_SPEED = 0.05
+"""m/s below which the person counts as waiting (standing)."""
+SECONDS_PER_HOUR = 3600.0
+
+
+@dataclass(frozen=True)
+class TaskEvent:
+    """Something a tree reports as done: `name` is e.g. part_finished, part_rejected, helped."""
+
+    time: float
+    name: str
+    agent: str = ""
+
+
+def rounded(x: float, digits: int = 9):
+    """Stable across platforms' last-bit differences; infinities and NaN become None."""
+    x = float(x)
+    return round(x, digits) + 0.0 if math.isfinite(x) else None
+
+
+def safety_metrics(status: SafetyStatus | None) -> dict:
+    if status is None:
+        return {}
+    totals = status.totals
+    worst = totals.worst_contact
+    return {
+        "ssm_enabled": status.ssm_enabled,
+        "min_separation": {
+            "distance": rounded(totals.min_separation),
+            "region": totals.min_separation_region,
+            "link": totals.min_separation_link,
+            "time": rounded(totals.min_separation_time),
+        },
+        "time_reduced": rounded(totals.reduced_time),
+        "time_stopped": rounded(totals.stopped_time),
+        "stops": totals.stops,
+        "ssm_violations": {
+            "count": totals.violations,
+            "duration": rounded(totals.violation_time),
+            "worst_deficit": rounded(totals.worst_deficit),
+        },
+        "contacts": {
+            "count": totals.contacts,
+            "duration": rounded(totals.contact_time),
+            "violations": totals.contact_violations,
+            "worst_region": worst.region if worst else "",
+            "max_force_ratio": rounded(worst.limit_ratio) if worst else 0.0,
+            "max_force": rounded(worst.force) if worst else 0.0,
+            "max_pressure": rounded(worst.pressure) if worst else 0.0,
+        },
+    }
+
+
+def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: float) -> dict:
+    """Fractions of the run the robot moved, waited (still, not stopped) or was stopped."""
+    if times.size < 2:
+        return {}
+    dt = np.diff(times)
+    moving = _signal(signals, "robot_speed")[:-1] > moving_speed
+    stopped = (_signal(signals, "zone")[:-1] == ZONES.index("stopped")) & ~moving
+    total = dt.sum()
+    return {
+        "moving": rounded(dt[moving].sum() / total),
+        "waiting": rounded(dt[~moving & ~stopped].sum() / total),
+        "stopped": rounded(dt[stopped].sum() / total),
+    }
+
+
+def person_metrics(times: np.ndarray, signals: np.ndarray) -> dict:
+    """The person's walking distance (floor plane) and time standing still."""
+    xy = np.stack([_signal(signals, "person_x"), _signal(signals, "person_y")])
+    known = np.all(np.isfinite(xy), axis=0)
+    if times.size < 2 or not known.any():
+        return {}
+    steps = np.linalg.norm(np.diff(xy[:, known], axis=1), axis=0)
+    dt = np.diff(times)
+    still = (_signal(signals, "human_speed")[1:] < WAITING_SPEED) & known[1:]
+    return {"walking_distance": rounded(steps.sum()), "waiting_time": rounded(dt[still].sum())}
+
+
+def task_metrics(events: list[TaskEvent], duration: float) -> dict:
+    """Counts of each task event and their rate per hour of simulated time."""
+    counts: dict[str, int] = {}
+    for event in events:
+        counts[event.name] = counts.get(event.name, 0) + 1
+    hours = duration / SECONDS_PER_HOUR
+    return {
+        "events": dict(sorted(counts.items())),
+        "throughput_per_hour": {name: rounded(n / hours) for name, n in sorted(counts.items())},
+    }
+
+
+def bt_metrics(node_statistics: dict | None) -> dict:
+    """Per agent, per node statistics as the BehaviorTreeSystem reports them."""
+    return _rounded_tree(node_statistics or {})
+
+
+def _rounded_tree(value):
+    if isinstance(value, dict):
+        return {str(k): _rounded_tree(v) for k, v in sorted(value.items())}
+    if isinstance(value, float):
+        return rounded(value)
+    return value
+
+
+def _signal(signals: np.ndarray, name: str) -> np.ndarray:
+    return signals[SIGNALS.index(name)]

@@ -1,0 +1,123 @@
+"""Run metrics, figures and report.html from monitor outputs (synthetic, worked by hand)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from hrc_drake.evaluation.metrics import (
+    TaskEvent,
+    bt_metrics,
+    person_metrics,
+    safety_metrics,
+    task_metrics,
+    utilisation_metrics,
+)
+from hrc_drake.evaluation.run_report import write_run_html
+from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
+from hrc_drake.safety.messages import SIGNALS, SafetyStatus, SafetyTotals
+from hrc_drake.safety.pfl import assess_contact
+from hrc_drake.safety.ssm import ZONES
+
+
+def signals(**columns) -> np.ndarray:
+    n = len(next(iter(columns.values())))
+    data = np.zeros((len(SIGNALS), n))
+    for name, values in columns.items():
+        data[SIGNALS.index(name)] = values
+    return data
+
+
+TIMES = np.arange(5) * 1.0
+ROBOT = signals(
+    robot_speed=[0.5, 0.5, 0.0, 0.0, 0.0],
+    zone=[ZONES.index(z) for z in ("free", "free", "stopped", "free", "free")],
+)
+
+
+def test_robot_utilisation_splits_the_run():
+    # intervals of 1 s: moving, moving, stopped, waiting
+    assert utilisation_metrics(TIMES, ROBOT, 0.01) == {
+        "moving": 0.5,
+        "waiting": 0.25,
+        "stopped": 0.25,
+    }
+
+
+def test_person_walks_three_metres_and_waits_two_seconds():
+    person = signals(
+        person_x=[0.0, 1.0, 2.0, 2.0, 2.0],
+        person_y=[0.0, 0.0, 0.0, 0.0, 1.0],
+        human_speed=[1.0, 1.0, 1.0, 0.0, 0.0],
+    )
+    assert person_metrics(TIMES, person) == {"walking_distance": 3.0, "waiting_time": 2.0}
+
+
+def test_throughput_per_hour():
+    events = [TaskEvent(10.0, "part_finished"), TaskEvent(20.0, "part_finished")]
+    events.append(TaskEvent(30.0, "part_rejected", "robot"))
+    metrics = task_metrics(events, duration=60.0)
+    assert metrics["events"] == {"part_finished": 2, "part_rejected": 1}
+    assert metrics["throughput_per_hour"] == {"part_finished": 120.0, "part_rejected": 60.0}
+
+
+def test_absent_sources_give_empty_sections():
+    assert safety_metrics(None) == {}
+    assert task_metrics([], 10.0) == {"events": {}, "throughput_per_hour": {}}
+    assert bt_metrics(None) == {}
+    assert utilisation_metrics(np.zeros(0), signals(zone=[]), 0.01) == {}
+
+
+def test_safety_section_from_final_status():
+    contact = assess_contact("chest", 1.0, 9.0, 1.0)
+    totals = SafetyTotals(
+        min_separation=-0.05,
+        min_separation_region="chest",
+        min_separation_link="link_6",
+        stops=2,
+        violations=1,
+        violation_time=0.25,
+        worst_deficit=0.3,
+        contacts=1,
+        contact_violations=1,
+        worst_contact=contact,
+    )
+    metrics = safety_metrics(SafetyStatus(totals=totals))
+    assert metrics["min_separation"]["region"] == "chest"
+    assert metrics["ssm_violations"] == {"count": 1, "duration": 0.25, "worst_deficit": 0.3}
+    assert metrics["contacts"]["worst_region"] == "chest"
+    assert metrics["contacts"]["max_force_ratio"] == pytest.approx(428.571 / 240, abs=1e-4)
+    json.dumps(metrics)  # plain JSON, no infinities
+
+
+def test_no_person_seen_is_null_not_infinity():
+    metrics = safety_metrics(SafetyStatus())
+    assert metrics["min_separation"]["distance"] is None
+
+
+def test_figures_and_report_html(tmp_path):
+    times = np.linspace(0.0, 4.0, 401)
+    x = 3.0 - 0.6 * times
+    data = signals(
+        separation=x - 0.3,
+        protective=np.full_like(times, 0.8),
+        scale=np.clip((x - 1.0) / 1.0, 0, 1),
+        robot_speed=np.clip(x - 1.0, 0, 1),
+        human_speed=np.full_like(times, 0.6),
+        violation=(x < 1.2).astype(float),
+        person_x=x,
+        person_y=np.zeros_like(times),
+    )
+    states = {"person": [(0.0, "walking"), (3.0, "idle")], "robot": [(0.0, "moving")]}
+    timeline = plot_timeline(
+        tmp_path / "timeline.png", times, data, states, [TaskEvent(2.0, "part_finished")]
+    )
+    heatmap = plot_heatmap(tmp_path / "heatmap.png", times, data)
+    replay = tmp_path / "replay.html"
+    files = {"timeline": timeline, "heatmap": heatmap, "replay": replay}
+    html = write_run_html(tmp_path / "report.html", {"scenario": "x", "seed": 3}, files)
+    for path in (timeline, heatmap):
+        assert path.read_bytes().startswith(b"\x89PNG")
+    text = html.read_text()
+    assert 'href="replay.html"' in text and 'src="timeline.png"' in text
+    assert "<td>seed</td><td>3</td>" in text
