@@ -21,11 +21,10 @@ import numpy as np
 from pydrake.math import RotationMatrix
 
 from hrc_drake.human.body import FrameTask, HumanBody, human_body
-from hrc_drake.human.clip import Clip, save_clip
+from hrc_drake.human.clip import LENGTH_JOINTS, Clip, save_clip
 from hrc_drake.human.skeleton import LATERAL_CENTRAL_JOINTS, SIDES
 
 FPS = 30.0
-LENGTH_JOINTS = ("base_x", "base_y", "pelvis_height")
 
 RELAXED = {
     "shoulder_abduction": 8,

@@ -19,6 +19,9 @@ import numpy as np
 
 from hrc_drake.paths import resource_dir
 
+LENGTH_JOINTS = ("base_x", "base_y", "pelvis_height")
+"""Joints in metres; every other joint is an angle."""
+
 ROOT_MOTION = ("base_x", "base_y", "base_yaw")
 """Joints a looping clip may advance per cycle (walking forwards, turning on the spot)."""
 
@@ -89,7 +92,7 @@ def animations_dir() -> Path:
 
 
 def _angle_columns(joint_names) -> np.ndarray:
-    return np.array([name not in ("base_x", "base_y", "pelvis_height") for name in joint_names])
+    return np.array([name not in LENGTH_JOINTS for name in joint_names])
 
 
 def clip_to_json(clip: Clip) -> str:

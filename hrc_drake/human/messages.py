@@ -1,0 +1,94 @@
+"""Commands to the simulated person and the status it reports (frozen, port-friendly).
+
+Every command carries a sequence number `seq`. The `human_command` input port holds the most
+recent command (or None); the actor acts once on each new seq. A command arriving while a
+Movement or Animation runs is rejected; Cancel stops the running one; SetCalled is a flag and
+never conflicts.
+"""
+
+from dataclasses import dataclass, field
+
+NULL_QUATERNION = (0.0, 0.0, 0.0, 0.0)
+"""Target orientation meaning "end facing the walking direction"."""
+
+OUTCOMES = ("running", "succeeded", "failed", "rejected", "cancelled")
+STATES = ("SETUP", "IDLE", "MOVEMENT", "ANIMATION")
+
+
+@dataclass(frozen=True)
+class MoveCommand:
+    """Walk to `target_position` (x, y[, z ignored]) and turn to `target_quaternion` (w, x, y, z).
+
+    `animation_distance` is the ground covered by one cycle of the walk clip (None: the clip's
+    own, which keeps the feet planted); `waypoints` are (x, y) points passed on the way.
+    """
+
+    seq: int
+    target_position: tuple[float, ...]
+    target_quaternion: tuple[float, float, float, float] = NULL_QUATERNION
+    animation_name: str = "walk"
+    animation_distance: float | None = None
+    waypoints: tuple[tuple[float, float], ...] = ()
+
+
+@dataclass(frozen=True)
+class AnimateCommand:
+    """Play a clip in place; `target` (world x, y, z) aims pick/place/reach/hand_over."""
+
+    seq: int
+    animation_name: str
+    animation_speed: float = 1.0
+    target: tuple[float, float, float] | None = None
+
+
+@dataclass(frozen=True)
+class CancelCommand:
+    seq: int
+
+
+@dataclass(frozen=True)
+class SetCalledCommand:
+    seq: int
+    called: bool
+
+
+HumanCommand = MoveCommand | AnimateCommand | CancelCommand | SetCalledCommand
+
+
+@dataclass(frozen=True)
+class CommandResult:
+    seq: int
+    outcome: str
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class HumanStatus:
+    """What the person reports after every update.
+
+    `last_seq`/`outcome`/`reason` describe the newest change of any command; `results` keeps
+    the recent ones (newest last) so a node can still find its own after a later command.
+    Poses are (x, y, z, qw, qx, qy, qz) in world; `base_pose` is (x, y, yaw). `event` is the
+    clip event that fired during the last update ("" if none); `event_count` counts them all.
+    """
+
+    state: str = "SETUP"
+    last_seq: int = -1
+    outcome: str = ""
+    reason: str = ""
+    progress: float = 0.0
+    base_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    base_speed: float = 0.0
+    left_hand: tuple[float, ...] = ()
+    right_hand: tuple[float, ...] = ()
+    head: tuple[float, ...] = ()
+    called: bool = False
+    event: str = ""
+    event_count: int = 0
+    animation: str = ""
+    results: tuple[CommandResult, ...] = field(default_factory=tuple)
+    time: float = 0.0
+
+    def outcome_of(self, seq: int) -> str | None:
+        """The outcome of command `seq`, if it is still in the recent results."""
+        return next((r.outcome for r in reversed(self.results) if r.seq == seq), None)

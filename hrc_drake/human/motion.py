@@ -1,0 +1,480 @@
+"""The person's behaviour as pure data: plans of clip segments, cross-fades, the protocol.
+
+`ActorState` is frozen and holds no Drake objects, so it lives in a System's abstract state
+and copies cheaply. `pose_at(state, t)` gives the joint positions at any time from the state
+alone; `advance(state, t, command)` is one update of the state machine
+SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
+"""
+
+from dataclasses import dataclass, replace
+from math import atan2, cos, pi, sin
+
+import numpy as np
+
+from hrc_drake.human.authoring import minimum_jerk
+from hrc_drake.human.body import HumanBody
+from hrc_drake.human.clip import Clip
+from hrc_drake.human.messages import (
+    NULL_QUATERNION,
+    AnimateCommand,
+    CancelCommand,
+    CommandResult,
+    HumanStatus,
+    MoveCommand,
+    SetCalledCommand,
+)
+from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
+
+BLEND_TIME = 0.5
+"""Cross-fade between activities (s): joint speeds stay well under 10 rad/s."""
+SEGMENT_BLEND = 0.3
+"""Cross-fade between the turn and walk parts of one movement (s)."""
+TURN_PER_CYCLE = np.radians(60.0)
+SPEED_RAMP = 0.6
+"""Seconds to reach walking speed, and to stop."""
+MIN_TURN = np.radians(3.0)
+CORNER_RADIUS = 0.4
+"""Around a waypoint the heading turns smoothly over this distance (m)."""
+RESULTS_KEPT = 8
+IDLE_CLIP = "idle"
+
+
+@dataclass(frozen=True)
+class Context:
+    """What every pose computation needs: the body's joint layout and the clips."""
+
+    body: HumanBody
+    clips: dict[str, Clip]
+
+    def index(self, name: str) -> int:
+        return self.body.index(name)
+
+
+def _wrap(angle: float) -> float:
+    return (angle + pi) % (2 * pi) - pi
+
+
+def place(ctx: Context, q: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:
+    """A clip pose (root in the clip frame) put into the world at (x, y) facing yaw."""
+    ix, iy, iyaw = ctx.index("base_x"), ctx.index("base_y"), ctx.index("base_yaw")
+    placed = q.copy()
+    c, s = cos(yaw), sin(yaw)
+    placed[ix] = x + c * q[ix] - s * q[iy]
+    placed[iy] = y + s * q[ix] + c * q[iy]
+    placed[iyaw] = yaw + q[iyaw]
+    return placed
+
+
+def travel(t: float, distance: float, speed: float, ramp: float = SPEED_RAMP):
+    """Distance covered and the total time of a move that speeds up and slows down smoothly.
+
+    Speed follows smoothstep ramps of `ramp` seconds; a short move never reaches `speed`.
+    """
+    if distance <= 0.0:
+        return 0.0, 0.0
+    cruise = min(speed, distance / ramp)
+    total = distance / cruise + ramp
+    t = min(max(t, 0.0), total)
+
+    def ramp_distance(u):
+        return cruise * ramp * (u**3 - u**4 / 2)
+
+    if t < ramp:
+        return ramp_distance(t / ramp), total
+    if t > total - ramp:
+        return distance - ramp_distance((total - t) / ramp), total
+    return cruise * ramp / 2 + cruise * (t - ramp), total
+
+
+# --- plan segments ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class ClipSegment:
+    """A clip played in place (idle loops for ever), optionally aimed at a target."""
+
+    clip: str
+    start: float
+    anchor: tuple[float, float, float]
+    speed: float = 1.0
+    forever: bool = False
+    aim: TargetedOffset | None = None
+
+    def end(self, ctx: Context) -> float:
+        return np.inf if self.forever else self.start + ctx.clips[self.clip].duration / self.speed
+
+    def clip_time(self, ctx: Context, t: float) -> float:
+        clip_time = (t - self.start) * self.speed
+        return (
+            clip_time if self.forever else min(max(clip_time, 0.0), ctx.clips[self.clip].duration)
+        )
+
+    def pose(self, ctx: Context, t: float) -> np.ndarray:
+        clip_time = self.clip_time(ctx, t)
+        q = ctx.clips[self.clip].sample(clip_time)
+        placed = place(ctx, q, *self.anchor)
+        if self.aim is not None:
+            placed = placed + self.aim.weight(clip_time) * self.aim.delta
+        return placed
+
+
+@dataclass(frozen=True, eq=False)
+class TurnSegment:
+    """Step round on the spot from one heading to another."""
+
+    start: float
+    position: tuple[float, float]
+    yaw_from: float
+    yaw_to: float
+
+    def angle(self, t: float) -> tuple[float, float]:
+        change = self.yaw_to - self.yaw_from
+        rate = TURN_PER_CYCLE / 0.9
+        turned, total = travel(t - self.start, abs(change), rate, ramp=0.3)
+        return np.sign(change) * turned, total
+
+    def end(self, ctx: Context) -> float:
+        return self.start + self.angle(self.start)[1]
+
+    def pose(self, ctx: Context, t: float) -> np.ndarray:
+        turned, _ = self.angle(t)
+        clip = ctx.clips["turn_left" if self.yaw_to >= self.yaw_from else "turn_right"]
+        clip_time = abs(turned) / TURN_PER_CYCLE * clip.duration
+        q = clip.sample(clip_time)
+        q[ctx.index("base_yaw")] = 0.0
+        return place(ctx, q, *self.position, self.yaw_from + turned)
+
+
+@dataclass(frozen=True, eq=False)
+class WalkSegment:
+    """Walk along a polyline; the walk cycle advances by distance / animation_distance."""
+
+    start: float
+    path: tuple[tuple[float, float], ...]
+    clip: str
+    animation_distance: float
+    speed: float
+
+    @property
+    def lengths(self) -> np.ndarray:
+        steps = np.diff(np.array(self.path), axis=0)
+        return np.concatenate([[0.0], np.cumsum(np.linalg.norm(steps, axis=1))])
+
+    def end(self, ctx: Context) -> float:
+        return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
+
+    def distance(self, t: float) -> float:
+        return travel(t - self.start, self.lengths[-1], self.speed)[0]
+
+    def point(self, along: float) -> np.ndarray:
+        lengths, path = self.lengths, np.array(self.path)
+        along = min(max(along, 0.0), lengths[-1])
+        k = min(np.searchsorted(lengths, along, side="right") - 1, len(path) - 2)
+        s = (along - lengths[k]) / max(lengths[k + 1] - lengths[k], 1e-9)
+        return path[k] + s * (path[k + 1] - path[k])
+
+    def heading(self, along: float) -> float:
+        """Path direction, turning smoothly through each waypoint."""
+        path, lengths = np.array(self.path), self.lengths
+        directions = np.unwrap([atan2(*(b - a)[::-1]) for a, b in zip(path[:-1], path[1:])])
+        k = min(max(np.searchsorted(lengths, along, side="right") - 1, 0), len(directions) - 1)
+        heading = directions[k]
+        for corner in range(1, len(directions)):
+            offset = along - lengths[corner]
+            if abs(offset) < CORNER_RADIUS:
+                w = float(minimum_jerk(np.array((offset + CORNER_RADIUS) / (2 * CORNER_RADIUS))))
+                heading = directions[corner - 1] + w * (directions[corner] - directions[corner - 1])
+        return float(heading)
+
+    def pose(self, ctx: Context, t: float) -> np.ndarray:
+        clip = ctx.clips[self.clip]
+        covered = self.distance(t)
+        clip_time = covered / self.animation_distance * clip.duration
+        q = clip.sample(clip_time)
+        ix, iy = ctx.index("base_x"), ctx.index("base_y")
+        along = covered + q[ix] - clip_time / clip.duration * clip.animation_distance
+        heading = self.heading(along)
+        x, y = self.point(along)
+        sideways = q[iy]
+        q[ix], q[iy] = 0.0, 0.0
+        return place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+
+
+Segment = ClipSegment | TurnSegment | WalkSegment
+
+
+@dataclass(frozen=True, eq=False)
+class Activity:
+    """A plan of segments, cross-faded from the pose the person had when it began."""
+
+    segments: tuple[Segment, ...]
+    blend_from: np.ndarray | None = None
+    blend_start: float = 0.0
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def end(self, ctx: Context) -> float:
+        return self.segments[-1].end(ctx)
+
+    def start(self) -> float:
+        return self.segments[0].start
+
+    def pose(self, ctx: Context, t: float) -> np.ndarray:
+        k = 0
+        while k + 1 < len(self.segments) and t >= self.segments[k + 1].start:
+            k += 1
+        q = self.segments[k].pose(ctx, t)
+        if k > 0 and t < self.segments[k].start + SEGMENT_BLEND:
+            previous = self.segments[k - 1].pose(ctx, self.segments[k].start)
+            q = blend(ctx, previous, q, (t - self.segments[k].start) / SEGMENT_BLEND)
+        if self.blend_from is not None and t < self.blend_start + BLEND_TIME:
+            q = blend(ctx, self.blend_from, q, (t - self.blend_start) / BLEND_TIME)
+        return q
+
+
+def blend(ctx: Context, a: np.ndarray, b: np.ndarray, s: float) -> np.ndarray:
+    """Minimum-jerk cross-fade from pose a (s = 0) to pose b (s = 1), yaw the short way."""
+    b = b.copy()
+    iyaw = ctx.index("base_yaw")
+    b_yaw = b[iyaw]
+    b[iyaw] = a[iyaw] + _wrap(b_yaw - a[iyaw])
+    w = float(minimum_jerk(np.array(s)))
+    mixed = a + w * (b - a)
+    if w >= 1.0:
+        mixed[iyaw] = b_yaw
+    return mixed
+
+
+# --- the protocol -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class ActorState:
+    """Everything the person remembers between updates."""
+
+    state: str = "SETUP"
+    activity: Activity | None = None
+    running: int = -1
+    seen: int = -1
+    results: tuple[CommandResult, ...] = ()
+    called: bool = False
+    event: str = ""
+    event_count: int = 0
+    last_update: float = 0.0
+    start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    animation: str = ""
+    base: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """Base pose measured at the last update (the speed comes from its change)."""
+    speed: float = 0.0
+
+    @property
+    def anchor(self) -> tuple[float, float, float]:
+        """Where the next activity starts: the idle spot, or where the person is now."""
+        if self.state == "IDLE" and self.activity is not None:
+            return self.activity.final_pose
+        return self.base
+
+
+def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
+    if state.activity is None:
+        return place(ctx, ctx.clips[IDLE_CLIP].sample(0.0), *state.start_pose)
+    return state.activity.pose(ctx, t)
+
+
+def _idle(ctx: Context, pose: tuple[float, float, float], t: float, blend_from) -> Activity:
+    return Activity((ClipSegment(IDLE_CLIP, t, pose, forever=True),), blend_from, t, pose)
+
+
+def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
+    return (
+        float(q[ctx.index("base_x")]),
+        float(q[ctx.index("base_y")]),
+        _wrap(float(q[ctx.index("base_yaw")])),
+    )
+
+
+def _yaw_of(quaternion) -> float:
+    w, x, y, z = quaternion
+    return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+
+
+def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activity:
+    """Turn towards the path, walk it, then turn to the target orientation."""
+    clip = ctx.clips.get(command.animation_name)
+    if clip is None or not clip.loop or clip.animation_distance <= 0:
+        raise Unreachable(f"'{command.animation_name}' is not a walking animation")
+    x, y, yaw = pose
+    path = [(x, y), *[tuple(p) for p in command.waypoints], tuple(command.target_position[:2])]
+    path = [
+        p for k, p in enumerate(path) if k == 0 or np.hypot(*np.subtract(p, path[k - 1])) > 1e-3
+    ]
+    segments: list[Segment] = []
+    start = t
+    heading = yaw
+    if len(path) > 1:
+        first = atan2(path[1][1] - y, path[1][0] - x)
+        heading = yaw + _wrap(first - yaw)
+        if abs(heading - yaw) > MIN_TURN:
+            segments.append(TurnSegment(start, (x, y), yaw, heading))
+            start = segments[-1].end(ctx)
+        distance = command.animation_distance or clip.animation_distance
+        speed = distance / clip.duration
+        walk = WalkSegment(start, tuple(path), clip.name, distance, speed)
+        segments.append(walk)
+        start = walk.end(ctx)
+        heading = walk.heading(walk.lengths[-1])
+    final_yaw = heading
+    if tuple(command.target_quaternion) != NULL_QUATERNION:
+        final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
+        if abs(final_yaw - heading) > MIN_TURN:
+            segments.append(TurnSegment(start, path[-1], heading, final_yaw))
+    if not segments:
+        segments.append(TurnSegment(t, (x, y), yaw, yaw))
+    return Activity(tuple(segments), None, t, (*path[-1], _wrap(final_yaw)))
+
+
+def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Activity:
+    clip = ctx.clips.get(command.animation_name)
+    if clip is None:
+        raise Unreachable(f"no animation named '{command.animation_name}'")
+    if command.animation_speed <= 0:
+        raise Unreachable("animation_speed must be positive")
+    aim = None
+    if command.target is not None:
+        if clip.name not in TARGETED:
+            raise Unreachable(f"'{clip.name}' takes no target")
+        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), command.target)
+    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim)
+    return Activity((segment,), None, t, pose)
+
+
+def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
+    results = (*[r for r in state.results if r.seq != seq], CommandResult(seq, outcome, reason))
+    return replace(state, results=results[-RESULTS_KEPT:])
+
+
+def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
+    """Start `activity` at t, cross-fading from the current pose."""
+    current = pose_at(ctx, actor, t)
+    return replace(actor, activity=replace(activity, blend_from=current, blend_start=t), **changes)
+
+
+def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
+    state = replace(state, seen=command.seq)
+    if isinstance(command, SetCalledCommand):
+        return _record(replace(state, called=command.called), command.seq, "succeeded")
+    if isinstance(command, CancelCommand):
+        if state.running < 0:
+            return _record(state, command.seq, "succeeded", "nothing to cancel")
+        state = _record(state, state.running, "cancelled", f"cancelled by {command.seq}")
+        state = _switch(
+            ctx,
+            state,
+            _idle(ctx, state.base, t, None),
+            t,
+            state="IDLE",
+            running=-1,
+            animation=IDLE_CLIP,
+        )
+        return _record(state, command.seq, "succeeded")
+    if state.running >= 0:
+        return _record(state, command.seq, "rejected", f"busy with command {state.running}")
+    try:
+        if isinstance(command, MoveCommand):
+            activity, mode = plan_movement(ctx, command, state.anchor, t), "MOVEMENT"
+        else:
+            activity, mode = plan_animation(ctx, command, state.anchor, t), "ANIMATION"
+    except Unreachable as error:
+        return _record(state, command.seq, "failed", str(error))
+    state = _switch(
+        ctx, state, activity, t, state=mode, running=command.seq, animation=command.animation_name
+    )
+    return _record(state, command.seq, "running")
+
+
+def _events(ctx: Context, state: ActorState, t0: float, t1: float) -> list[str]:
+    """Clip events whose time passed between two updates."""
+    if state.activity is None or t1 <= t0:
+        return []
+    fired = []
+    for segment in state.activity.segments:
+        if isinstance(segment, ClipSegment):
+            clip = ctx.clips[segment.clip]
+            a, b = segment.clip_time(ctx, t0), segment.clip_time(ctx, t1)
+        elif isinstance(segment, WalkSegment):
+            clip = ctx.clips[segment.clip]
+            scale = clip.duration / segment.animation_distance
+            a, b = segment.distance(t0) * scale, segment.distance(t1) * scale
+        else:
+            continue
+        cycles = range(int(a // clip.duration), int(b // clip.duration) + 1) if clip.loop else [0]
+        for name, time in clip.events.items():
+            if any(a < time + n * clip.duration <= b for n in cycles) or (a == 0 == time < b):
+                fired.append(name)
+    return fired
+
+
+def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
+    """One update at time t with the latest command on the port (or None)."""
+    previous_t = state.last_update
+    if state.state == "SETUP":
+        state = replace(
+            state,
+            state="IDLE",
+            base=state.start_pose,
+            animation=IDLE_CLIP,
+            activity=_idle(ctx, state.start_pose, t, None),
+        )
+        previous_t = t
+    if command is not None and command.seq > state.seen:
+        state = _handle(ctx, state, command, t)
+    if state.running >= 0 and t >= state.activity.end(ctx):
+        final = state.activity.final_pose
+        state = _record(state, state.running, "succeeded")
+        state = _switch(
+            ctx, state, _idle(ctx, final, t, None), t, state="IDLE", running=-1, animation=IDLE_CLIP
+        )
+    fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
+    base = _base_pose(ctx, pose_at(ctx, state, t))
+    speed = 0.0
+    if t > previous_t:
+        speed = float(np.hypot(base[0] - state.base[0], base[1] - state.base[1]) / (t - previous_t))
+    return replace(
+        state,
+        last_update=t,
+        event=fired[-1] if fired else "",
+        event_count=state.event_count + len(fired),
+        base=base,
+        speed=speed,
+    )
+
+
+def progress(ctx: Context, state: ActorState, t: float) -> float:
+    if state.running < 0 or state.activity is None:
+        return 1.0 if state.results and state.results[-1].outcome == "succeeded" else 0.0
+    start, end = state.activity.start(), state.activity.end(ctx)
+    return float(min(max((t - start) / max(end - start, 1e-9), 0.0), 1.0))
+
+
+def status(ctx: Context, state: ActorState, t: float, hands_and_head) -> HumanStatus:
+    """The status message; `hands_and_head(q)` gives the world poses of the three frames."""
+    last = state.results[-1] if state.results else CommandResult(-1, "")
+    q = pose_at(ctx, state, t)
+    left, right, head = hands_and_head(q)
+    return HumanStatus(
+        state=state.state,
+        last_seq=last.seq,
+        outcome=last.outcome,
+        reason=last.reason,
+        progress=progress(ctx, state, t),
+        base_pose=_base_pose(ctx, q),
+        base_speed=state.speed,
+        left_hand=left,
+        right_hand=right,
+        head=head,
+        called=state.called,
+        event=state.event,
+        event_count=state.event_count,
+        animation=state.animation,
+        results=state.results,
+        time=t,
+    )

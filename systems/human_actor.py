@@ -1,0 +1,71 @@
+"""HumanActor: the simulated person's state machine as a Drake LeafSystem.
+
+Input `human_command` (abstract): the latest command (hrc_drake.human.messages) or None.
+Outputs, both computed from state only: `human_positions` (the kinematic human plant's q,
+for MultibodyPositionToGeometryPose) and `human_status` (HumanStatus). A periodic
+unrestricted update (60 Hz by default, above Meshcat's frame rate) runs the protocol and
+samples the pose; between updates the pose is held, so the diagram pays for the person only
+at that rate.
+"""
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.systems.framework import LeafSystem
+
+from hrc_drake.human.body import HumanBody, human_body
+from hrc_drake.human.clip import Clip, load_clips
+from hrc_drake.human.messages import HumanStatus
+from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
+
+UPDATE_PERIOD = 1.0 / 60.0
+
+
+def _pose_tuple(X) -> tuple[float, ...]:
+    quaternion = X.rotation().ToQuaternion()
+    return (*X.translation(), quaternion.w(), quaternion.x(), quaternion.y(), quaternion.z())
+
+
+class HumanActor(LeafSystem):
+    """Plays clips, walks and aims the person according to the commands it receives."""
+
+    def __init__(
+        self,
+        body: HumanBody | None = None,
+        clips: dict[str, Clip] | None = None,
+        start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        period: float = UPDATE_PERIOD,
+    ):
+        LeafSystem.__init__(self)
+        self._ctx = Context(body or human_body(), clips or load_clips())
+        initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
+        self._command = self.DeclareAbstractInputPort("human_command", AbstractValue.Make(None))
+        self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))
+        self._status = self.DeclareAbstractState(AbstractValue.Make(HumanStatus()))
+        first_pose = self._ctx.body.plant_positions(pose_at(self._ctx, initial, 0.0))
+        self._positions = self.DeclareDiscreteState(first_pose)
+        self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
+        self.DeclareStateOutputPort("human_positions", self._positions)
+        self.DeclareStateOutputPort("human_status", self._status)
+
+    @property
+    def body(self) -> HumanBody:
+        return self._ctx.body
+
+    def _frames(self, q: np.ndarray):
+        body = self._ctx.body
+        return tuple(
+            _pose_tuple(body.frame_pose(name, q))
+            for name in ("left_hand_grasp", "right_hand_grasp", "head_gaze")
+        )
+
+    def _update(self, context, state) -> None:
+        t = context.get_time()
+        command = self._command.Eval(context) if self._command.HasValue(context) else None
+        actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, command)
+        state.get_mutable_abstract_state(self._actor).set_value(actor)
+        q = pose_at(self._ctx, actor, t)
+        state.get_mutable_discrete_state(self._positions).set_value(
+            self._ctx.body.plant_positions(q)
+        )
+        message = status(self._ctx, actor, t, self._frames)
+        state.get_mutable_abstract_state(self._status).set_value(message)
