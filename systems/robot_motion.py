@@ -20,7 +20,7 @@ from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import CANCELLED, FAILED, FINISHED, REJECTED, RUNNING, SUCCEEDED
 from hrc_drake.motion.deadline import PlanningFailed
-from hrc_drake.motion.execution import Progress, desired_motion, rate_change
+from hrc_drake.motion.execution import Progress, desired_motion, next_progress
 from hrc_drake.motion.messages import (
     GRIP,
     IDLE,
@@ -317,9 +317,10 @@ class RobotMotion(LeafSystem):
             return state.with_result(command.seq, FAILED, str(failure))
         if path is None:
             return state.with_result(command.seq, SUCCEEDED, "already at the target")
+        start_rate = state.speed_fraction * state.safety_scale  # the path starts at rest
         return state.replace(
             path=path,
-            progress=Progress(0.0, 0.0, 0.0, t),
+            progress=Progress(0.0, start_rate, 0.0, t, start_rate),
             move_seq=command.seq,
             arrived_since=None,
         )
@@ -336,14 +337,13 @@ class RobotMotion(LeafSystem):
         if state.move_seq is not None and progress.finished(state.path.duration):
             return self._arriving(state, q, v, t)
         target = 0.0 if state.stop_seq is not None else state.speed_fraction * state.safety_scale
-        change = rate_change(
+        progress = next_progress(
             state.path,
             progress,
             target,
             self._options.update_period,
             self._model.acceleration_limits,
         )
-        progress = dataclasses.replace(progress, rate_change=change, since=t)
         mode = MOVING if target > 0.0 else (STOPPED if progress.at_rest else STOPPING)
         return state.replace(progress=progress, mode=mode)
 

@@ -9,9 +9,11 @@ scale, so the robot always stays on the planned path whatever the scale does:
 With 0 ≤ r ≤ 1 the velocities are at most the limits × r, and the first acceleration term at
 most the limits × r². At every update RobotMotion picks ṙ, held until the next update, to
 bring r to the commanded scale within one period where it can, and otherwise as fast as the
-joint acceleration limits allow (the second term uses what the first leaves over).
+scaled joint acceleration limits allow (the second term uses what the first leaves over).
 """
 
+import dataclasses
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,12 +27,14 @@ AT_REST_RATE = 1e-9
 
 @dataclass(frozen=True)
 class Progress:
-    """Where execution is on the path: τ, r and ṙ as set by the update at time `since`."""
+    """Where execution is on the path: τ, r and ṙ as set by the update at time `since`,
+    and the scale of the acceleration limits that ṙ respects."""
 
     tau: float
     rate: float
     rate_change: float
     since: float
+    limit_scale: float = 0.0
 
     def at(self, t: float, duration: float) -> "Progress":
         """Extrapolated to time t (ṙ constant, r never below 0, τ never past the end)."""
@@ -44,7 +48,7 @@ class Progress:
     def _moved(self, dt: float, duration: float, t: float, rate_change: float) -> "Progress":
         tau = self.tau + self.rate * dt + 0.5 * self.rate_change * dt * dt
         rate = max(0.0, self.rate + self.rate_change * dt)
-        return Progress(min(tau, duration), rate, rate_change, t)
+        return Progress(min(tau, duration), rate, rate_change, t, self.limit_scale)
 
     @property
     def at_rest(self) -> bool:
@@ -65,20 +69,26 @@ def desired_motion(path, progress: Progress) -> tuple[np.ndarray, np.ndarray, np
     return q, dq * r, ddq * r * r + dq * dr
 
 
-def rate_change(
+def next_progress(
     path, progress: Progress, target: float, period: float, acceleration_limits: np.ndarray
-) -> float:
-    """ṙ for the next period: reaches `target` in one period if the limits allow it.
+) -> Progress:
+    """`progress` with ṙ for the next period: reaches `target` in one period if it can.
 
-    The feasible range is the intersection, over the joints and over τ now and τ one period
-    ahead, of |q''(τ) r² + q'(τ) ṙ| ≤ margin × limit, with r the larger of now and target.
+    The acceleration limits are scaled by `limit_scale`: the target when speeding up, and
+    while slowing down the scale the motion had when it began to slow down (so a stop
+    brakes as hard as the motion it stops was allowed to, and takes the same time from any
+    speed). The feasible range of ṙ is the intersection, over the joints and over τ now and
+    one period ahead, and over r now and target (the extremes of r in the period), of
+    |q''(τ) r² + q'(τ) ṙ| ≤ scaled limit.
     """
+    speeding_up = target >= progress.rate
+    limit_scale = target if speeding_up else max(progress.limit_scale, progress.rate)
     wanted = (target - progress.rate) / period
-    limits = ACCELERATION_MARGIN * acceleration_limits
-    rate = max(progress.rate, target)
-    ahead = min(path.duration, progress.tau + rate * period)
+    slowest, fastest = sorted((progress.rate, target))
+    limits = ACCELERATION_MARGIN * limit_scale * acceleration_limits
+    ahead = min(path.duration, progress.tau + fastest * period)
     low, high = -np.inf, np.inf
-    for tau in (progress.tau, ahead):
+    for tau, rate in itertools.product((progress.tau, ahead), (slowest, fastest)):
         dq = path.velocity(tau)
         curvature_term = path.acceleration(tau) * rate * rate
         moving = np.abs(dq) > 1e-9
@@ -86,5 +96,6 @@ def rate_change(
         bound_b = (limits - curvature_term)[moving] / dq[moving]
         low = max(low, np.max(np.minimum(bound_a, bound_b), initial=-np.inf))
         high = min(high, np.min(np.maximum(bound_a, bound_b), initial=np.inf))
-    chosen = min(max(wanted, low), high) if low <= high else min(0.0, wanted)
-    return max(chosen, -progress.rate / period)
+    chosen = min(max(wanted, low), high) if low <= high else 0.5 * (low + high)
+    change = min(chosen, wanted) if speeding_up else max(chosen, wanted)
+    return dataclasses.replace(progress, rate_change=change, limit_scale=limit_scale)

@@ -15,8 +15,11 @@ from pydrake.trajectories import (
     Trajectory,
 )
 
-LIMIT_MARGIN = 0.95
+VELOCITY_MARGIN = 0.95
 """TOPP-RA enforces the limits at grid points only; the margin covers the spans between."""
+ACCELERATION_MARGIN = 0.85
+"""Below execution's margin, so that a motion resumed after a stop can regain its speed
+while the planned motion itself accelerates."""
 
 GRID = CalcGridPointsOptions(max_err=1e-4, max_iter=100, max_seg_length=0.02, min_points=50)
 
@@ -63,11 +66,11 @@ def spline_path(waypoints: list[np.ndarray]) -> PiecewisePolynomial:
 def time_path(path: PiecewisePolynomial, model, tool_speed_limit: float) -> TimedPath | None:
     """The fastest timing of `path` within the limits of `model`; None if TOPP-RA fails."""
     toppra = Toppra(path, model.plant, Toppra.CalcGridPoints(path, GRID))
-    velocity = LIMIT_MARGIN * model.velocity_limits
-    acceleration = LIMIT_MARGIN * model.acceleration_limits
+    velocity = VELOCITY_MARGIN * model.velocity_limits
+    acceleration = ACCELERATION_MARGIN * model.acceleration_limits
     toppra.AddJointVelocityLimit(-velocity, velocity)
     toppra.AddJointAccelerationLimit(-acceleration, acceleration)
-    toppra.AddFrameTranslationalSpeedLimit(model.tcp, LIMIT_MARGIN * tool_speed_limit)
+    toppra.AddFrameTranslationalSpeedLimit(model.tcp, VELOCITY_MARGIN * tool_speed_limit)
     timing = toppra.SolvePathParameterization()
     if timing is None:
         return None

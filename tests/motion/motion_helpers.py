@@ -4,7 +4,7 @@ The station is assembled from the builder's public pieces with the controller ta
 RobotMotion's acceleration feed-forward, as the builder does.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from hrc_drake.systems.robot_motion import add_robot_motion
@@ -14,7 +14,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.controllers import InverseDynamicsController
-from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.framework import DiagramBuilder, EventStatus
 
 from hrc_drake.builder import make_control_plant
 from hrc_drake.iisy import VARIANTS
@@ -102,6 +102,56 @@ class Station:
         return "timeout"
 
 
+@dataclass
+class Trace:
+    """Per-plant-step samples of a run: time, tool position, desired q̇ and q̈, status."""
+
+    t: list = field(default_factory=list)
+    tool: list = field(default_factory=list)
+    velocity: list = field(default_factory=list)
+    acceleration: list = field(default_factory=list)
+    speed_scale: list = field(default_factory=list)
+    outcomes: list = field(default_factory=list)
+    modes: list = field(default_factory=list)
+    final: str = ""
+
+    def arrays(self):
+        return {k: np.array(v) for k, v in self.__dict__.items() if isinstance(v, list)}
+
+
+def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> Trace:
+    """Runs until command `seq` finishes, sampling every plant step; `actions` maps
+    simulation times to callables(station) applied once that time is reached."""
+    trace = Trace()
+    pending = sorted((actions or {}).items())
+    motion_context = station.motion.GetMyContextFromRoot(station.context)
+    model = station.motion.planner.model
+
+    def monitor(context):
+        desired = station.motion.GetOutputPort("desired_state").Eval(motion_context)
+        status = station.status()
+        trace.t.append(context.get_time())
+        trace.tool.append(model.tool_pose(station.q()).translation())
+        trace.velocity.append(desired[6:].copy())
+        trace.acceleration.append(
+            station.motion.GetOutputPort("desired_acceleration").Eval(motion_context).copy()
+        )
+        trace.speed_scale.append(status.speed_scale)
+        trace.outcomes.append(status.outcome_of(seq))
+        trace.modes.append(status.mode)
+        return EventStatus.Succeeded()
+
+    station.simulator.set_monitor(monitor)
+    try:
+        for at, action in pending:
+            station.simulator.AdvanceTo(at)
+            action(station)
+        trace.final = station.run_until_finished(seq, timeout)
+    finally:
+        station.simulator.clear_monitor()
+    return trace
+
+
 def build_station(scenario: Scenario, options=None) -> Station:
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(
@@ -127,3 +177,15 @@ def build_station(scenario: Scenario, options=None) -> Station:
     simulator = Simulator(diagram)
     simulator.Initialize()
     return Station(diagram, simulator, motion, plant)
+
+
+def distance_to_polyline(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
+    """Distance of each point to the polyline through `polyline`'s rows."""
+    a, b = polyline[:-1], polyline[1:]
+    ab = b - a
+    length_squared = np.maximum((ab * ab).sum(axis=1), 1e-18)
+    distances = []
+    for p in points:
+        t = np.clip(((p - a) * ab).sum(axis=1) / length_squared, 0.0, 1.0)
+        distances.append(np.linalg.norm(a + t[:, None] * ab - p, axis=1).min())
+    return np.array(distances)
