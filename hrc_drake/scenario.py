@@ -57,6 +57,19 @@ class VisualizationOptions:
 
 
 @dataclass
+class AgentTree:
+    """The behavior tree an agent runs: a BehaviorTree.CPP v4 XML file (relative to the
+    scenario file), which of its trees (default: its main tree), and the tick period."""
+
+    file: str = field(default="", metadata=REQUIRED)
+    tree_id: str = ""
+    period: float = 0.05
+
+
+AGENTS = ("robot", "human")
+
+
+@dataclass
 class Scenario:
     name: str = field(default="", metadata=REQUIRED)
     description: str = ""
@@ -68,6 +81,9 @@ class Scenario:
     areas: dict[str, list[list[float]]] = field(default_factory=dict)
     locations: dict[str, Transform] = field(default_factory=dict)
     visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
+    trees: dict[str, AgentTree] = field(default_factory=dict)
+    parameters: dict[str, str] = field(default_factory=dict)
+    """Root blackboard entries of every tree (converted to each port's type when read)."""
 
     def area(self, name: str) -> Area:
         return Area.from_polygon(self.areas[name])
@@ -121,6 +137,7 @@ def load_scenario(name_or_path: str | Path) -> Scenario:
     except Exception as e:  # Drake's reader; our check above catches the common cases first.
         raise InputError(f"{path}: {e}") from None
     _check_meaning(path, root, scenario)
+    _resolve_tree_files(path, root, scenario)
     return scenario
 
 
@@ -141,6 +158,35 @@ def _check_meaning(path: Path, root, scenario: Scenario) -> None:
         except ValueError as e:
             fail(("areas", name), f"not a valid polygon: {e}")
     _check_model_files(scenario.cell, lambda names, msg: fail(("cell", *names), msg))
+
+
+def _resolve_tree_files(path: Path, root, scenario: Scenario) -> None:
+    """Tree files are named relative to the scenario file; keep them as absolute paths so
+    the loaded scenario works from any directory (and in sweep workers)."""
+    for agent, tree in scenario.trees.items():
+        where = ("trees", agent)
+        if agent not in AGENTS:
+            raise located_error(
+                path, node_at(root, where), field_path(where), _unknown("agent", agent, AGENTS)
+            )
+        file = (path.parent / tree.file).resolve()
+        if not file.is_file():
+            where = (*where, "file")
+            raise located_error(
+                path,
+                node_at(root, where),
+                field_path(where),
+                f"tree file '{tree.file}' not found (looked at {file})",
+            )
+        tree.file = str(file)
+        if not tree.period > 0:
+            where = (*where, "period")
+            raise located_error(
+                path,
+                node_at(root, where),
+                field_path(where),
+                f"must be positive, got {tree.period}",
+            )
 
 
 def _check_robot(robot: RobotConfig, fail) -> None:

@@ -45,11 +45,14 @@ def test_wheel_installed_elsewhere_validates_a_bundled_scenario(tmp_path):
     work = tmp_path / "elsewhere"
     work.mkdir()
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    packages = sorted(p.parent.name for p in (ROOT / "hrc_drake").glob("*/__init__.py"))
+    imports = ", ".join(f"hrc_drake.{name}" for name in packages)
     where = subprocess.check_output(
         [
             python,
             "-c",
-            "import hrc_drake.systems, hrc_drake.paths as p; print(p.resource_dir('models'))",
+            f"import {imports}, hrc_drake.systems, hrc_drake.paths as p; "
+            "print(p.resource_dir('models'))",
         ],
         cwd=work,
         env=env,

@@ -1,0 +1,73 @@
+"""A scenario's behavior trees: loaded with the HRC node library, checked against the
+scenario's named places, with the root blackboard filled from the scenario.
+
+Every tree's root blackboard holds the scenario's locations (as Poses), areas and
+`parameters`, so a tree can write `{table_top}` as well as the literal `table_top`.
+"""
+
+from hrc_drake.bt import BTError, Tree, load_tree, validate
+from hrc_drake.nodes import hrc_registry
+from hrc_drake.nodes.context import AgentContext, Places
+from hrc_drake.scenario import Scenario
+from hrc_drake.tree_types import AreaRef, Pose
+
+
+def scenario_places(scenario: Scenario) -> Places:
+    return Places(
+        locations={name: scenario.location(name) for name in scenario.locations},
+        areas={name: scenario.area(name) for name in scenario.areas},
+    )
+
+
+def blackboard_entries(scenario: Scenario) -> dict:
+    places = scenario_places(scenario)
+    return {
+        **{name: Pose.from_transform(pose) for name, pose in places.locations.items()},
+        **places.areas,
+        **scenario.parameters,
+    }
+
+
+def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]:
+    """The agent's tree, its context, and its root blackboard filled from the scenario."""
+    config = scenario.trees[agent]
+    context = AgentContext(agent, scenario_places(scenario))
+    tree = load_tree(config.file, hrc_registry(), tree_id=config.tree_id or None, context=context)
+    for key, value in blackboard_entries(scenario).items():
+        tree.root_blackboard.set(key, value)
+    tree.root_blackboard.remember_initial_state()
+    return tree, context
+
+
+def tree_errors(scenario: Scenario) -> list[BTError]:
+    """Everything wrong with the scenario's trees, without running them: the engine's
+    checks (unknown nodes, ports, values, scripts, includes) and names of places that the
+    scenario does not define."""
+    errors = []
+    for agent, config in scenario.trees.items():
+        found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
+        errors += found or _place_errors(scenario, load_agent_tree(scenario, agent)[0])
+    return errors
+
+
+def _place_errors(scenario: Scenario, tree: Tree) -> list[BTError]:
+    errors = []
+    for _, _, node in tree.nodes():
+        for port, binding in node.config.inputs.items():
+            value = getattr(binding, "value", None)
+            problem = _unknown_place(scenario, value)
+            if problem:
+                errors.append(node.error(problem, port=port))
+    return errors
+
+
+def _unknown_place(scenario: Scenario, value) -> str:
+    if isinstance(value, Pose) and value.name and value.name not in scenario.locations:
+        return f"unknown location '{value.name}' (scenario locations: {_names(scenario.locations)})"
+    if isinstance(value, AreaRef) and value.name not in scenario.areas:
+        return f"unknown area '{value.name}' (scenario areas: {_names(scenario.areas)})"
+    return ""
+
+
+def _names(names) -> str:
+    return ", ".join(sorted(names)) or "none"

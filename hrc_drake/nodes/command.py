@@ -1,0 +1,45 @@
+"""The asynchronous node that sends one command to an actor and follows its outcome.
+
+Every actor reports the outcomes of its recent commands by sequence number, so a node
+knows when *its* command finished even if other commands came after it. Halting the node
+cancels the command where the actor has a cancel (Stop for the robot, Cancel for the
+person)."""
+
+from typing import ClassVar
+
+from hrc_drake.bt import StatefulActionNode, Status
+from hrc_drake.messages import RUNNING, SUCCEEDED
+
+
+class CommandNode(StatefulActionNode):
+    """Sends `command(seq)` to `actor` on start; SUCCESS when it succeeded, FAILURE when it
+    failed, was rejected or cancelled."""
+
+    actor: ClassVar[str]
+    cancel_command: ClassVar[type | None] = None
+    """Command class (built from a seq) sent when the node is halted; None: nothing."""
+
+    def command(self, seq: int):
+        raise NotImplementedError
+
+    def outcome(self) -> str | None:
+        status = self.context.statuses[self.actor]
+        return status.outcome_of(self.seq) if status is not None else None
+
+    def succeeded(self) -> Status:
+        """Called once the command succeeded; nodes with outputs write them here."""
+        return Status.SUCCESS
+
+    def on_start(self) -> Status:
+        self.seq = self.context.send(self.actor, self.command)
+        return Status.RUNNING
+
+    def on_running(self) -> Status:
+        outcome = self.outcome()
+        if outcome is None or outcome == RUNNING:
+            return Status.RUNNING
+        return self.succeeded() if outcome == SUCCEEDED else Status.FAILURE
+
+    def on_halted(self) -> None:
+        if self.cancel_command is not None:
+            self.context.send(self.actor, self.cancel_command)

@@ -1,0 +1,161 @@
+"""Object nodes: trees create, remove and track workpieces through the objects status.
+
+SpawnObject/DespawnObject command the Workpieces system (its answer comes within one of its
+updates); ObjectAttribute, CountObjects and NextObject read the objects status, which is how
+one agent finds what the other left somewhere. A filter is `key=value;key=value`, where the
+key `type` is the object type and other keys are attributes (`defective=true`).
+"""
+
+from hrc_drake.areas import Area
+from hrc_drake.bt import InputPort, OutputPort, Status, SyncActionNode
+from hrc_drake.bt.ports import value_to_text
+from hrc_drake.nodes.command import CommandNode
+from hrc_drake.nodes.context import WORKPIECES
+from hrc_drake.tree_types import Pose
+from hrc_drake.workpieces import messages as wp
+
+
+def parse_filter(text: str) -> dict[str, str]:
+    """`type=box;fragile=true` -> {"type": "box", "fragile": "true"}."""
+    pairs = [item.split("=", 1) for item in text.split(";") if item.strip()]
+    if any(len(pair) != 2 for pair in pairs):
+        raise ValueError(f"a filter is key=value;key=value, got '{text}'")
+    return {key.strip(): value.strip() for key, value in pairs}
+
+
+def matches(obj: wp.ObjectStatus, wanted: dict[str, str]) -> bool:
+    for key, value in wanted.items():
+        actual = obj.type if key == "type" else obj.attributes.get(key)
+        if actual is None or value_to_text(actual) != value:
+            return False
+    return True
+
+
+class ObjectsNode(SyncActionNode):
+    """Reads the objects status; FAILURE while no Workpieces system is wired."""
+
+    def free_objects_in(self, area_port: str, filter_port: str) -> list[wp.ObjectStatus]:
+        """Objects not held by anyone, lying in the area and matching the filter, oldest
+        first."""
+        status = self.context.workpieces
+        if status is None:
+            return []
+        area = self.context.area(self.get_input(area_port))
+        try:
+            wanted = parse_filter(self.get_input(filter_port))
+        except ValueError as error:
+            raise self.error(str(error), port=filter_port) from None
+        return [
+            obj
+            for obj in status.objects
+            if obj.holder is None
+            and area.contains(obj.pose.translation()[:2])
+            and matches(obj, wanted)
+        ]
+
+
+AREA_PORT = InputPort("area", Area, description="area name or triangles")
+FILTER_PORT = InputPort("filter", str, default="", description="key=value;... (type, attributes)")
+
+
+class CountObjects(ObjectsNode):
+    """Counts the free objects in an area that match a filter (always SUCCESS)."""
+
+    ports = (AREA_PORT, FILTER_PORT, OutputPort("count", int))
+
+    def tick(self) -> Status:
+        self.set_output("count", len(self.free_objects_in("area", "filter")))
+        return Status.SUCCESS
+
+
+class NextObject(ObjectsNode):
+    """The oldest free object in an area matching a filter; FAILURE when there is none."""
+
+    ports = (
+        AREA_PORT,
+        FILTER_PORT,
+        OutputPort("object_id", int),
+        OutputPort("pose", Pose, description="the object's pose (its centre)"),
+    )
+
+    def tick(self) -> Status:
+        found = self.free_objects_in("area", "filter")
+        if not found:
+            return Status.FAILURE
+        self.set_output("object_id", found[0].id)
+        self.set_output("pose", Pose.from_transform(found[0].pose))
+        return Status.SUCCESS
+
+
+class ObjectAttribute(ObjectsNode):
+    """Reads one attribute of an object (its `type` too); FAILURE if either is unknown."""
+
+    ports = (
+        InputPort("object_id", int),
+        InputPort("attribute", str),
+        OutputPort("value", str),
+    )
+
+    def tick(self) -> Status:
+        status = self.context.workpieces
+        obj = status.object(self.get_input("object_id")) if status is not None else None
+        name = self.get_input("attribute")
+        value = obj.type if obj is not None and name == "type" else None
+        if obj is not None and value is None:
+            value = obj.attributes.get(name)
+        if value is None:
+            return Status.FAILURE
+        self.set_output("value", value_to_text(value))
+        return Status.SUCCESS
+
+
+class WorkpiecesCommandNode(CommandNode):
+    """A command to the Workpieces system, which answers per issuer (this agent's tree)."""
+
+    actor = WORKPIECES
+
+    def outcome(self) -> str | None:
+        status = self.context.workpieces
+        if status is None:
+            return None
+        return status.outcome_of(self.context.workpieces_issuer, self.seq)
+
+
+class SpawnObject(WorkpiecesCommandNode):
+    """Creates an object of `type` at `pose` or at a random place in `area`; the new id is
+    written to `object_id`. FAILURE when the scenario's capacity is used up."""
+
+    ports = (
+        InputPort("type", str, description="object type from the scenario"),
+        InputPort("pose", Pose, default=None, description="where (or give an area)"),
+        InputPort("area", str, default="", description="scenario area to drop it in"),
+        InputPort("attributes", str, default="", description="key=value;... overrides"),
+        OutputPort("object_id", int),
+    )
+
+    def command(self, seq: int):
+        pose = self.get_input("pose")
+        return wp.Spawn(
+            seq,
+            self.get_input("type"),
+            pose=self.context.transform(pose) if pose is not None else None,
+            area=self.get_input("area"),
+            attributes=parse_filter(self.get_input("attributes")),
+        )
+
+    def succeeded(self) -> Status:
+        result = self.context.workpieces.result(self.context.workpieces_issuer)
+        self.set_output("object_id", result.object_id)
+        return Status.SUCCESS
+
+
+class DespawnObject(WorkpiecesCommandNode):
+    """Removes an object from the simulation (e.g. when it leaves the cell)."""
+
+    ports = (InputPort("object_id", int),)
+
+    def command(self, seq: int):
+        return wp.Despawn(seq, self.get_input("object_id"))
+
+
+NODES = (CountObjects, NextObject, ObjectAttribute, SpawnObject, DespawnObject)

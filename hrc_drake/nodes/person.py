@@ -1,0 +1,238 @@
+"""Person nodes: the original's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
+the targeted actions the scenarios need (pick, place, reach, hand over, carry).
+
+Targeted actions play a clip aimed at a point; at the clip's contact event (`grasp`,
+`release`, `extended`) they tell the Workpieces system to attach, release or transfer the
+object, so the object changes hands at the moment the hand is there.
+"""
+
+from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
+from hrc_drake.human import messages as human
+from hrc_drake.messages import SUCCEEDED
+from hrc_drake.nodes.command import CommandNode
+from hrc_drake.nodes.context import HUMAN, WORKPIECES
+from hrc_drake.tree_types import Pose
+from hrc_drake.workpieces import messages as wp
+
+TABLE_HEIGHT = 0.5
+"""Targets below this height are picked or placed with the floor clips (a squat)."""
+
+HANDS = {"left": wp.LEFT_HAND, "right": wp.RIGHT_HAND, "both": wp.BOTH_HANDS}
+
+
+class PersonCommandNode(CommandNode):
+    """A command to the HumanActor; halting it cancels the running action."""
+
+    actor = HUMAN
+    cancel_command = human.CancelCommand
+
+
+class ActorAnimation(PersonCommandNode):
+    """Plays an animation in place; SUCCESS when it completed, FAILURE when it was
+    cancelled or rejected (e.g. an unknown animation name)."""
+
+    ports = (
+        InputPort("animation_name", str),
+        InputPort("animation_speed", float, default=1.0, description="2 = twice as fast"),
+    )
+
+    def command(self, seq: int):
+        return human.AnimateCommand(
+            seq, self.get_input("animation_name"), self.get_input("animation_speed")
+        )
+
+
+class ActorMovement(PersonCommandNode):
+    """Turns towards the target, walks there and turns to its orientation (a target
+    without orientation: keep facing the walking direction)."""
+
+    ports = (
+        InputPort("animation_name", str, default="walk"),
+        InputPort(
+            "animation_distance",
+            float,
+            default=0.0,
+            description="ground covered by one walk cycle; 0 = the clip's own",
+        ),
+        InputPort("target", Pose, description="x;y;z[;qw;qx;qy;qz] or location name"),
+    )
+
+    def command(self, seq: int):
+        target = self.context.resolve_pose(self.get_input("target"))
+        distance = self.get_input("animation_distance")
+        return human.MoveCommand(
+            seq,
+            target_position=target.position,
+            target_quaternion=target.quaternion or human.NULL_QUATERNION,
+            animation_name=self.get_input("animation_name"),
+            animation_distance=distance if distance > 0 else None,
+        )
+
+
+class ActorCarry(ActorMovement):
+    """Walks to the target holding an object with both hands (the carry clip)."""
+
+    ports = (
+        InputPort("animation_name", str, default="carry"),
+        *ActorMovement.ports[1:],
+    )
+
+
+class IsCalled(ConditionNode):
+    """SUCCESS while the person is being called (by the robot)."""
+
+    def tick(self) -> Status:
+        status = self.context.human
+        return Status.SUCCESS if status is not None and status.called else Status.FAILURE
+
+
+class SetCalledTo(SyncActionNode):
+    """Sets the person's called flag; always SUCCESS."""
+
+    ports = (InputPort("state", bool),)
+
+    def tick(self) -> Status:
+        called = self.get_input("state")
+        self.context.send(HUMAN, lambda seq: human.SetCalledCommand(seq, called))
+        return Status.SUCCESS
+
+
+class TargetedAction(PersonCommandNode):
+    """Plays `clip()` aimed at `target_point()`; at the clip event `contact_event` it sends
+    `object_command(seq)` to the Workpieces system. SUCCESS when both succeeded."""
+
+    contact_event = ""
+    """Clip event at which the object changes hands ("": the action moves no object)."""
+
+    def clip(self) -> str:
+        raise NotImplementedError
+
+    def target_point(self) -> tuple[float, float, float]:
+        raise NotImplementedError
+
+    def object_command(self, seq: int):
+        raise NotImplementedError
+
+    def command(self, seq: int):
+        self.contact_seq = None
+        self.events_seen = self._event_count()
+        return human.AnimateCommand(seq, self.clip(), target=self.target_point())
+
+    def on_running(self) -> Status:
+        if self.contact_seq is None and self._contact_event_fired():
+            self.contact_seq = self.context.send(WORKPIECES, self.object_command)
+        status = super().on_running()
+        if status is not Status.SUCCESS or self.contact_seq is None:
+            return status
+        return self._contact_result()
+
+    def _event_count(self) -> int:
+        status = self.context.human
+        return status.event_count if status is not None else 0
+
+    def _contact_event_fired(self) -> bool:
+        status = self.context.human
+        return (
+            self.contact_event
+            and status is not None
+            and status.event == self.contact_event
+            and status.event_count > self.events_seen
+        )
+
+    def _contact_result(self) -> Status:
+        status = self.context.workpieces
+        outcome = status.outcome_of(self.context.workpieces_issuer, self.contact_seq)
+        if outcome is None:
+            return Status.RUNNING
+        return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
+
+    def hand(self) -> str:
+        return HANDS[self.get_input("hand")]
+
+    def object_point(self) -> tuple[float, float, float]:
+        obj = self.context.workpieces.object(self.get_input("object_id"))
+        if obj is None:
+            raise self.error(f"no object {self.get_input('object_id')}", port="object_id")
+        return tuple(obj.pose.translation())
+
+
+HAND_PORT = InputPort("hand", str, default="both", description="left, right or both")
+
+
+class ActorPick(TargetedAction):
+    """Picks up an object (table or floor clip by its height) into the hand(s)."""
+
+    ports = (InputPort("object_id", int), HAND_PORT)
+    contact_event = "grasp"
+
+    def clip(self) -> str:
+        return "pick_table" if self.object_point()[2] >= TABLE_HEIGHT else "pick_floor"
+
+    def target_point(self):
+        return self.object_point()
+
+    def object_command(self, seq: int):
+        return wp.Attach(seq, self.hand(), self.get_input("object_id"))
+
+
+class ActorPlace(TargetedAction):
+    """Puts what the hand(s) hold down at a target point; it settles on the surface."""
+
+    ports = (InputPort("target", Pose, description="where to put it down"), HAND_PORT)
+    contact_event = "release"
+
+    def clip(self) -> str:
+        return "place_table" if self.target_point()[2] >= TABLE_HEIGHT else "place_floor"
+
+    def target_point(self):
+        return tuple(self.context.transform(self.get_input("target")).translation())
+
+    def object_command(self, seq: int):
+        return wp.Release(seq, self.hand())
+
+
+class ActorReach(TargetedAction):
+    """Reaches one arm to a point in front (into a workspace, to straighten a part)."""
+
+    ports = (InputPort("target", Pose, description="point to reach"),)
+
+    def clip(self) -> str:
+        return "reach"
+
+    def target_point(self):
+        return tuple(self.context.transform(self.get_input("target")).translation())
+
+
+class ActorHandOver(TargetedAction):
+    """Hand-over with the robot: extends the hands to the object at the hand-over point
+    and takes it (`take`) or gives what the hands hold to the robot's cup (`give`)."""
+
+    ports = (
+        InputPort("object_id", int),
+        InputPort("direction", str, default="take", description="take or give"),
+        HAND_PORT,
+    )
+    contact_event = "extended"
+
+    def clip(self) -> str:
+        return "hand_over"
+
+    def target_point(self):
+        return self.object_point()
+
+    def object_command(self, seq: int):
+        receiver = self.hand() if self.get_input("direction") == "take" else wp.ROBOT
+        return wp.Transfer(seq, self.get_input("object_id"), receiver)
+
+
+NODES = (
+    ActorAnimation,
+    ActorMovement,
+    ActorCarry,
+    IsCalled,
+    SetCalledTo,
+    ActorPick,
+    ActorPlace,
+    ActorReach,
+    ActorHandOver,
+)

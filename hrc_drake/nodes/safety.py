@@ -1,0 +1,32 @@
+"""Conditions on where the person is and how close they are to the robot, for trees that
+adapt the robot's behaviour (the original's speed rule: slower while someone is near)."""
+
+from hrc_drake.areas import Area
+from hrc_drake.bt import ConditionNode, InputPort, Status
+
+
+class HumanInArea(ConditionNode):
+    """SUCCESS while the person stands inside the area (their base position)."""
+
+    ports = (InputPort("area", Area, description="area name or triangles"),)
+
+    def tick(self) -> Status:
+        status = self.context.human
+        inside = status is not None and self.context.in_area(
+            status.base_pose[:2], self.get_input("area")
+        )
+        return Status.SUCCESS if inside else Status.FAILURE
+
+
+class SeparationBelow(ConditionNode):
+    """SUCCESS while the smallest person-robot distance is below `distance` (metres)."""
+
+    ports = (InputPort("distance", float, description="threshold in metres"),)
+
+    def tick(self) -> Status:
+        status = self.context.safety
+        close = status is not None and status.separation < self.get_input("distance")
+        return Status.SUCCESS if close else Status.FAILURE
+
+
+NODES = (HumanInArea, SeparationBelow)
