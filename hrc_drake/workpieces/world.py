@@ -426,7 +426,7 @@ class _Step:
             distance = max(self._distances(piece, holder))
             if distance > tolerance:
                 return (
-                    f"hand-over refused: the {holder} is {distance:.3f} m from object {piece.id} "
+                    f"hand-over refused: {holder} is {distance:.3f} m from object {piece.id} "
                     f"(tolerance {tolerance} m)"
                 )
         return ""

@@ -5,22 +5,26 @@ scripted sources for the issuers' commands and the holders' poses."""
 import bisect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from hrc_drake.systems.workpieces import add_workpieces
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.schema import Transform
 from pydrake.common.value import AbstractValue
+from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
+from hrc_drake.areas import Area
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
+from hrc_drake.yaml_check import check_node, compose
 
 WORK_TABLE_XY = (0.0, 0.9)
 TABLE_TOP = 0.9
@@ -95,6 +99,22 @@ def config_with(**changes) -> WorkpiecesConfig:
     return config
 
 
+EXAMPLE = Path(__file__).with_name("workpieces_example.yaml")
+
+
+@dataclass
+class Section:
+    """A scenario file reduced to its `workpieces:` section."""
+
+    workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
+
+
+def load_example() -> WorkpiecesConfig:
+    text = EXAMPLE.read_text()
+    check_node(EXAMPLE, compose(EXAMPLE, text), Section)
+    return yaml_load_typed(schema=Section, data=text).workpieces
+
+
 @dataclass
 class Rig:
     simulator: Simulator
@@ -122,13 +142,14 @@ def build_rig(
     tool: Callable[[float], RigidTransform] | None = None,
     hands: Callable[[float], HandPoses] | None = None,
     seed: int = 0,
+    areas: dict[str, Area] | None = None,
 ) -> Rig:
     builder = DiagramBuilder()
     plant_config = MultibodyPlantConfig(time_step=1e-3, discrete_contact_approximation="sap")
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     _add_cell(plant)
     plant.Finalize()
-    workpieces = add_workpieces(builder, scene_graph, plant, config, seed)
+    workpieces = add_workpieces(builder, scene_graph, plant, config, seed, areas=areas)
     for issuer, timed in (commands or {}).items():
         source = builder.AddSystem(TimedValue(script(timed), None))
         builder.Connect(source.get_output_port(), workpieces.GetInputPort(f"{issuer}_command"))

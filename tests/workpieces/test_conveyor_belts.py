@@ -1,0 +1,67 @@
+"""Belts move what rests on them at their speed, queue it at a stopped end, remove it at a
+removing end."""
+
+import itertools
+
+import numpy as np
+import pytest
+from pydrake.common.schema import Transform
+from workpieces_rig import BELT_TOP, CONVEYOR_Y, PART_HEIGHT, build_rig, config_with
+
+from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject
+
+SPEED = 0.2
+PART_LENGTH = 0.12
+REMOVING_Y = -2.5
+QUEUED = (1, 2, 3)
+REMOVED = (4, 5)
+
+
+def on_belt(x: float, y: float) -> PlacedObject:
+    return PlacedObject(type="part", pose=Transform(translation=[x, y, BELT_TOP + PART_HEIGHT / 2]))
+
+
+@pytest.fixture(scope="module")
+def run():
+    """Three parts on the queueing belt, two on a removing one; statuses every 50 ms."""
+    removing = ConveyorConfig(
+        start=[-1.0, REMOVING_Y, BELT_TOP], end=[1.0, REMOVING_Y, BELT_TOP], at_end=REMOVE
+    )
+    belt = ConveyorConfig(start=[-1.0, CONVEYOR_Y, BELT_TOP], end=[1.0, CONVEYOR_Y, BELT_TOP])
+    objects = [on_belt(x, CONVEYOR_Y) for x in (-0.2, 0.1, 0.4)]
+    objects += [on_belt(x, REMOVING_Y) for x in (0.5, 0.7)]
+    config = config_with(objects=objects, conveyors={"belt": belt, "removing": removing})
+    rig = build_rig(config)
+    return {round(t, 3): rig.advance(t) for t in np.arange(0.0, 6.0001, 0.05)}
+
+
+def x_of(status, object_id: int) -> float:
+    return status.object(object_id).pose.translation()[0]
+
+
+def test_objects_move_at_the_belt_speed(run):
+    travelled = x_of(run[2.5], 3) - x_of(run[0.5], 3)
+    assert travelled / 2.0 == pytest.approx(SPEED, rel=0.01)
+    assert run[1.0].object(3).velocity.translational() == pytest.approx([SPEED, 0.0, 0.0])
+    assert run[1.0].object(3).support == "belt"
+
+
+def test_objects_queue_at_a_stopped_end_without_overlapping(run):
+    for status in run.values():
+        for a, b in itertools.combinations(QUEUED, 2):
+            assert abs(x_of(status, a) - x_of(status, b)) >= PART_LENGTH - 1e-9
+    end = run[6.0]
+    fronts = [x_of(end, i) + PART_LENGTH / 2 for i in (3, 2, 1)]
+    assert fronts == pytest.approx([1.0, 1.0 - PART_LENGTH, 1.0 - 2 * PART_LENGTH])
+    assert all(not end.object(i).velocity.get_coeffs().any() for i in QUEUED)
+    heights = [end.object(i).pose.translation()[2] for i in QUEUED]
+    assert heights == pytest.approx([BELT_TOP + PART_HEIGHT / 2] * 3, abs=1e-9)
+
+
+def test_objects_leave_at_a_removing_end(run):
+    # Centres start 0.3 m and 0.5 m before the end: they pass it after 1.5 s and 2.5 s.
+    assert run[1.45].object(5) is not None
+    assert run[1.55].object(5) is None
+    assert run[2.45].object(4) is not None
+    assert run[2.55].object(4) is None
+    assert run[6.0].free_slots["part"] == 6 - len(QUEUED)
