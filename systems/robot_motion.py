@@ -372,13 +372,21 @@ class RobotMotion(LeafSystem):
 
 
 def add_robot_motion(
-    builder, scenario: Scenario, plant, arm, controller, options: MotionOptions | None = None
+    builder,
+    scenario: Scenario,
+    plant,
+    arm,
+    controller,
+    options: MotionOptions | None = None,
+    workpieces=None,
 ) -> RobotMotion:
     """Adds RobotMotion as "robot_motion" between the plant and its InverseDynamicsController.
 
     Feeds the acceleration forward when the controller takes a reference acceleration, and
-    exports `robot_command`, `speed_scale`, `gripper_result` (inputs) and `robot_status`,
-    `gripper_request`, `robot_desired_state` (outputs).
+    exports `robot_command`, `speed_scale` (inputs), `robot_status` and
+    `robot_desired_state` (outputs). With `workpieces` (a system with a `gripper_request`
+    input and a `gripper_result` output) the vacuum gripper is connected to it; without,
+    Grip and Release fail with a reason.
     """
     motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
@@ -390,9 +398,15 @@ def add_robot_motion(
             motion.GetOutputPort("desired_acceleration"),
             controller.get_input_port_desired_acceleration(),
         )
-    for name in ("robot_command", "speed_scale", "gripper_result"):
+    if workpieces is not None:
+        builder.Connect(
+            motion.GetOutputPort("gripper_request"), workpieces.GetInputPort("gripper_request")
+        )
+        builder.Connect(
+            workpieces.GetOutputPort("gripper_result"), motion.GetInputPort("gripper_result")
+        )
+    for name in ("robot_command", "speed_scale"):
         builder.ExportInput(motion.GetInputPort(name), name)
-    for name in ("robot_status", "gripper_request"):
-        builder.ExportOutput(motion.GetOutputPort(name), name)
+    builder.ExportOutput(motion.GetOutputPort("robot_status"), "robot_status")
     builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
     return motion

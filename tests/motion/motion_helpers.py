@@ -152,7 +152,7 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
     return trace
 
 
-def build_station(scenario: Scenario, options=None) -> Station:
+def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(
         time_step=scenario.time_step, discrete_contact_approximation="sap"
@@ -170,7 +170,9 @@ def build_station(scenario: Scenario, options=None) -> Station:
     )
     builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
     builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
-    motion = add_robot_motion(builder, scenario, plant, arm, controller, options)
+    if workpieces is not None:
+        builder.AddSystem(workpieces)
+    motion = add_robot_motion(builder, scenario, plant, arm, controller, options, workpieces)
     builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
     builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
     diagram = builder.Build()
