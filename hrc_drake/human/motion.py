@@ -26,7 +26,11 @@ from hrc_drake.human.messages import (
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
 
 BLEND_TIME = 0.5
-"""Cross-fade between activities (s): joint speeds stay well under 10 rad/s."""
+"""Shortest cross-fade between activities (s)."""
+BLEND_SPEED = 5.0
+"""Longer fades for bigger pose changes keep the fade's peak joint speed under this (rad/s)."""
+MINIMUM_JERK_PEAK = 1.875
+"""Peak speed of a minimum-jerk fade relative to its average."""
 SEGMENT_BLEND = 0.3
 """Cross-fade between the turn and walk parts of one movement (s)."""
 TURN_PER_CYCLE = np.radians(60.0)
@@ -176,7 +180,8 @@ class WalkSegment:
     def heading(self, along: float) -> float:
         """Path direction, turning smoothly through each waypoint."""
         path, lengths = np.array(self.path), self.lengths
-        directions = np.unwrap([atan2(*(b - a)[::-1]) for a, b in zip(path[:-1], path[1:])])
+        steps = np.diff(path, axis=0)
+        directions = np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
         k = min(max(np.searchsorted(lengths, along, side="right") - 1, 0), len(directions) - 1)
         heading = directions[k]
         for corner in range(1, len(directions)):
@@ -210,6 +215,7 @@ class Activity:
     segments: tuple[Segment, ...]
     blend_from: np.ndarray | None = None
     blend_start: float = 0.0
+    blend_time: float = BLEND_TIME
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     def end(self, ctx: Context) -> float:
@@ -226,8 +232,8 @@ class Activity:
         if k > 0 and t < self.segments[k].start + SEGMENT_BLEND:
             previous = self.segments[k - 1].pose(ctx, self.segments[k].start)
             q = blend(ctx, previous, q, (t - self.segments[k].start) / SEGMENT_BLEND)
-        if self.blend_from is not None and t < self.blend_start + BLEND_TIME:
-            q = blend(ctx, self.blend_from, q, (t - self.blend_start) / BLEND_TIME)
+        if self.blend_from is not None and t < self.blend_start + self.blend_time:
+            q = blend(ctx, self.blend_from, q, (t - self.blend_start) / self.blend_time)
         return q
 
 
@@ -281,7 +287,8 @@ def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
 
 
 def _idle(ctx: Context, pose: tuple[float, float, float], t: float, blend_from) -> Activity:
-    return Activity((ClipSegment(IDLE_CLIP, t, pose, forever=True),), blend_from, t, pose)
+    segment = ClipSegment(IDLE_CLIP, t, pose, forever=True)
+    return Activity((segment,), blend_from, t, final_pose=pose)
 
 
 def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
@@ -329,7 +336,7 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
             segments.append(TurnSegment(start, path[-1], heading, final_yaw))
     if not segments:
         segments.append(TurnSegment(t, (x, y), yaw, yaw))
-    return Activity(tuple(segments), None, t, (*path[-1], _wrap(final_yaw)))
+    return Activity(tuple(segments), final_pose=(*path[-1], _wrap(final_yaw)))
 
 
 def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Activity:
@@ -344,7 +351,7 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
             raise Unreachable(f"'{clip.name}' takes no target")
         aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), command.target)
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim)
-    return Activity((segment,), None, t, pose)
+    return Activity((segment,), final_pose=pose)
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
@@ -354,8 +361,11 @@ def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> Acto
 
 def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
     """Start `activity` at t, cross-fading from the current pose."""
-    current = pose_at(ctx, actor, t)
-    return replace(actor, activity=replace(activity, blend_from=current, blend_start=t), **changes)
+    current, target = pose_at(ctx, actor, t), activity.pose(ctx, t)
+    change = float(np.max(np.abs(target - current)[3:]))
+    fade = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
+    activity = replace(activity, blend_from=current, blend_start=t, blend_time=fade)
+    return replace(actor, activity=activity, **changes)
 
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:

@@ -1,0 +1,266 @@
+"""HumanActor in a Diagram: protocol, movement accuracy, progress, transitions, add_human."""
+
+import itertools
+
+import numpy as np
+import pytest
+from pydrake.common.value import AbstractValue
+from pydrake.geometry import SceneGraph
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder, LeafSystem
+
+from hrc_drake.human.body import human_body
+from hrc_drake.human.builder import add_human, body_regions
+from hrc_drake.human.clip import load_clips
+from hrc_drake.human.messages import (
+    AnimateCommand,
+    CancelCommand,
+    MoveCommand,
+    SetCalledCommand,
+)
+from hrc_drake.human.motion import ActorState, Context, advance, pose_at
+from hrc_drake.human.skeleton import REGIONS
+
+SAMPLE = 1.0 / 60.0
+
+
+class ScriptedCommands(LeafSystem):
+    """Emits the latest command whose time has come (like a behavior tree's command port)."""
+
+    def __init__(self, schedule):
+        LeafSystem.__init__(self)
+        self._schedule = sorted(schedule, key=lambda item: item[0])
+        self.DeclareAbstractOutputPort("command", lambda: AbstractValue.Make(None), self._calc)
+
+    def _calc(self, context, output):
+        latest = None
+        for time, command in self._schedule:
+            if context.get_time() >= time:
+                latest = command
+        output.set_value(latest)
+
+
+class Run:
+    """A small diagram: SceneGraph, the person, a scripted command source."""
+
+    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0)):
+        builder = DiagramBuilder()
+        scene_graph = builder.AddSystem(SceneGraph())
+        self.actor, self.plant = add_human(builder, scene_graph, start_pose=start_pose)
+        script = builder.AddSystem(ScriptedCommands(schedule))
+        builder.Connect(script.get_output_port(), self.actor.GetInputPort("human_command"))
+        self.scene_graph = scene_graph
+        self.simulator = Simulator(builder.Build())
+        self.context = self.actor.GetMyContextFromRoot(self.simulator.get_mutable_context())
+        self.body = self.actor.body
+
+    def status(self):
+        return self.actor.GetOutputPort("human_status").Eval(self.context)
+
+    def positions(self):
+        return self.actor.GetOutputPort("human_positions").Eval(self.context).copy()
+
+    def advance(self, t):
+        self.simulator.AdvanceTo(t)
+        return self.status()
+
+    def record(self, until):
+        """Statuses and canonical joint positions at every update until `until`."""
+        times = np.arange(self.simulator.get_context().get_time(), until, SAMPLE) + SAMPLE
+        statuses, poses = [], []
+        for t in times:
+            self.simulator.AdvanceTo(t)
+            statuses.append(self.status())
+            poses.append(self.positions()[self.body.plant_index])
+        return statuses, np.array(poses)
+
+
+def test_setup_then_idle_at_the_start_pose():
+    run = Run([], start_pose=(1.0, 2.0, 0.5))
+    status = run.advance(0.1)
+    assert status.state == "IDLE"
+    assert status.base_pose == pytest.approx((1.0, 2.0, 0.5), abs=0.03)
+    assert len(status.right_hand) == 7
+
+
+def test_command_while_busy_is_rejected_and_cancel_returns_to_idle():
+    run = Run(
+        [
+            (0.1, AnimateCommand(1, "inspect")),
+            (0.5, AnimateCommand(2, "wave")),
+            (1.0, CancelCommand(3)),
+        ]
+    )
+    status = run.advance(0.7)
+    assert status.state == "ANIMATION"
+    assert (status.last_seq, status.outcome) == (2, "rejected")
+    assert status.outcome_of(1) == "running"
+    status = run.advance(1.2)
+    assert status.state == "IDLE"
+    assert status.outcome_of(1) == "cancelled"
+    assert status.outcome_of(3) == "succeeded"
+
+
+def test_unknown_animation_fails_with_a_reason():
+    status = Run([(0.1, AnimateCommand(1, "moonwalk"))]).advance(0.3)
+    assert status.outcome == "failed" and "moonwalk" in status.reason
+
+
+def test_set_called_does_not_disturb_a_running_animation():
+    run = Run([(0.1, AnimateCommand(1, "wave")), (0.4, SetCalledCommand(2, True))])
+    status = run.advance(0.6)
+    assert status.called and status.state == "ANIMATION"
+    assert status.outcome_of(1) == "running" and status.outcome_of(2) == "succeeded"
+
+
+def _yaw(quaternion_yaw):
+    return (np.cos(quaternion_yaw / 2), 0.0, 0.0, np.sin(quaternion_yaw / 2))
+
+
+def test_movement_reaches_target_pose():
+    target_yaw = np.radians(120)
+    run = Run([(0.1, MoveCommand(1, (3.0, -1.5, 0.0), _yaw(target_yaw)))])
+    status = run.advance(10.0)
+    assert status.outcome_of(1) == "succeeded" and status.state == "IDLE"
+    x, y, yaw = status.base_pose
+    assert np.hypot(x - 3.0, y + 1.5) < 0.02
+    assert abs(np.angle(np.exp(1j * (yaw - target_yaw)))) < np.radians(3)
+
+
+def test_null_quaternion_ends_facing_the_walking_direction_via_waypoints():
+    run = Run([(0.1, MoveCommand(1, (2.0, 2.0, 0.0), waypoints=((2.0, 0.0),)))])
+    status = run.advance(10.0)
+    x, y, yaw = status.base_pose
+    assert status.outcome_of(1) == "succeeded"
+    assert np.hypot(x - 2.0, y - 2.0) < 0.02
+    assert abs(np.angle(np.exp(1j * (yaw - np.pi / 2)))) < np.radians(3)
+
+
+def test_walk_speed_and_planted_feet_in_the_actor():
+    run = Run([(0.1, MoveCommand(1, (8.0, 0.0, 0.0)))])
+    statuses, poses = run.record(7.0)
+    walking = [s.time for s in statuses if s.base_speed > 0]
+    start, end = walking[0], next(s.time for s in statuses if s.outcome == "succeeded")
+    assert 1.2 <= 8.0 / (end - start - 0.6) <= 1.4  # cruising speed; ramps cost 0.6 s
+
+
+def test_animation_progress_rises_and_speed_two_halves_the_duration():
+    durations = {}
+    for speed in (1.0, 2.0):
+        run = Run([(0.1, AnimateCommand(1, "reach", speed))])
+        statuses, _ = run.record(3.0)
+        running = [s for s in statuses if s.outcome_of(1) == "running"]
+        progress = [s.progress for s in running]
+        assert progress[0] < 0.05 and np.all(np.diff(progress) >= 0)
+        done = next(s for s in statuses if s.outcome_of(1) == "succeeded")
+        assert done.progress == 1.0
+        durations[speed] = done.time - 0.1
+    assert durations[2.0] == pytest.approx(durations[1.0] / 2, abs=2 * SAMPLE)
+
+
+def test_events_fire_during_the_clip():
+    run = Run([(0.1, AnimateCommand(1, "pick_table"))])
+    statuses, _ = run.record(3.0)
+    fired = [s for s in statuses if s.event == "grasp"]
+    assert len(fired) == 1
+    assert fired[0].time == pytest.approx(
+        0.1 + load_clips()["pick_table"].events["grasp"], abs=0.03
+    )
+
+
+def test_targeted_pick_puts_the_hands_on_the_target():
+    target = (0.5, 0.1, 0.75)
+    run = Run([(0.1, AnimateCommand(1, "pick_table", target=target))])
+    grasp = 0.1 + load_clips()["pick_table"].events["grasp"]
+    run.advance(grasp)
+    q = run.positions()[run.body.plant_index]
+    hands = [run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right")]
+    assert np.linalg.norm(np.mean(hands, axis=0) - target) < 0.02
+
+
+def test_unreachable_target_fails_without_moving():
+    run = Run([(0.1, AnimateCommand(1, "reach", target=(2.5, 0.0, 1.0)))])
+    status = run.advance(0.5)
+    assert status.outcome == "failed" and "reach" in status.reason
+    assert status.state == "IDLE"
+
+
+ANIMATIONS = [
+    "idle",
+    "pick_floor",
+    "pick_table",
+    "place_floor",
+    "place_table",
+    "inspect",
+    "reach",
+    "hand_over",
+    "wave",
+    "look_around",
+    "turn_left",
+]
+
+
+def _max_speed(poses):
+    """Largest joint speed between consecutive updates (rad/s)."""
+    return np.abs(np.diff(poses[:, 3:], axis=0)).max() / SAMPLE
+
+
+@pytest.mark.parametrize("first", ANIMATIONS)
+def test_transition_speeds_stay_bounded(first):
+    """Every clip, cancelled halfway, then every other clip: joint speeds under 10 rad/s."""
+    schedule, t, seq = [], 0.1, itertools.count(1)
+    for second in ANIMATIONS:
+        half = load_clips()[first].duration / 2
+        schedule += [
+            (t, AnimateCommand(next(seq), first)),
+            (t + half, CancelCommand(next(seq))),
+            (t + half + 0.1, AnimateCommand(next(seq), second)),
+        ]
+        t += half + 0.1 + load_clips()[second].duration + 0.1
+    _, poses = Run(schedule).record(t)
+    assert _max_speed(poses) < 10.0
+
+
+def _pose_jump(ctx, state, t, command):
+    """Joint jump (rad) when `command` is handled at time t, compared at the same instant."""
+    before = pose_at(ctx, state, t)
+    state = advance(ctx, state, t, command)
+    return state, np.abs(pose_at(ctx, state, t) - before)[3:].max()
+
+
+def test_transitions_between_every_pair_of_clips_have_no_jump():
+    ctx = Context(human_body(), load_clips())
+    state, seq, worst = advance(ctx, ActorState(), 0.0, None), 0, 0.0
+    t = 0.0
+    for first, second in itertools.product(ANIMATIONS, ANIMATIONS):
+        for command, wait in (
+            (AnimateCommand(seq + 1, first), 0.37),
+            (CancelCommand(seq + 2), 0.2),
+            (AnimateCommand(seq + 3, second), 0.0),
+        ):
+            state, jump = _pose_jump(ctx, state, t, command)
+            worst = max(worst, jump)
+            t += wait
+        t += ctx.clips[second].duration / 1.0 + 0.05
+        state, jump = _pose_jump(ctx, state, t, None)
+        worst = max(worst, jump)
+        seq += 3
+    assert worst < np.radians(0.5)
+
+
+def test_walk_transitions_are_continuous():
+    run = Run(
+        [
+            (0.1, MoveCommand(1, (2.0, 1.0, 0.0), _yaw(-2.0))),
+            (2.0, CancelCommand(2)),
+            (2.6, MoveCommand(3, (0.0, 0.0, 0.0), _yaw(0.0), "carry")),
+        ]
+    )
+    _, poses = run.record(9.0)
+    assert _max_speed(poses) < 10.0
+
+
+def test_regions_cover_every_collision_geometry():
+    run = Run([])
+    regions = body_regions(run.plant, run.scene_graph)
+    assert len(regions) == 19 and set(regions.values()) == set(REGIONS)
