@@ -10,7 +10,6 @@ cup) in the world frame.
 
 from dataclasses import dataclass
 
-import numpy as np
 from pydrake.math import RigidTransform
 
 from hrc_drake.messages import OUTCOMES
@@ -173,8 +172,3 @@ class GripperResult:
     outcome: str
     held_object: str | None = None
     reason: str = ""
-
-
-def joint_tuple(q) -> tuple[float, ...]:
-    """Joint positions as the plain tuple the messages carry."""
-    return tuple(float(x) for x in np.asarray(q).ravel())

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from hrc_drake.systems.robot_motion import add_robot_motion
+from hrc_drake.systems.workpieces import GripperBridge, add_workpieces
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
@@ -16,8 +17,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 
-from hrc_drake.builder import make_control_plant
-from hrc_drake.iisy import VARIANTS
+from hrc_drake.builder import TOOL_MODEL, make_control_plant
+from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.messages import FINISHED
 from hrc_drake.motion.model import add_station_models
 from hrc_drake.scenario import Scenario
@@ -152,7 +153,18 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
     return trace
 
 
+def _add_vacuum_with_workpieces(builder, scene_graph, plant, config, tcp) -> GripperBridge:
+    workpieces = add_workpieces(builder, scene_graph, plant, config, tool_frame=tcp)
+    bridge = builder.AddSystem(GripperBridge())
+    builder.Connect(
+        bridge.GetOutputPort("command"), workpieces.GetInputPort("robot_gripper_command")
+    )
+    builder.Connect(workpieces.GetOutputPort("status"), bridge.GetInputPort("workpieces_status"))
+    return bridge
+
+
 def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
+    """The robot station; with a WorkpiecesConfig, also the workpieces and the vacuum."""
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(
         time_step=scenario.time_step, discrete_contact_approximation="sap"
@@ -171,7 +183,8 @@ def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
     builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
     builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
     if workpieces is not None:
-        builder.AddSystem(workpieces)
+        tcp = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
+        workpieces = _add_vacuum_with_workpieces(builder, scene_graph, plant, workpieces, tcp)
     motion = add_robot_motion(builder, scenario, plant, arm, controller, options, workpieces)
     builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
     builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")

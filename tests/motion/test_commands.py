@@ -1,17 +1,22 @@
-"""Command protocol: busy rejection, Stop, and the vacuum gripper against a test double."""
+"""Command protocol: busy rejection, Stop, and the vacuum gripper with the workpieces."""
 
 import numpy as np
 import pytest
 from motion_helpers import build_station, make_scenario
+from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform, RollPitchYaw
-from workpieces_double import GripperDouble, Part
 
 from hrc_drake.messages import CANCELLED, FAILED, REJECTED, RUNNING, SUCCEEDED
-from hrc_drake.motion.messages import IDLE, Grip, MoveJoints, MoveTo, Release, Stop
+from hrc_drake.motion.messages import IDLE, Grip, MoveJoints, MoveLinear, MoveTo, Release, Stop
+from hrc_drake.workpieces.config import ObjectType, PlacedObject, WorkpiecesConfig
 
 TOOL_DOWN = RollPitchYaw(np.pi, 0.0, 0.0)
-LIGHT = Part("light_part", RigidTransform(TOOL_DOWN, [0.35, 0.2, 1.0]), mass=1.0)
-HEAVY = Part("heavy_part", RigidTransform(TOOL_DOWN, [0.35, -0.2, 1.0]), mass=5.0)
+TABLE_TOP = 0.9
+PART_HEIGHT = 0.06
+PARTS = {"light": (0.15, 0.4), "heavy": (-0.15, 0.4)}
+"""Where the parts stand on the work table (x, y)."""
+LIGHT_ID = "1"
+"""Workpieces number objects from 1 in the order they are placed."""
 FAR_GOAL = tuple(np.radians([90, -50, 60, 40, 60, 60]))
 
 
@@ -53,21 +58,40 @@ def test_grip_without_workpieces_system_fails(station):
     assert "no workpieces system" in station.status().reason
 
 
+def parts_on_the_table() -> WorkpiecesConfig:
+    config = WorkpiecesConfig(
+        types={
+            "light": ObjectType(size=[0.08, 0.08, PART_HEIGHT], mass=1.0),
+            "heavy": ObjectType(size=[0.08, 0.08, PART_HEIGHT], mass=5.0),
+        },
+        objects=[
+            PlacedObject(type=name, pose=Transform(translation=[x, y, TABLE_TOP + 0.05]))
+            for name, (x, y) in PARTS.items()
+        ],
+    )
+    return config
+
+
+def grasp(name: str) -> RigidTransform:
+    x, y = PARTS[name]
+    return RigidTransform(TOOL_DOWN, [x, y, TABLE_TOP + PART_HEIGHT])
+
+
 def test_grip_attaches_the_part_at_the_cup_within_payload():
-    station = build_station(make_scenario(), workpieces=GripperDouble([LIGHT, HEAVY]))
+    station = build_station(make_scenario(), workpieces=parts_on_the_table())
     commands = [
-        (MoveTo(seq=1, pose=LIGHT.grasp), SUCCEEDED, None),
-        (Grip(seq=2), SUCCEEDED, "light_part"),
-        (Grip(seq=3), FAILED, "light_part"),
-        (Release(seq=4), SUCCEEDED, None),
-        (MoveTo(seq=5, pose=HEAVY.grasp), SUCCEEDED, None),
-        (Grip(seq=6), FAILED, None),
-        (MoveJoints(seq=7, configuration="ready"), SUCCEEDED, None),
-        (Grip(seq=8), FAILED, None),
+        (MoveTo(seq=1, pose=grasp("light")), SUCCEEDED, None),
+        (Grip(seq=2), SUCCEEDED, LIGHT_ID),
+        (Grip(seq=3), FAILED, LIGHT_ID),
+        (MoveLinear(seq=4, pose=RigidTransform(TOOL_DOWN, [0.15, 0.4, 1.06])), SUCCEEDED, LIGHT_ID),
+        (Release(seq=5), SUCCEEDED, None),
+        (MoveTo(seq=6, pose=grasp("heavy")), SUCCEEDED, None),
+        (Grip(seq=7), FAILED, None),
+        (MoveJoints(seq=8, configuration="ready"), SUCCEEDED, None),
+        (Grip(seq=9), FAILED, None),
     ]
     for command, outcome, held in commands:
         station.command(command)
         assert station.run_until_finished(command.seq) == outcome, station.status().reason
-        assert station.status().held_object == held
-    assert "too heavy" in station.status().result_of(6).reason
-    assert "no object" in station.status().result_of(8).reason
+        assert station.status().held_object == held, command
+    assert "already holding" in station.status().result_of(3).reason
