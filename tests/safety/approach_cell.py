@@ -74,8 +74,8 @@ def build(config: SafetyConfig, person: PiecewisePolynomial):
     scenario = load_scenario("base")
     builder = DiagramBuilder()
     scene_graph = builder.AddSystem(SceneGraph())
-    robot = _kinematic(builder, scene_graph, lambda p: add_robot(p, _parser(p), scenario.robot))
-    human_plant, human_instance, human_pose = _kinematic(
+    robot = kinematic(builder, scene_graph, lambda p: add_robot(p, _parser(p), scenario.robot))
+    human_plant, human_instance, human_pose = kinematic(
         builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
     )
     robot_plant, _, robot_pose = robot
@@ -102,7 +102,7 @@ def simulate(config: SafetyConfig, person: PiecewisePolynomial, duration: float)
     return status, log.sample_times(), log.data()
 
 
-def _kinematic(builder, scene_graph, add_models):
+def kinematic(builder, scene_graph, add_models):
     """A never-stepped plant whose geometry is posed from a position input."""
     plant = MultibodyPlant(0.0)
     plant.RegisterAsSourceForSceneGraph(scene_graph)
