@@ -15,6 +15,7 @@ next, and is not reported.
 """
 
 import numpy as np
+from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import (
     CollisionFilterDeclaration,
@@ -33,6 +34,7 @@ from pydrake.multibody.tree import Frame
 from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
+from hrc_drake.human.messages import HumanStatus
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
@@ -171,6 +173,32 @@ class TcpPose(LeafSystem):
     def _calc(self, context: Context, output: AbstractValue) -> None:
         X_WB = self.get_input_port().Eval(context)[self._body_index]
         output.set_value(X_WB @ self._X_BF)
+
+
+def hand_poses(status: HumanStatus | None) -> HandPoses | None:
+    """The person's grasp frames at the time of the status (HumanStatus gives them as
+    (x, y, z, qw, qx, qy, qz)); None before the person's first update."""
+    if status is None or not status.left_hand or not status.right_hand:
+        return None
+    return HandPoses(_pose(status.left_hand), _pose(status.right_hand), status.time)
+
+
+def _pose(values: tuple[float, ...]) -> RigidTransform:
+    x, y, z, qw, qx, qy, qz = values
+    return RigidTransform(Quaternion(qw, qx, qy, qz), [x, y, z])
+
+
+class HumanHands(LeafSystem):
+    """The person's hand grasp frames (HandPoses) from HumanActor's `human_status`."""
+
+    def __init__(self):
+        super().__init__()
+        status = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
+        self.DeclareAbstractOutputPort(
+            "human_hands",
+            lambda: AbstractValue.Make(None),
+            lambda context, output: output.set_value(hand_poses(status.Eval(context))),
+        )
 
 
 def filter_against(scene_graph: SceneGraph, geometry: GeometrySet, others: GeometrySet) -> None:

@@ -34,10 +34,14 @@ Attributes = dict[str, float | bool | str]
 
 @dataclass(frozen=True)
 class HandPoses:
-    """The person's hand grasp frames in the world (the builder adapts the human's status)."""
+    """The person's hand grasp frames in the world and when they were sampled (None: now).
+
+    A person updated at a lower rate than Workpieces gives its sample time, so that held
+    objects are extrapolated from the right instant instead of moving in steps."""
 
     left: RigidTransform
     right: RigidTransform
+    time: float | None = None
 
 
 @dataclass(frozen=True)

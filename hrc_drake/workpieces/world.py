@@ -46,6 +46,7 @@ from hrc_drake.workpieces.messages import (
     GRASPABLE,
     HOLDERS,
     LEFT_HAND,
+    PERSON_HOLDERS,
     RIGHT_HAND,
     ROBOT,
     Attach,
@@ -99,13 +100,27 @@ class Piece:
 
 
 @dataclass(frozen=True)
+class HolderSample:
+    """A holder's grasp frame as last received: its pose at `time` (when it was sampled) and
+    the velocity estimated from the sample before, to extrapolate between samples."""
+
+    pose: RigidTransform
+    time: float
+    velocity: SpatialVelocity
+
+
+Sampled = tuple[RigidTransform, float | None]
+"""A holder's pose and the time it was sampled (None: now)."""
+
+
+@dataclass(frozen=True)
 class World:
-    """Everything that changes: live objects, holders' last poses, issuers' last commands."""
+    """Everything that changes: live objects, holders' last samples, issuers' last commands."""
 
     time: float
     pieces: dict[int, Piece]
     next_id: int
-    holder_poses: dict[str, RigidTransform]
+    holders: dict[str, HolderSample]
     seen: dict[str, int]
     results: dict[str, CommandResult]
 
@@ -114,14 +129,17 @@ class World:
         return self
 
 
-def holder_frames(tool: RigidTransform | None, hands: HandPoses | None) -> dict:
+def holder_frames(tool: RigidTransform | None, hands: HandPoses | None) -> dict[str, Sampled]:
     """Grasp frame of every present holder; both hands hold at their midpoint, facing away
     from the body (x), y from the right hand to the left, z up. The poses are copied: an
     input port's value may be overwritten in place when it is evaluated again."""
-    frames = {} if tool is None else {ROBOT: RigidTransform(tool)}
+    frames = {} if tool is None else {ROBOT: (RigidTransform(tool), None)}
     if hands is not None:
         left, right = RigidTransform(hands.left), RigidTransform(hands.right)
-        frames |= {LEFT_HAND: left, RIGHT_HAND: right, BOTH_HANDS: _between(left, right)}
+        both = _between(left, right)
+        frames |= {
+            h: (X, hands.time) for h, X in zip(PERSON_HOLDERS, (left, right, both), strict=True)
+        }
     return frames
 
 
@@ -179,9 +197,9 @@ class Workcell:
         world: World,
         now: float,
         commands: dict[str, WorkpiecesCommand | None],
-        holder_poses: dict[str, RigidTransform],
+        holder_frames: dict[str, Sampled],
     ) -> World:
-        step = _Step(self, world, now, holder_poses)
+        step = _Step(self, world, now, holder_frames)
         for issuer_index, issuer in enumerate(self.issuers):
             command = commands.get(issuer)
             if command is not None and command.seq > world.seen.get(issuer, -1):
@@ -227,25 +245,27 @@ def _empty_world() -> World:
 class _Step:
     """One update in progress: a working copy of the world that commands and motion change."""
 
-    def __init__(self, cell: Workcell, world: World, now: float, holder_poses: dict):
+    def __init__(self, cell: Workcell, world: World, now: float, frames: dict[str, Sampled]):
         self.cell = cell
         self.config = cell.config
         self.now = now
         self.next_id = world.next_id
         self.seen = dict(world.seen)
         self.results = dict(world.results)
-        self.holders = dict(holder_poses)
-        dt = now - world.time
-        self.twists = {
-            h: twist_between(world.holder_poses.get(h, X), X, dt) for h, X in self.holders.items()
+        self.samples = {
+            h: _sample(world.holders.get(h), X, now if t is None else t)
+            for h, (X, t) in frames.items()
         }
+        self.holders = {h: moved(s.pose, s.velocity, now - s.time) for h, s in self.samples.items()}
+        self.twists = {h: s.velocity for h, s in self.samples.items()}
         self.changed = False
-        self.pieces = {i: self._followed(p, world, dt) for i, p in world.pieces.items()}
+        dt = now - world.time
+        self.pieces = {i: self._followed(p, dt) for i, p in world.pieces.items()}
 
     def world(self) -> World:
-        return World(self.now, self.pieces, self.next_id, self.holders, self.seen, self.results)
+        return World(self.now, self.pieces, self.next_id, self.samples, self.seen, self.results)
 
-    def _followed(self, piece: Piece, world: World, dt: float) -> Piece:
+    def _followed(self, piece: Piece, dt: float) -> Piece:
         """The piece at `now`: moved on as planned, or carried by its holder."""
         if piece.holder is None or piece.holder not in self.holders:
             return dataclasses.replace(piece, pose=moved(piece.pose, piece.velocity, dt))
@@ -571,6 +591,15 @@ class _Step:
             return belt.velocity(belt_speeds.get(piece_id, 0.0))
         below = self.pieces.get(object_id_of_support(support.name))
         return below.velocity.translational() if below is not None else np.zeros(3)
+
+
+def _sample(previous: HolderSample | None, pose: RigidTransform, time: float) -> HolderSample:
+    """A new sample, its velocity from the previous one (kept while no newer sample came)."""
+    if previous is None:
+        return HolderSample(pose, time, SpatialVelocity.Zero())
+    if time <= previous.time:
+        return HolderSample(previous.pose, previous.time, previous.velocity)
+    return HolderSample(pose, time, twist_between(previous.pose, pose, time - previous.time))
 
 
 def _result(

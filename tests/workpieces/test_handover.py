@@ -75,7 +75,7 @@ def run():
     rig = build_rig(
         config_with(objects=[part_on_table()]), COMMANDS, TOOL, hands_path(hand(-1), hand(1))
     )
-    return {t: rig.advance(t) for t in (1.6, 2.7, 3.9, 4.2, 4.8, 5.8)}
+    return {t: rig.advance(t) for t in (1.6, 2.7, 3.75, 3.9, 4.2, 4.8, 5.8)}
 
 
 def centre(status) -> np.ndarray:
@@ -93,6 +93,11 @@ def test_robot_to_person_works_when_close_and_the_part_follows_the_hands(run):
     assert run[2.7].outcome_of("human_tree", 2) == SUCCEEDED
     assert run[2.7].object(1).holder == BOTH_HANDS
     np.testing.assert_allclose(centre(run[4.2]), TAKEN - [0, 0, HALF_HEIGHT], atol=1e-6)
+
+
+def test_the_part_follows_hands_sampled_at_60_hz_between_their_samples(run):
+    between = (hand(-1)(3.75).translation() + hand(1)(3.75).translation()) / 2
+    assert np.linalg.norm(centre(run[3.75]) - between) < 1e-3
 
 
 def test_person_to_robot_is_refused_when_far_and_works_when_close(run):

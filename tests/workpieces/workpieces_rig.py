@@ -81,8 +81,15 @@ def path(knots: list[tuple[float, tuple[float, float, float], RollPitchYaw]]) ->
     return pose_at
 
 
-def hands_path(left: Callable, right: Callable) -> Callable[[float], HandPoses]:
-    return lambda t: HandPoses(left(t), right(t))
+def hands_path(left: Callable, right: Callable, rate: float = 60.0) -> Callable:
+    """Hand poses sampled at `rate` and held, stamped with their sample time, as HumanActor
+    gives them."""
+
+    def sampled(t: float) -> HandPoses:
+        sample_time = math.floor(t * rate + 1e-9) / rate
+        return HandPoses(left(sample_time), right(sample_time), sample_time)
+
+    return sampled
 
 
 def part_on_table(x: float = 0.0, y: float = WORK_TABLE_XY[1], **attributes) -> PlacedObject:
