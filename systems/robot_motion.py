@@ -22,18 +22,14 @@ from hrc_drake.messages import CANCELLED, FAILED, FINISHED, REJECTED, RUNNING, S
 from hrc_drake.motion.deadline import PlanningFailed
 from hrc_drake.motion.execution import Progress, desired_motion, next_progress
 from hrc_drake.motion.messages import (
-    GRIP,
     IDLE,
     MOTION_COMMANDS,
     MOVING,
     PLANNING,
-    RELEASE,
     STOPPED,
     STOPPING,
     CommandResult,
     Grip,
-    GripperRequest,
-    GripperResult,
     Release,
     RobotStatus,
     SetSpeed,
@@ -43,7 +39,11 @@ from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
 from hrc_drake.scenario import Scenario
+from hrc_drake.workpieces.messages import ROBOT, Attach
+from hrc_drake.workpieces.messages import Release as WorkpiecesRelease
 
+GRIPPER_ISSUER = "robot_gripper"
+"""The workpieces system's issuer (input `robot_gripper_command`) that the vacuum uses."""
 RESULTS_KEPT = 16
 """How many recent command results the status carries."""
 ARRIVAL_SPEED = 0.01
@@ -72,10 +72,10 @@ class MotionState:
     speed_fraction: float = 1.0
     safety_scale: float = 1.0
     tool_speed: float = 0.0
-    gripper_request: GripperRequest | None = None
+    gripper_command: Attach | WorkpiecesRelease | None = None
     gripper_waiting: bool = False
     gripper_since: float = 0.0
-    held_object: str | None = None
+    held_object: int | None = None
     mode: str = IDLE
 
     def __deepcopy__(self, memo):
@@ -94,9 +94,11 @@ class RobotMotion(LeafSystem):
     """Plans and executes the robot's moves; see the module docstring.
 
     Inputs: `robot_command` (latest command or None), `speed_scale` (safety scale, 1.0 when
-    unconnected), `robot_state` (arm q, v), `gripper_result` (GripperResult or None).
+    unconnected), `robot_state` (arm q, v), `workpieces_status` (WorkpiecesStatus, or
+    unconnected when the scenario has no workpieces).
     Outputs: `desired_state` (q, v), `desired_acceleration`, `robot_status` (RobotStatus),
-    `gripper_request` (GripperRequest or None).
+    `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
+    issuer, or None).
     """
 
     def __init__(self, scenario: Scenario, options: MotionOptions | None = None):
@@ -113,8 +115,8 @@ class RobotMotion(LeafSystem):
         self._command = self.DeclareAbstractInputPort("robot_command", AbstractValue.Make(None))
         self._speed_scale = self.DeclareVectorInputPort("speed_scale", 1)
         self._robot_state = self.DeclareVectorInputPort("robot_state", 2 * self._n)
-        self._gripper_result = self.DeclareAbstractInputPort(
-            "gripper_result", AbstractValue.Make(None)
+        self._workpieces = self.DeclareAbstractInputPort(
+            "workpieces_status", AbstractValue.Make(None)
         )
         self.DeclareVectorOutputPort(
             "desired_state",
@@ -135,9 +137,9 @@ class RobotMotion(LeafSystem):
             {self.all_state_ticket()},
         )
         self.DeclareAbstractOutputPort(
-            "gripper_request",
+            "gripper_command",
             lambda: AbstractValue.Make(None),
-            self._calc_gripper_request,
+            self._calc_gripper_command,
             {self.all_state_ticket()},
         )
         self.DeclarePeriodicUnrestrictedUpdateEvent(self._options.update_period, 0.0, self._update)
@@ -181,8 +183,8 @@ class RobotMotion(LeafSystem):
             )
         )
 
-    def _calc_gripper_request(self, context, output: AbstractValue) -> None:
-        output.set_value(self._state(context).gripper_request)
+    def _calc_gripper_command(self, context, output: AbstractValue) -> None:
+        output.set_value(self._state(context).gripper_command)
 
     @staticmethod
     def _effective_scale(state: MotionState) -> float:
@@ -200,7 +202,7 @@ class RobotMotion(LeafSystem):
         command = self._command.Eval(context) if self._command.HasValue(context) else None
         if command is not None and command.seq > state.seen_seq:
             state = self._accept(state.replace(seen_seq=command.seq), command, context, t)
-        state = self._gripper_answered(state, context, t)
+        state = self._workpieces_seen(state, context, t)
         state = self._planned_when_at_rest(state, t)
         state = self._advanced(state, q, v, t)
         new_state.get_mutable_abstract_state(self._state_index).set_value(state)
@@ -230,7 +232,7 @@ class RobotMotion(LeafSystem):
         if isinstance(command, MOTION_COMMANDS):
             return self._queue_move(state, command)
         if isinstance(command, Grip | Release):
-            return self._switch_gripper(state, command, self._gripper_result.HasValue(context), t)
+            return self._switch_gripper(state, command, self._workpieces.HasValue(context), t)
         return state.with_result(command.seq, REJECTED, f"unknown command {type(command).__name__}")
 
     @staticmethod
@@ -267,7 +269,7 @@ class RobotMotion(LeafSystem):
         if state.pending is not None:
             return f"busy: move {state.pending.seq} is being planned"
         if state.gripper_waiting:
-            return f"busy: gripper command {state.gripper_request.seq} is running"
+            return f"busy: gripper command {state.gripper_command.seq} is running"
         return ""
 
     def _switch_gripper(self, state: MotionState, command, connected: bool, t) -> MotionState:
@@ -281,26 +283,28 @@ class RobotMotion(LeafSystem):
             return state.with_result(command.seq, FAILED, f"already holding {state.held_object}")
         if not gripping and state.held_object is None:
             return state.with_result(command.seq, SUCCEEDED, "nothing was held")
-        request = GripperRequest(
-            seq=command.seq,
-            action=GRIP if gripping else RELEASE,
-            tcp_pose=state.tool_pose,
-            max_payload=self._variant.payload,
+        vacuum = (
+            Attach(command.seq, ROBOT, max_mass=self._variant.payload)
+            if gripping
+            else WorkpiecesRelease(command.seq, ROBOT)
         )
-        state = state.replace(gripper_request=request, gripper_waiting=True, gripper_since=t)
+        state = state.replace(gripper_command=vacuum, gripper_waiting=True, gripper_since=t)
         return state.with_result(command.seq, RUNNING)
 
-    def _gripper_answered(self, state: MotionState, context, t: float) -> MotionState:
+    def _workpieces_seen(self, state: MotionState, context, t: float) -> MotionState:
+        """The held object, and the answer to a pending gripper command, from the workpieces."""
+        if not self._workpieces.HasValue(context):
+            return state
+        status = self._workpieces.Eval(context)
+        held = status.held_by(ROBOT)
+        state = state.replace(held_object=held.id if held is not None else None)
         if not state.gripper_waiting:
             return state
-        seq = state.gripper_request.seq
-        answer = (
-            self._gripper_result.Eval(context) if self._gripper_result.HasValue(context) else None
-        )
-        if isinstance(answer, GripperResult) and answer.seq == seq and answer.outcome in FINISHED:
-            held = answer.held_object if answer.outcome == SUCCEEDED else state.held_object
-            state = state.replace(gripper_waiting=False, held_object=held)
-            return state.with_result(seq, answer.outcome, answer.reason)
+        seq = state.gripper_command.seq
+        if status.outcome_of(GRIPPER_ISSUER, seq) in FINISHED:
+            result = status.result(GRIPPER_ISSUER)
+            state = state.replace(gripper_waiting=False)
+            return state.with_result(seq, result.outcome, result.reason)
         if t - state.gripper_since > self._options.gripper_timeout:
             state = state.replace(gripper_waiting=False)
             return state.with_result(seq, FAILED, "the workpieces system did not answer")
@@ -384,9 +388,9 @@ def add_robot_motion(
 
     Feeds the acceleration forward when the controller takes a reference acceleration, and
     exports `robot_command`, `speed_scale` (inputs), `robot_status` and
-    `robot_desired_state` (outputs). With `workpieces` (a system with a `gripper_request`
-    input and a `gripper_result` output) the vacuum gripper is connected to it; without,
-    Grip and Release fail with a reason.
+    `robot_desired_state` (outputs). With `workpieces` (the Workpieces system) the vacuum
+    gripper issues its `robot_gripper` commands and reads its status; without, Grip and
+    Release fail with a reason.
     """
     motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
@@ -400,10 +404,11 @@ def add_robot_motion(
         )
     if workpieces is not None:
         builder.Connect(
-            motion.GetOutputPort("gripper_request"), workpieces.GetInputPort("gripper_request")
+            motion.GetOutputPort("gripper_command"),
+            workpieces.GetInputPort(f"{GRIPPER_ISSUER}_command"),
         )
         builder.Connect(
-            workpieces.GetOutputPort("gripper_result"), motion.GetInputPort("gripper_result")
+            workpieces.GetOutputPort("status"), motion.GetInputPort("workpieces_status")
         )
     for name in ("robot_command", "speed_scale"):
         builder.ExportInput(motion.GetInputPort(name), name)

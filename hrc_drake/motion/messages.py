@@ -22,9 +22,6 @@ STOPPED = "stopped"
 MODES = (IDLE, PLANNING, MOVING, STOPPING, STOPPED)
 """RobotMotion's state: `stopped` is a paused move (speed scale 0); `idle` holds still."""
 
-GRIP = "grip"
-RELEASE = "release"
-
 
 @dataclass(frozen=True)
 class MoveTo:
@@ -66,7 +63,10 @@ class Stop:
 
 @dataclass(frozen=True)
 class Grip:
-    """Switch the vacuum on: attach the object whose grasp surface is at the suction cup."""
+    """Switch the vacuum on: attach the object whose grasp surface is at the suction cup.
+
+    The workpieces system decides (within its vacuum tolerance, up to the robot's payload);
+    the status's `held_object` is then that object's id."""
 
     seq: int
 
@@ -122,7 +122,7 @@ class RobotStatus:
     speed_fraction: float
     safety_scale: float
     speed_scale: float
-    held_object: str | None = None
+    held_object: int | None = None
 
     @property
     def last_seq(self) -> int:
@@ -143,32 +143,3 @@ class RobotStatus:
     def outcome_of(self, seq: int) -> str | None:
         result = self.result_of(seq)
         return result.outcome if result else None
-
-
-@dataclass(frozen=True)
-class GripperRequest:
-    """RobotMotion → workpieces: switch the vacuum on (`grip`) or off (`release`).
-
-    The workpieces system attaches the object whose grasp frame is within its tolerance of
-    `tcp_pose` and whose mass is at most `max_payload`, and answers with a GripperResult of
-    the same `seq`.
-    """
-
-    seq: int
-    action: str
-    tcp_pose: RigidTransform
-    max_payload: float
-
-
-@dataclass(frozen=True)
-class GripperResult:
-    """Workpieces → RobotMotion: the answer to GripperRequest `seq`.
-
-    `held_object` is the attached object's name after a successful grip, None after a
-    release; `reason` says why a grip failed (nothing at the cup, too heavy).
-    """
-
-    seq: int
-    outcome: str
-    held_object: str | None = None
-    reason: str = ""

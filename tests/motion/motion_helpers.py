@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from hrc_drake.systems.robot_motion import add_robot_motion
-from hrc_drake.systems.workpieces import GripperBridge, add_workpieces
+from hrc_drake.systems.workpieces import add_workpieces
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
@@ -153,16 +153,6 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
     return trace
 
 
-def _add_vacuum_with_workpieces(builder, scene_graph, plant, config, tcp) -> GripperBridge:
-    workpieces = add_workpieces(builder, scene_graph, plant, config, tool_frame=tcp)
-    bridge = builder.AddSystem(GripperBridge())
-    builder.Connect(
-        bridge.GetOutputPort("command"), workpieces.GetInputPort("robot_gripper_command")
-    )
-    builder.Connect(workpieces.GetOutputPort("status"), bridge.GetInputPort("workpieces_status"))
-    return bridge
-
-
 def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
     """The robot station; with a WorkpiecesConfig, also the workpieces and the vacuum."""
     builder = DiagramBuilder()
@@ -184,7 +174,7 @@ def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
     builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
     if workpieces is not None:
         tcp = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
-        workpieces = _add_vacuum_with_workpieces(builder, scene_graph, plant, workpieces, tcp)
+        workpieces = add_workpieces(builder, scene_graph, plant, workpieces, tool_frame=tcp)
     motion = add_robot_motion(builder, scenario, plant, arm, controller, options, workpieces)
     builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
     builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")

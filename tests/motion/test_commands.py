@@ -15,7 +15,7 @@ TABLE_TOP = 0.9
 PART_HEIGHT = 0.06
 PARTS = {"light": (0.15, 0.4), "heavy": (-0.15, 0.4)}
 """Where the parts stand on the work table (x, y)."""
-LIGHT_ID = "1"
+LIGHT_ID = 1
 """Workpieces number objects from 1 in the order they are placed."""
 FAR_GOAL = tuple(np.radians([90, -50, 60, 40, 60, 60]))
 
