@@ -162,6 +162,10 @@ def leg_indices(body: HumanBody, side: str) -> np.ndarray:
     )
 
 
+SOFT_KNEES = 0.006
+"""Stand 6 mm lower than with locked knees: a straight knee is singular, so leg IK on locked
+knees would snap them between straight and bent as the weight shifts."""
+
 KNEE_SEED = np.radians(25.0)
 """A straight knee is a singular start for leg IK: begin the first frame slightly bent."""
 
@@ -195,6 +199,7 @@ def keyed_clip(body: HumanBody, spec: KeyedSpec) -> Clip:
     times = np.arange(round(duration * FPS) + 1) / FPS
     key_poses = np.array([pose_vector(body, RELAXED, key.joints) for key in spec.keys])
     frames = _interpolate_keys(times, [k.time for k in spec.keys], key_poses)
+    frames[:, body.index("pelvis_height")] -= SOFT_KNEES
     for layer in spec.layers:
         i = body.index(layer.joint)
         scale = 1.0 if layer.joint in LENGTH_JOINTS else np.radians(1.0)

@@ -27,7 +27,7 @@ from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
-BLEND_SPEED = 5.0
+BLEND_SPEED = 3.0
 """Longer fades for bigger pose changes keep the fade's peak joint speed under this (rad/s)."""
 MINIMUM_JERK_PEAK = 1.875
 """Peak speed of a minimum-jerk fade relative to its average."""
@@ -210,10 +210,14 @@ Segment = ClipSegment | TurnSegment | WalkSegment
 
 @dataclass(frozen=True, eq=False)
 class Activity:
-    """A plan of segments, cross-faded from the pose the person had when it began."""
+    """A plan of segments; a pose offset left over from the previous activity fades out.
+
+    Fading the offset (rather than mixing two moving poses) keeps the pose continuous when a
+    new activity starts and adds no more speed than the offset's own minimum-jerk decay.
+    """
 
     segments: tuple[Segment, ...]
-    blend_from: np.ndarray | None = None
+    blend_offset: np.ndarray | None = None
     blend_start: float = 0.0
     blend_time: float = BLEND_TIME
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -224,30 +228,38 @@ class Activity:
     def start(self) -> float:
         return self.segments[0].start
 
-    def pose(self, ctx: Context, t: float) -> np.ndarray:
+    def planned_pose(self, ctx: Context, t: float) -> np.ndarray:
+        """The plan's pose; the joins between its segments fade the same way."""
         k = 0
         while k + 1 < len(self.segments) and t >= self.segments[k + 1].start:
             k += 1
         q = self.segments[k].pose(ctx, t)
-        if k > 0 and t < self.segments[k].start + SEGMENT_BLEND:
-            previous = self.segments[k - 1].pose(ctx, self.segments[k].start)
-            q = blend(ctx, previous, q, (t - self.segments[k].start) / SEGMENT_BLEND)
-        if self.blend_from is not None and t < self.blend_start + self.blend_time:
-            q = blend(ctx, self.blend_from, q, (t - self.blend_start) / self.blend_time)
+        join = self.segments[k].start
+        if k > 0 and t < join + SEGMENT_BLEND:
+            before = self.segments[k - 1].pose(ctx, join)
+            q = q + fade(t - join, SEGMENT_BLEND) * difference(
+                ctx, before, self.segments[k].pose(ctx, join)
+            )
+        return q
+
+    def pose(self, ctx: Context, t: float) -> np.ndarray:
+        q = self.planned_pose(ctx, t)
+        if self.blend_offset is not None and t < self.blend_start + self.blend_time:
+            q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset
         return q
 
 
-def blend(ctx: Context, a: np.ndarray, b: np.ndarray, s: float) -> np.ndarray:
-    """Minimum-jerk cross-fade from pose a (s = 0) to pose b (s = 1), yaw the short way."""
-    b = b.copy()
+def fade(elapsed: float, duration: float) -> float:
+    """1 at the start of a fade, 0 at its end, minimum-jerk in between."""
+    return 1.0 - float(minimum_jerk(np.array(elapsed / duration)))
+
+
+def difference(ctx: Context, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a - b, with the yaw difference taken the short way round."""
+    offset = a - b
     iyaw = ctx.index("base_yaw")
-    b_yaw = b[iyaw]
-    b[iyaw] = a[iyaw] + _wrap(b_yaw - a[iyaw])
-    w = float(minimum_jerk(np.array(s)))
-    mixed = a + w * (b - a)
-    if w >= 1.0:
-        mixed[iyaw] = b_yaw
-    return mixed
+    offset[iyaw] = _wrap(offset[iyaw])
+    return offset
 
 
 # --- the protocol -------------------------------------------------------------------------------
@@ -286,9 +298,8 @@ def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
     return state.activity.pose(ctx, t)
 
 
-def _idle(ctx: Context, pose: tuple[float, float, float], t: float, blend_from) -> Activity:
-    segment = ClipSegment(IDLE_CLIP, t, pose, forever=True)
-    return Activity((segment,), blend_from, t, final_pose=pose)
+def _idle(pose: tuple[float, float, float], t: float) -> Activity:
+    return Activity((ClipSegment(IDLE_CLIP, t, pose, forever=True),), final_pose=pose)
 
 
 def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
@@ -361,10 +372,10 @@ def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> Acto
 
 def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
     """Start `activity` at t, cross-fading from the current pose."""
-    current, target = pose_at(ctx, actor, t), activity.pose(ctx, t)
-    change = float(np.max(np.abs(target - current)[3:]))
-    fade = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
-    activity = replace(activity, blend_from=current, blend_start=t, blend_time=fade)
+    offset = difference(ctx, pose_at(ctx, actor, t), activity.planned_pose(ctx, t))
+    change = float(np.max(np.abs(offset[3:])))
+    duration = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
+    activity = replace(activity, blend_offset=offset, blend_start=t, blend_time=duration)
     return replace(actor, activity=activity, **changes)
 
 
@@ -379,7 +390,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         state = _switch(
             ctx,
             state,
-            _idle(ctx, state.base, t, None),
+            _idle(state.base, t),
             t,
             state="IDLE",
             running=-1,
@@ -432,7 +443,7 @@ def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
             state="IDLE",
             base=state.start_pose,
             animation=IDLE_CLIP,
-            activity=_idle(ctx, state.start_pose, t, None),
+            activity=_idle(state.start_pose, t),
         )
         previous_t = t
     if command is not None and command.seq > state.seen:
@@ -441,7 +452,7 @@ def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
         final = state.activity.final_pose
         state = _record(state, state.running, "succeeded")
         state = _switch(
-            ctx, state, _idle(ctx, final, t, None), t, state="IDLE", running=-1, animation=IDLE_CLIP
+            ctx, state, _idle(final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
         )
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
     base = _base_pose(ctx, pose_at(ctx, state, t))
