@@ -18,8 +18,11 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import ModelDirective, PackageMap
 
 from hrc_drake.areas import Area
+from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.paths import add_model_package, resource_dir
+from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.yaml_check import (
     InputError,
     check_node,
@@ -70,6 +73,16 @@ AGENTS = ("robot", "human")
 
 
 @dataclass
+class HumanConfig:
+    """The person: body height and mass (segments scale with them) and where they start
+    (x, y in metres, facing yaw in degrees)."""
+
+    height: float = 1.75
+    mass: float = 75.0
+    start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
+
+
+@dataclass
 class Scenario:
     name: str = field(default="", metadata=REQUIRED)
     description: str = ""
@@ -81,6 +94,9 @@ class Scenario:
     areas: dict[str, list[list[float]]] = field(default_factory=dict)
     locations: dict[str, Transform] = field(default_factory=dict)
     visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
+    human: HumanConfig | None = None
+    workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
+    safety: SafetyConfig = field(default_factory=SafetyConfig)
     trees: dict[str, AgentTree] = field(default_factory=dict)
     parameters: dict[str, str] = field(default_factory=dict)
     """Root blackboard entries of every tree (converted to each port's type when read)."""
@@ -158,6 +174,10 @@ def _check_meaning(path: Path, root, scenario: Scenario) -> None:
         except ValueError as e:
             fail(("areas", name), f"not a valid polygon: {e}")
     _check_model_files(scenario.cell, lambda names, msg: fail(("cell", *names), msg))
+    for names, message in problems(scenario.workpieces):
+        fail(("workpieces", *names), message)
+    if scenario.human is not None:
+        _check_human(scenario.human, lambda names, msg: fail(("human", *names), msg))
 
 
 def _resolve_tree_files(path: Path, root, scenario: Scenario) -> None:
@@ -204,6 +224,16 @@ def _check_robot(robot: RobotConfig, fail) -> None:
             ("initial_configuration",),
             _unknown("configuration", robot.initial_configuration, known),
         )
+
+
+def _check_human(human: HumanConfig, fail) -> None:
+    low, high = HEIGHT_RANGE
+    if not low <= human.height <= high:
+        fail(("height",), f"must lie within {low}..{high} m, got {human.height}")
+    if not human.mass > 0:
+        fail(("mass",), f"must be positive, got {human.mass}")
+    if len(human.start) != 3:
+        fail(("start",), "needs [x, y, yaw_deg]")
 
 
 def _check_model_files(directives: list[ModelDirective], fail) -> None:

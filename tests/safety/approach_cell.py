@@ -53,15 +53,24 @@ class ScriptedArm(LeafSystem):
         output.SetFromVector(q)
 
 
-def walk(stand: float, arrive: float, leave: float, bearing: float, speed=1.0, start: float = 3.0):
+def walk(
+    stand: float,
+    arrive: float,
+    leave: float,
+    bearing: float,
+    speed=1.0,
+    start: float = 3.0,
+    away: float = 4.0,
+):
     """Person positions: walk straight at the robot's base from `start` metres away along
-    the `bearing` (rad from +x) to `stand` metres away, wait, walk back out."""
+    the `bearing` (rad from +x) to `stand` metres away, wait, walk back out to `away`."""
     body = human_body()
     q = body.standing_pose()
     q[body.index("base_yaw")] = bearing + math.pi  # face the robot's base
     travel = (start - stand) / speed
-    times = [0.0, arrive - travel, arrive, leave, leave + travel, leave + travel + 1.0]
-    radii = [start, start, stand, stand, start, start]
+    back = (away - stand) / speed
+    times = [0.0, arrive - travel, arrive, leave, leave + back, leave + back + 1.0]
+    radii = [start, start, stand, stand, away, away]
     columns = []
     for radius in radii:
         q[body.index("base_x")] = radius * math.cos(bearing)

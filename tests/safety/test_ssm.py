@@ -2,6 +2,7 @@
 
 import pytest
 
+from hrc_drake.motion.stopping import stopping_data
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.ssm import (
     FREE,
@@ -13,7 +14,7 @@ from hrc_drake.safety.ssm import (
     protective_separation,
     zone,
 )
-from hrc_drake.safety.stopping import ESTIMATED_STOPS, ssm_parameters
+from hrc_drake.safety.stopping import ssm_parameters
 
 # T_r 0.1 s, T_s 0.3 s, S_s 0.15 m, C 0.1 m, Z_d 0.05 m, Z_r 0.02 m
 PARAMS = SsmParameters(0.1, 0.3, 0.15, 0.1, 0.05, 0.02)
@@ -77,7 +78,8 @@ def test_zones():
 
 def test_config_stop_figures_override_the_variant_data():
     default = ssm_parameters(SafetyConfig(), "lbr_iisy3_r760")
-    assert default.stopping_time == ESTIMATED_STOPS["lbr_iisy3_r760"].stopping_time
+    measured = stopping_data("lbr_iisy3_r760")
+    assert (default.stopping_time, default.stopping_distance) == (measured.time, measured.distance)
     given = ssm_parameters(SafetyConfig(stopping_time=0.5, stopping_distance=0.2), "x")
     assert (given.stopping_time, given.stopping_distance) == (0.5, 0.2)
     assert given.constant_terms == pytest.approx(0.1 + 0.05 + 0.02)
