@@ -91,21 +91,22 @@ def with_height(X_WO: RigidTransform, z: float) -> RigidTransform:
 
 
 def overlaps(a: np.ndarray, b: np.ndarray | None, margin: float = OVERLAP_MARGIN) -> bool:
-    """Whether two convex outlines overlap by more than `margin` (None is the whole plane)."""
+    """Whether two convex outlines overlap by more than `margin` (None is the whole plane):
+    no edge normal of either separates their projections."""
     if b is None:
         return True
-    return not any(_separates(axis, a, b, margin) for axis in (*_normals(a), *_normals(b)))
+    axes = np.vstack([_normals(a), _normals(b)]).T
+    along_a, along_b = a @ axes, b @ axes
+    apart = (along_a.max(axis=0) < along_b.min(axis=0) + margin) | (
+        along_b.max(axis=0) < along_a.min(axis=0) + margin
+    )
+    return not apart.any()
 
 
 def _normals(polygon: np.ndarray) -> np.ndarray:
     edges = np.roll(polygon, -1, axis=0) - polygon
     normals = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
     return normals / np.linalg.norm(normals, axis=1, keepdims=True)
-
-
-def _separates(axis: np.ndarray, a: np.ndarray, b: np.ndarray, margin: float) -> bool:
-    pa, pb = a @ axis, b @ axis
-    return pa.max() < pb.min() + margin or pb.max() < pa.min() + margin
 
 
 def twist_between(X0: RigidTransform, X1: RigidTransform, dt: float) -> SpatialVelocity:

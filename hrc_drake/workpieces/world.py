@@ -10,7 +10,7 @@ holder poses) to the next world:
 3. each issuer's new command is carried out (in the order of the issuers);
 4. objects past the end of a removing belt leave;
 5. free objects find what they rest on (the highest support under their footprint and
-   below their centre: a surface, a belt, another object, the floor) and plan their motion
+   below their top: a surface, a belt, another object, the floor) and plan their motion
    for the next period: resting on a surface they stay, on a belt they move with it (queueing),
    on an object they move with it, otherwise they fall with gravity and land exactly on the
    support; an object found below its support's top is lifted onto it (never sinks).
@@ -22,6 +22,7 @@ smooth without reading inputs (no direct feedthrough).
 import dataclasses
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
@@ -86,10 +87,12 @@ class Kind:
 @dataclass(frozen=True)
 class Piece:
     """A live object. `pose` is at the world's time, `velocity` is planned for the interval
-    after it; `grip` is the object's pose in its holder's grasp frame while held."""
+    after it; `grip` is the object's pose in its holder's grasp frame while held. A piece
+    never changes (changes make new pieces), so its footprint is computed once."""
 
     id: int
     type: str
+    solid: Solid
     slot: int
     pose: RigidTransform
     velocity: SpatialVelocity
@@ -97,6 +100,19 @@ class Piece:
     grip: RigidTransform | None
     support: str | None
     attributes: Attributes
+
+    @property
+    def bottom(self) -> float:
+        return self.pose.translation()[2] - self.solid.height / 2
+
+    @cached_property
+    def footprint(self) -> np.ndarray:
+        return footprint(self.solid, self.pose)
+
+    @cached_property
+    def top(self) -> Surface:
+        """The piece's top face as a support for others."""
+        return Surface(object_support(self.id), self.bottom + self.solid.height, self.footprint)
 
 
 @dataclass(frozen=True)
@@ -268,6 +284,8 @@ class _Step:
     def _followed(self, piece: Piece, dt: float) -> Piece:
         """The piece at `now`: moved on as planned, or carried by its holder."""
         if piece.holder is None or piece.holder not in self.holders:
+            if not piece.velocity.get_coeffs().any():
+                return piece
             return dataclasses.replace(piece, pose=moved(piece.pose, piece.velocity, dt))
         X_WH = self.holders[piece.holder]
         X_WO = X_WH @ piece.grip
@@ -319,6 +337,7 @@ class _Step:
         piece = Piece(
             id=self.next_id,
             type=kind.name,
+            solid=kind.solid,
             slot=slot,
             pose=upright(placement.pose),
             velocity=SpatialVelocity.Zero(),
@@ -335,7 +354,7 @@ class _Step:
         """A random place in `area`, resting on whatever is highest there."""
         xy = self.cell.areas[area].sample(rng)
         outline = kind.solid.outline() + xy
-        tops = [self._top(p) for p in self.pieces.values() if p.holder is None]
+        tops = [p.top for p in self.pieces.values() if p.holder is None]
         support = self.cell.supports.under(outline, math.inf, tops)
         return RigidTransform([*xy, support.height + kind.solid.height / 2])
 
@@ -523,13 +542,13 @@ class _Step:
             active = [p for p in free if self._moving(p) or p.support in self.cell.belts]
         if not active:
             return
-        active.sort(key=lambda p: (self._bottom(p), p.id))
-        tops = {p.id: self._top(p) for p in free}
+        active.sort(key=lambda p: (p.bottom, p.id))
+        active_ids = {p.id for p in active}
+        tops = [p.top for p in free if p.id not in active_ids]
         supports = {}
         for piece in active:
-            others = [top for i, top in tops.items() if i != piece.id]
-            supports[piece.id] = self._support(self.pieces[piece.id], others, instantly)
-            tops[piece.id] = self._top(self.pieces[piece.id])
+            supports[piece.id] = self._support(self.pieces[piece.id], tops, instantly)
+            tops.append(self.pieces[piece.id].top)
         belt_speeds = self._belt_speeds()
         for piece in active:
             self._plan(self.pieces[piece.id], supports[piece.id], belt_speeds)
@@ -538,24 +557,15 @@ class _Step:
     def _moving(piece: Piece) -> bool:
         return piece.support is None or bool(piece.velocity.get_coeffs().any())
 
-    def _solid(self, piece: Piece) -> Solid:
-        return self.cell.kinds[piece.type].solid
-
-    def _bottom(self, piece: Piece) -> float:
-        return piece.pose.translation()[2] - self._solid(piece).height / 2
-
-    def _top(self, piece: Piece) -> Surface:
-        """The piece's top face as a support for others."""
-        height = self._bottom(piece) + self._solid(piece).height
-        return Surface(object_support(piece.id), height, footprint(self._solid(piece), piece.pose))
-
     def _support(self, piece: Piece, others: list[Surface], instantly: bool) -> Surface:
-        """What is under the piece; a piece resting on (or sunk into) it is put on top."""
-        solid = self._solid(piece)
-        outline = footprint(solid, piece.pose)
-        support = self.cell.supports.under(outline, piece.pose.translation()[2], others)
-        if instantly or self._bottom(piece) <= support.height + REST_TOLERANCE:
-            pose = with_height(piece.pose, support.height + solid.height / 2)
+        """What is under the piece: the highest support up to its top face, so that a piece
+        resting on it or sunk into it is put on top of it. `others` are the tops of the
+        pieces at rest and of those below this one (a piece placed into another of the same
+        height lands on the older one)."""
+        top = piece.bottom + piece.solid.height + REST_TOLERANCE
+        support = self.cell.supports.under(piece.footprint, top, others)
+        if instantly or piece.bottom <= support.height + REST_TOLERANCE:
+            pose = with_height(piece.pose, support.height + piece.solid.height / 2)
             self.pieces[piece.id] = dataclasses.replace(piece, pose=pose, support=support.name)
         else:
             self.pieces[piece.id] = dataclasses.replace(piece, support=None)
@@ -565,7 +575,7 @@ class _Step:
         speeds = {}
         for name, belt in self.cell.belts.items():
             riders = {
-                p.id: footprint(self._solid(p), p.pose)
+                p.id: p.footprint
                 for p in self.pieces.values()
                 if p.holder is None and p.support == name
             }
@@ -581,7 +591,7 @@ class _Step:
             dt = self.config.update_period
             landing = support.height + below[2] * dt
             accelerated = piece.velocity.translational()[2] - GRAVITY * dt
-            v = np.array([0.0, 0.0, max(accelerated, (landing - self._bottom(piece)) / dt)])
+            v = np.array([0.0, 0.0, max(accelerated, (landing - piece.bottom) / dt)])
         velocity = SpatialVelocity(np.zeros(3), v)
         self.pieces[piece.id] = dataclasses.replace(piece, velocity=velocity)
 
