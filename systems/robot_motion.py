@@ -10,12 +10,13 @@ feedthrough. See hrc_drake/motion/messages.py for the commands and the status.
 """
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
-from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
+from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem, ValueProducer
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import CANCELLED, FAILED, FINISHED, REJECTED, RUNNING, SUCCEEDED
@@ -81,6 +82,12 @@ class MotionState:
     def __deepcopy__(self, memo):
         return self  # immutable: contexts may share it
 
+    @functools.cached_property
+    def hold_motion(self) -> np.ndarray:
+        """q, v, vdot of holding still at `hold`."""
+        hold = np.array(self.hold)
+        return np.concatenate([hold, np.zeros(2 * hold.size)])
+
     def with_result(self, seq: int, outcome: str, reason: str = "") -> "MotionState":
         kept = tuple(r for r in self.results if r.seq != seq)
         results = (*kept, CommandResult(seq, outcome, reason))[-RESULTS_KEPT:]
@@ -118,17 +125,21 @@ class RobotMotion(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort(
             "workpieces_status", AbstractValue.Make(None)
         )
+        from_state_and_time = {self.time_ticket(), self.all_state_ticket()}
+        self._desired_motion = self.DeclareCacheEntry(
+            "desired q, v and vdot",
+            ValueProducer(
+                allocate=lambda: AbstractValue.Make(np.zeros(3 * self._n)),
+                calc=self._calc_desired_motion,
+            ),
+            from_state_and_time,
+        )
+        motion_ticket = {self._desired_motion.ticket()}
         self.DeclareVectorOutputPort(
-            "desired_state",
-            2 * self._n,
-            self._calc_desired_state,
-            {self.time_ticket(), self.all_state_ticket()},
+            "desired_state", 2 * self._n, self._calc_desired_state, motion_ticket
         )
         self.DeclareVectorOutputPort(
-            "desired_acceleration",
-            self._n,
-            self._calc_desired_acceleration,
-            {self.time_ticket(), self.all_state_ticket()},
+            "desired_acceleration", self._n, self._calc_desired_acceleration, motion_ticket
         )
         self.DeclareAbstractOutputPort(
             "robot_status",
@@ -153,20 +164,20 @@ class RobotMotion(LeafSystem):
     def _state(self, context) -> MotionState:
         return context.get_abstract_state(self._state_index).get_value()
 
-    def _desired(self, context) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _calc_desired_motion(self, context, value: AbstractValue) -> None:
+        """q, v and vdot stacked: held still, or on the path at the current time."""
         state = self._state(context)
         if state.path is None:
-            hold = np.array(state.hold)
-            return hold, np.zeros(self._n), np.zeros(self._n)
+            value.set_value(state.hold_motion)
+            return
         progress = state.progress.at(context.get_time(), state.path.duration)
-        return desired_motion(state.path, progress)
+        value.set_value(np.concatenate(desired_motion(state.path, progress)))
 
     def _calc_desired_state(self, context, output: BasicVector) -> None:
-        q, v, _ = self._desired(context)
-        output.SetFromVector(np.concatenate([q, v]))
+        output.SetFromVector(self._desired_motion.Eval(context)[: 2 * self._n])
 
     def _calc_desired_acceleration(self, context, output: BasicVector) -> None:
-        output.SetFromVector(self._desired(context)[2])
+        output.SetFromVector(self._desired_motion.Eval(context)[2 * self._n :])
 
     def _calc_status(self, context, output: AbstractValue) -> None:
         state = self._state(context)

@@ -22,7 +22,8 @@ WRIST_MARGIN = np.radians(2.0)
 """A5 stays at least this far from its singular zero."""
 WRIST = 4
 """Index of A5."""
-RANDOM_SEEDS = 6
+NEAR_SEEDS = 4
+ANYWHERE_SEEDS = 10
 SEED_SPREAD = 0.6
 """rad: standard deviation of the extra seeds around the nominal posture."""
 TOOL_REACH_MARGIN = 0.25
@@ -52,14 +53,7 @@ class ToolTargetSolver:
     ) -> np.ndarray:
         """A collision-free solution, trying the current posture, home, then random seeds."""
         self._check_reach(pose, q_start)
-        seeds = [q_start, self.q_nominal] + [
-            np.clip(
-                self.q_nominal + rng.normal(0.0, SEED_SPREAD, q_start.size),
-                self.model.lower,
-                self.model.upper,
-            )
-            for _ in range(RANDOM_SEEDS)
-        ]
+        seeds = [q_start, self.q_nominal] + self._random_seeds(rng)
         wrist_sign = self._wrist_side(q_start)
         for seed in seeds:
             deadline.check("solving inverse kinematics")
@@ -70,6 +64,15 @@ class ToolTargetSolver:
             f"target unreachable: no collision-free inverse kinematics solution for the tool at "
             f"{np.round(pose.translation(), 3).tolist()}"
         )
+
+    def _random_seeds(self, rng: np.random.Generator) -> list[np.ndarray]:
+        """Seeds near the nominal posture first, then anywhere (other elbow and arm postures)."""
+        lower, upper = self.model.lower, self.model.upper
+        near = [
+            np.clip(self.q_nominal + rng.normal(0.0, SEED_SPREAD, lower.size), lower, upper)
+            for _ in range(NEAR_SEEDS)
+        ]
+        return near + [rng.uniform(lower, upper) for _ in range(ANYWHERE_SEEDS)]
 
     def solve_near(self, pose: RigidTransform, q_near: np.ndarray) -> np.ndarray | None:
         """The solution nearest `q_near`, seeded there, without the clearance check."""
