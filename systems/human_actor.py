@@ -63,9 +63,7 @@ class HumanActor(LeafSystem):
         command = self._command.Eval(context) if self._command.HasValue(context) else None
         actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, command)
         state.get_mutable_abstract_state(self._actor).set_value(actor)
-        q = pose_at(self._ctx, actor, t)
-        state.get_mutable_discrete_state(self._positions).set_value(
-            self._ctx.body.plant_positions(q)
-        )
+        positions = self._ctx.body.plant_positions(actor.pose)
+        state.get_mutable_discrete_state(self._positions).set_value(positions)
         message = status(self._ctx, actor, t, self._frames)
         state.get_mutable_abstract_state(self._status).set_value(message)

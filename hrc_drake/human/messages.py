@@ -89,6 +89,10 @@ class HumanStatus:
     results: tuple[CommandResult, ...] = field(default_factory=tuple)
     time: float = 0.0
 
+    def __deepcopy__(self, memo):
+        """Immutable: Drake's state copies can share it."""
+        return self
+
     def outcome_of(self, seq: int) -> str | None:
         """The outcome of command `seq`, if it is still in the recent results."""
         return next((r.outcome for r in reversed(self.results) if r.seq == seq), None)

@@ -7,6 +7,7 @@ SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 """
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 from math import atan2, cos, pi, sin
 
 import numpy as np
@@ -159,7 +160,7 @@ class WalkSegment:
     animation_distance: float
     speed: float
 
-    @property
+    @cached_property
     def lengths(self) -> np.ndarray:
         steps = np.diff(np.array(self.path), axis=0)
         return np.concatenate([[0.0], np.cumsum(np.linalg.norm(steps, axis=1))])
@@ -283,6 +284,12 @@ class ActorState:
     base: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """Base pose measured at the last update (the speed comes from its change)."""
     speed: float = 0.0
+    pose: np.ndarray | None = None
+    """Joint positions at the last update."""
+
+    def __deepcopy__(self, memo):
+        """Immutable: Drake's state copies can share it."""
+        return self
 
     @property
     def anchor(self) -> tuple[float, float, float]:
@@ -455,7 +462,8 @@ def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
             ctx, state, _idle(final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
         )
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
-    base = _base_pose(ctx, pose_at(ctx, state, t))
+    q = pose_at(ctx, state, t)
+    base = _base_pose(ctx, q)
     speed = 0.0
     if t > previous_t:
         speed = float(np.hypot(base[0] - state.base[0], base[1] - state.base[1]) / (t - previous_t))
@@ -466,6 +474,7 @@ def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
         event_count=state.event_count + len(fired),
         base=base,
         speed=speed,
+        pose=q,
     )
 
 
@@ -477,9 +486,9 @@ def progress(ctx: Context, state: ActorState, t: float) -> float:
 
 
 def status(ctx: Context, state: ActorState, t: float, hands_and_head) -> HumanStatus:
-    """The status message; `hands_and_head(q)` gives the world poses of the three frames."""
+    """The status after an update; `hands_and_head(q)` gives the three frames' world poses."""
     last = state.results[-1] if state.results else CommandResult(-1, "")
-    q = pose_at(ctx, state, t)
+    q = state.pose
     left, right, head = hands_and_head(q)
     return HumanStatus(
         state=state.state,

@@ -1,0 +1,99 @@
+"""Cost of the simulated person: real-time factor of the base cell with and without it.
+
+The cell is the base scenario's station (dynamic plant with iisy, tool and cell, SAP,
+inverse-dynamics controller holding home). The person variant adds the HumanActor through
+`add_human`, walking back and forth between two points for the whole run (turns included).
+Both variants run in this process, alternating, best of the repeats.
+
+    .venv/bin/python benchmarks/human_cost.py [--duration 10] [--repeats 3]
+"""
+
+import argparse
+import math
+import time
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.multibody.parsing import ProcessModelDirectives
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder, LeafSystem
+from pydrake.systems.primitives import ConstantVectorSource
+
+from hrc_drake.builder import _add_controller, _directives, _parser, add_robot
+from hrc_drake.human.builder import add_human
+from hrc_drake.human.messages import MoveCommand
+from hrc_drake.scenario import load_scenario
+
+LEGS = ((1.5, -2.0), (-1.5, -2.0))
+"""The person walks between these two points (m), about 3 m in front of the robot."""
+
+
+class Patrol(LeafSystem):
+    """Sends the next walk each time the person reports the previous one finished."""
+
+    def __init__(self):
+        LeafSystem.__init__(self)
+        self._status = self.DeclareAbstractInputPort("status", AbstractValue.Make(None))
+        self.DeclareAbstractOutputPort("command", lambda: AbstractValue.Make(None), self._calc)
+
+    def _calc(self, context, output):
+        status = self._status.Eval(context)
+        done = 0 if status is None or status.last_seq < 0 else status.last_seq
+        if status is not None and status.outcome == "running":
+            done -= 1
+        seq = done + 1
+        x, y = LEGS[seq % 2]
+        output.set_value(MoveCommand(seq, (x, y, 0.0)))
+
+
+def cell(with_person: bool):
+    scenario = load_scenario("base")
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(
+        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
+        builder,
+    )
+    parser = _parser(plant)
+    robot = add_robot(plant, parser, scenario.robot)
+    ProcessModelDirectives(_directives(scenario), plant, parser)
+    plant.Finalize()
+    q0 = scenario.configuration(scenario.robot.initial_configuration)
+    plant.SetDefaultPositions(robot, q0)
+    controller = _add_controller(builder, scenario, plant, robot)
+    desired = builder.AddSystem(ConstantVectorSource(np.concatenate([q0, np.zeros_like(q0)])))
+    builder.Connect(desired.get_output_port(), controller.get_input_port_desired_state())
+    if with_person:
+        start = (*LEGS[0], math.pi)
+        actor, _ = add_human(builder, scene_graph, start_pose=start, dynamic_plant=plant)
+        patrol = builder.AddSystem(Patrol())
+        builder.Connect(actor.GetOutputPort("human_status"), patrol.get_input_port())
+        builder.Connect(patrol.get_output_port(), actor.GetInputPort("human_command"))
+    return builder.Build()
+
+
+def real_time_factor(with_person: bool, duration: float) -> float:
+    simulator = Simulator(cell(with_person))
+    simulator.Initialize()
+    start = time.perf_counter()
+    simulator.AdvanceTo(duration)
+    return duration / (time.perf_counter() - start)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=10.0)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    best = {False: 0.0, True: 0.0}
+    for _ in range(args.repeats):
+        for with_person in (False, True):
+            best[with_person] = max(best[with_person], real_time_factor(with_person, args.duration))
+    added = best[False] / best[True] - 1.0
+    print(f"real-time factor without person: {best[False]:.2f}")
+    print(f"real-time factor with person walking: {best[True]:.2f}")
+    print(f"the person adds {100 * added:.1f} % to the run time (target < 10 %)")
+
+
+if __name__ == "__main__":
+    main()
