@@ -109,17 +109,18 @@ class Workpieces(LeafSystem):
         self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period, 0.0, self._update)
 
     def _register_slots(self, scene_graph: SceneGraph, config: WorkpiecesConfig) -> list:
+        """One frame with its type's geometry per slot, in slot order."""
         frame_ids = []
-        for slot, type_name in enumerate(self.cell.slot_types):
-            object_type = config.types[type_name]
-            name = f"{type_name}_{slot - self.cell.kinds[type_name].slots.start}"
-            frame_id = scene_graph.RegisterFrame(self.source_id, GeometryFrame(name))
-            shape = self.cell.kinds[type_name].solid.drake_shape()
-            instance = GeometryInstance(RigidTransform(), shape, name)
-            instance.set_proximity_properties(ProximityProperties())
-            instance.set_illustration_properties(MakePhongIllustrationProperties(object_type.color))
-            scene_graph.RegisterGeometry(self.source_id, frame_id, instance)
-            frame_ids.append(frame_id)
+        for kind in self.cell.kinds.values():
+            color = config.types[kind.name].color
+            for index in range(len(kind.slots)):
+                name = f"{kind.name}_{index}"
+                frame_id = scene_graph.RegisterFrame(self.source_id, GeometryFrame(name))
+                instance = GeometryInstance(RigidTransform(), kind.solid.drake_shape(), name)
+                instance.set_proximity_properties(ProximityProperties())
+                instance.set_illustration_properties(MakePhongIllustrationProperties(color))
+                scene_graph.RegisterGeometry(self.source_id, frame_id, instance)
+                frame_ids.append(frame_id)
         return frame_ids
 
     def geometry_set(self, scene_graph: SceneGraph) -> GeometrySet:

@@ -190,10 +190,6 @@ class Workcell:
         belts = [belt.surface for belt in self.belts.values()]
         self.supports = Supports([*surfaces, *belts], belts=set(self.belts))
 
-    @property
-    def slot_types(self) -> list[str]:
-        return [kind.name for kind in self.kinds.values() for _ in kind.slots]
-
     def random(self, *key: int) -> np.random.Generator:
         """A Generator of its own for `key` below the workpieces' seed."""
         seed = np.random.SeedSequence(self.seed.entropy, spawn_key=(*self.seed.spawn_key, *key))
@@ -283,11 +279,13 @@ class _Step:
 
     def _followed(self, piece: Piece, dt: float) -> Piece:
         """The piece at `now`: moved on as planned, or carried by its holder."""
-        if piece.holder is None or piece.holder not in self.holders:
+        if piece.holder is None:
             if not piece.velocity.get_coeffs().any():
                 return piece
             return dataclasses.replace(piece, pose=moved(piece.pose, piece.velocity, dt))
-        X_WH = self.holders[piece.holder]
+        X_WH = self.holders.get(piece.holder)
+        if X_WH is None:  # the holder's pose input has no value any more: wait where it was
+            return dataclasses.replace(piece, velocity=SpatialVelocity.Zero())
         X_WO = X_WH @ piece.grip
         V = velocity_at(self.twists[piece.holder], X_WH.translation(), X_WO.translation())
         return dataclasses.replace(piece, pose=X_WO, velocity=V)

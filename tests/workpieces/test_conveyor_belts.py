@@ -17,19 +17,21 @@ QUEUED = (1, 2, 3)
 REMOVED = (4, 5)
 
 
-def on_belt(x: float, y: float) -> PlacedObject:
-    return PlacedObject(type="part", pose=Transform(translation=[x, y, BELT_TOP + PART_HEIGHT / 2]))
+def on_belt(x: float, y: float, layer: int = 0) -> PlacedObject:
+    z = BELT_TOP + (layer + 0.5) * PART_HEIGHT
+    return PlacedObject(type="part", pose=Transform(translation=[x, y, z]))
 
 
 @pytest.fixture(scope="module")
 def run():
-    """Three parts on the queueing belt, two on a removing one; statuses every 50 ms."""
+    """Three parts on the queueing belt, two on a removing one (and one more on top of the
+    first of those); statuses every 50 ms."""
     removing = ConveyorConfig(
         start=[-1.0, REMOVING_Y, BELT_TOP], end=[1.0, REMOVING_Y, BELT_TOP], at_end=REMOVE
     )
     belt = ConveyorConfig(start=[-1.0, CONVEYOR_Y, BELT_TOP], end=[1.0, CONVEYOR_Y, BELT_TOP])
     objects = [on_belt(x, CONVEYOR_Y) for x in (-0.2, 0.1, 0.4)]
-    objects += [on_belt(x, REMOVING_Y) for x in (0.5, 0.7)]
+    objects += [on_belt(x, REMOVING_Y) for x in (0.5, 0.7)] + [on_belt(0.5, REMOVING_Y, 1)]
     config = config_with(objects=objects, conveyors={"belt": belt, "removing": removing})
     rig = build_rig(config)
     return {round(t, 3): rig.advance(t) for t in np.arange(0.0, 6.0001, 0.05)}
@@ -65,3 +67,12 @@ def test_objects_leave_at_a_removing_end(run):
     assert run[2.45].object(4) is not None
     assert run[2.55].object(4) is None
     assert run[6.0].free_slots["part"] == 6 - len(QUEUED)
+
+
+def test_an_object_on_a_conveyed_object_rides_along_and_leaves_with_it(run):
+    rider, below = run[1.0].object(6), run[1.0].object(4)
+    assert rider.support == "object:4"
+    np.testing.assert_allclose(rider.pose.translation()[:2], below.pose.translation()[:2])
+    assert rider.pose.translation()[2] == pytest.approx(BELT_TOP + 1.5 * PART_HEIGHT)
+    assert rider.velocity.translational() == pytest.approx([SPEED, 0.0, 0.0])
+    assert run[3.0].object(6) is None
