@@ -15,7 +15,6 @@ class MotionOptions:
     settle_tolerance: joint error (rad) below which a finished move counts as arrived.
     settle_timeout: seconds a finished move may take to arrive before it fails.
     gripper_timeout: seconds to wait for the workpieces system to answer Grip/Release.
-    avoid_person: plan around the person's current geometry (needs the `obstacles` input).
     seed: seed of the planner's random sampling (the plan is deterministic).
     """
 
@@ -27,5 +26,4 @@ class MotionOptions:
     settle_tolerance: float = 1e-3
     settle_timeout: float = 2.0
     gripper_timeout: float = 0.5
-    avoid_person: bool = False
     seed: int = 0
