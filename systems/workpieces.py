@@ -80,6 +80,8 @@ class Workpieces(LeafSystem):
         self.cell = Workcell(config, all_surfaces, seed_sequence(seed), issuers, areas)
         self.source_id = scene_graph.RegisterSource(name)
         self.frame_ids = self._register_slots(scene_graph, config)
+        inspector = scene_graph.model_inspector()
+        self.geometry_ids = [inspector.GetGeometries(f)[0] for f in self.frame_ids]
         initial = self.cell.initial_world()
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
@@ -123,10 +125,9 @@ class Workpieces(LeafSystem):
                 frame_ids.append(frame_id)
         return frame_ids
 
-    def geometry_set(self, scene_graph: SceneGraph) -> GeometrySet:
+    def geometry_set(self) -> GeometrySet:
         """All the workpieces' geometry (for collision filters)."""
-        inspector = scene_graph.model_inspector()
-        return GeometrySet([g for f in self.frame_ids for g in inspector.GetGeometries(f)])
+        return GeometrySet(self.geometry_ids)
 
     def world(self, context: Context) -> World:
         return context.get_abstract_state(self._state).get_value()
@@ -155,7 +156,8 @@ class Workpieces(LeafSystem):
         output.set_value(poses)
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
-        output.set_value(self.cell.status(self.world(context), context.get_time()))
+        status = self.cell.status(self.world(context), context.get_time(), self.geometry_ids)
+        output.set_value(status)
 
 
 class TcpPose(LeafSystem):
@@ -247,7 +249,7 @@ def add_workpieces(
     )
     filter_against(
         scene_graph,
-        workpieces.geometry_set(scene_graph),
+        workpieces.geometry_set(),
         other_proximity_geometry(scene_graph, workpieces.source_id),
     )
     if tool_frame is not None:

@@ -14,6 +14,7 @@ person's hands. An object's frame is at its centre; its grasp surface is its top
 import math
 from dataclasses import dataclass, field
 
+from pydrake.geometry import GeometryId
 from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
 
@@ -126,7 +127,8 @@ class ObjectStatus:
     """One live object. `velocity` is spatial (angular, linear) in the world frame at the
     object's origin; `holder` is None when the object is free; `support` names what a free
     object rests on (a surface or model name, a conveyor, or `object:<id>`), None while it
-    is held or falling."""
+    is held or falling. `geometry_id` is its SceneGraph geometry (for distance queries, e.g.
+    a carried object as part of its holder's body) and `mass` its mass in kg."""
 
     id: int
     type: str
@@ -135,6 +137,8 @@ class ObjectStatus:
     holder: str | None
     support: str | None
     attributes: Attributes
+    mass: float = 0.0
+    geometry_id: GeometryId | None = None
 
     @property
     def supporting_object(self) -> int | None:

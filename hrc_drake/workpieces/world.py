@@ -223,7 +223,8 @@ class Workcell:
     def pose_at(self, piece: Piece, world: World, time: float) -> RigidTransform:
         return moved(piece.pose, piece.velocity, max(time - world.time, 0.0))
 
-    def status(self, world: World, time: float) -> WorkpiecesStatus:
+    def status(self, world: World, time: float, geometry_ids=()) -> WorkpiecesStatus:
+        """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
         objects = tuple(
             ObjectStatus(
                 id=p.id,
@@ -233,6 +234,8 @@ class Workcell:
                 holder=p.holder,
                 support=p.support,
                 attributes=p.attributes,
+                mass=self.kinds[p.type].mass,
+                geometry_id=geometry_ids[p.slot] if geometry_ids else None,
             )
             for p in world.pieces.values()
         )

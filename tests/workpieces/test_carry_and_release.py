@@ -45,13 +45,13 @@ def test_gripped_object_follows_the_tool_and_rests_on_the_table_when_released():
     tool, commands = carry_to((X + 0.4, Y - 0.2, PART_TOP + 0.03))
     rig = build_rig(config_with(objects=[part_on_table()]), commands, tool)
     X_TO = tool(0.0).inverse() @ rig.status().object(1).pose
-    frame_id = rig.workpieces.frame_ids[0]
+    geometry_id = rig.status().object(1).geometry_id
     position_errors, angle_errors = [], []
     for t in np.arange(0.5, 3.1, 0.0173):  # between the 10 ms updates too
         status = rig.advance(t)
         assert status.object(1).holder == ROBOT
         expected = tool(t) @ X_TO
-        for pose in (status.object(1).pose, rig.query().GetPoseInWorld(frame_id)):
+        for pose in (status.object(1).pose, rig.query().GetPoseInWorld(geometry_id)):
             error = expected.inverse() @ pose
             position_errors.append(np.linalg.norm(error.translation()))
             angle_errors.append(AngleAxis(error.rotation().matrix()).angle())

@@ -56,7 +56,7 @@ def test_the_tool_pose_is_the_plants_tcp_and_the_vacuum_attaches_the_part_under_
     X_WT, status = station
     assert status.result("robot_gripper") == CommandResult(5, "Attach", SUCCEEDED, object_id=1)
     part = status.object(1)
-    assert part.holder == ROBOT
+    assert part.holder == ROBOT and part.mass == 0.4
     top_centre = part.pose.translation() + [0.0, 0.0, PART_HEIGHT / 2]
     assert np.linalg.norm(top_centre - X_WT.translation()) < 2e-3
 

@@ -43,7 +43,7 @@ def test_touching_footprints_do_not_overlap_but_turned_ones_do():
 
 def test_workpieces_are_collision_filtered_against_the_plant_and_each_other(rig):
     inspector = rig.scene_graph.model_inspector()
-    mine = rig.workpieces.geometry_set(rig.scene_graph)
+    mine = rig.workpieces.geometry_set()
     mine_ids = inspector.GetGeometryIds(mine)
     others = [g for g in inspector.GetAllGeometryIds(Role.kProximity) if g not in mine_ids]
     assert len(mine_ids) == 6 and others
