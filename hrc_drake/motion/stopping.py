@@ -56,11 +56,12 @@ class StoppingData:
 
 def stopping_data(variant: str) -> StoppingData:
     """The stored worst-case stop of `variant` from top speed."""
-    entry = _load()[variant]
+    entry = load_stopping_file()[variant]
     return StoppingData(entry["time"], entry["distance"], entry["speed"])
 
 
-def _load() -> dict:
+def load_stopping_file() -> dict:
+    """The whole stopping data file: per variant the worst case and each measured motion."""
     return yaml.safe_load((resource_dir("models") / STOPPING_FILE).read_text())
 
 
