@@ -30,7 +30,7 @@ from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.areas import Area
 from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
-from hrc_drake.workpieces.config import WorkpiecesConfig
+from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import (
     Solid,
@@ -65,6 +65,7 @@ from hrc_drake.workpieces.messages import (
     object_support,
 )
 from hrc_drake.workpieces.surfaces import Supports, Surface
+from hrc_drake.yaml_check import field_path
 
 GRAVITY = 9.81
 REST_TOLERANCE = 1e-6
@@ -181,6 +182,10 @@ class Workcell:
         issuers: tuple[str, ...] = (),
         areas: dict[str, Area] | None = None,
     ):
+        found = problems(config)
+        if found:
+            (path, message), *_ = found
+            raise ValueError(f"{field_path(('workpieces', *path))}: {message}")
         self.config = config
         self.issuers = tuple(issuers)
         self.areas = dict(areas or {})

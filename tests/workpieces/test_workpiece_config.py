@@ -3,6 +3,8 @@
 import dataclasses
 
 import pytest
+from hrc_drake.systems.workpieces import Workpieces
+from pydrake.geometry import SceneGraph
 from workpieces_rig import EXAMPLE, Section, load_example
 
 from hrc_drake.workpieces.config import (
@@ -91,3 +93,9 @@ def config_with_problem(**changes) -> WorkpiecesConfig:
 def test_problems_name_the_field(config, path, message):
     found = problems(config)
     assert found and found[0][0] == path and found[0][1].startswith(message)
+
+
+def test_the_system_refuses_a_config_with_problems():
+    config = config_with_problem(objects=[PlacedObject(type="crate")])
+    with pytest.raises(ValueError, match=r"workpieces.objects\[0\].type: unknown object type"):
+        Workpieces(config, SceneGraph())
