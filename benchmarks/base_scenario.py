@@ -19,11 +19,11 @@ from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
-from hrc_drake.builder import add_robot, make_control_plant
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
+from hrc_drake.station_models import add_robot, make_control_plant
 
 
 def bare_diagram(scenario):

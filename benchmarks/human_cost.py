@@ -1,29 +1,24 @@
 """Cost of the simulated person: real-time factor of the base cell with and without it.
 
 The cell is the base scenario's station (dynamic plant with iisy, tool and cell, SAP,
-inverse-dynamics controller holding home). The person variant adds the HumanActor through
-`add_human`, walking back and forth between two points for the whole run (turns included).
+inverse-dynamics controller and RobotMotion holding home). The person variant adds the
+scenario's `human:` section, walking back and forth between two points for the whole run
+(turns included).
 Both variants run in this process, alternating, best of the repeats.
 
     .venv/bin/python benchmarks/human_cost.py [--duration 10] [--repeats 3]
 """
 
 import argparse
-import math
 import time
 
-import numpy as np
 from pydrake.common.value import AbstractValue
-from pydrake.multibody.parsing import ProcessModelDirectives
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
-from pydrake.systems.primitives import ConstantVectorSource
 
-from hrc_drake.builder import _add_controller, _directives, _parser, add_robot
-from hrc_drake.human.builder import add_human
+from hrc_drake.builder import build_diagram
 from hrc_drake.human.messages import MoveCommand
-from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario import HumanConfig, load_scenario
 
 LEGS = ((1.5, -2.0), (-1.5, -2.0))
 """The person walks between these two points (m), about 3 m in front of the robot."""
@@ -48,27 +43,20 @@ class Patrol(LeafSystem):
 
 
 def cell(with_person: bool):
+    """The base station through the scenario builder; with the person (and no safety
+    monitor, so only the person's cost is measured) patrolling in front of the robot."""
     scenario = load_scenario("base")
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
-        builder,
-    )
-    parser = _parser(plant)
-    robot = add_robot(plant, parser, scenario.robot)
-    ProcessModelDirectives(_directives(scenario), plant, parser)
-    plant.Finalize()
-    q0 = scenario.configuration(scenario.robot.initial_configuration)
-    plant.SetDefaultPositions(robot, q0)
-    controller = _add_controller(builder, scenario, plant, robot)
-    desired = builder.AddSystem(ConstantVectorSource(np.concatenate([q0, np.zeros_like(q0)])))
-    builder.Connect(desired.get_output_port(), controller.get_input_port_desired_state())
     if with_person:
-        start = (*LEGS[0], math.pi)
-        actor, _ = add_human(builder, scene_graph, start_pose=start, dynamic_plant=plant)
+        scenario.human = HumanConfig(start=[*LEGS[0], 180.0])
+        scenario.safety.enabled = False
+    builder = DiagramBuilder()
+    station = builder.AddSystem(build_diagram(scenario))
+    if with_person:
         patrol = builder.AddSystem(Patrol())
-        builder.Connect(actor.GetOutputPort("human_status"), patrol.get_input_port())
-        builder.Connect(patrol.get_output_port(), actor.GetInputPort("human_command"))
+        builder.Connect(station.GetOutputPort("human_status"), patrol.get_input_port())
+        builder.Connect(
+            patrol.get_output_port(), station.GetInputPort("human_actor.human_tree_command")
+        )
     return builder.Build()
 
 

@@ -24,11 +24,11 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from hrc_drake.builder import _parser, add_robot, make_control_plant
 from hrc_drake.human.body import parse_human
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
+from hrc_drake.station_models import add_robot, make_control_plant, model_parser
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "safety"))
 from approach_cell import kinematic, walk  # noqa: E402  (the approach test's cell)
@@ -58,7 +58,7 @@ def cell(with_monitor: bool, duration: float):
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
         builder,
     )
-    arm = add_robot(plant, _parser(plant), scenario.robot)
+    arm = add_robot(plant, model_parser(plant), scenario.robot)
     plant.Finalize()
     q0 = scenario.configuration("home")
     plant.SetDefaultPositions(arm, q0)

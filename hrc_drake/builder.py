@@ -1,84 +1,82 @@
 """Scenario -> one Drake Diagram (the `manipulation.station` / `hardware_sim` pattern).
 
-The station diagram holds the dynamic plant (robot + tool + static cell), the robot's
-inverse-dynamics controller, the source of the robot's desired state, SceneGraph and,
-when asked, a Meshcat visualizer. It exports the ports a caller (runner, notebook, test)
-needs, so measurement systems are added around it rather than inside it.
+The station holds the dynamic plant (robot + tool + static cell) under its inverse-dynamics
+controller and RobotMotion; the kinematic person (HumanActor); the Workpieces; the
+SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a Meshcat
+visualizer. Each part is present when the scenario asks for it: no `human:` section, no
+person and no monitor; no workpiece types, no Workpieces; no `trees:`, no behavior trees.
+
+Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
+`robot_motion.robot_command`), so tests and notebooks can command the actors directly.
+Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
+`query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
+`safety_status`, `safety_signals`, `<agent>_tree_status`, `<agent>_task_events`.
 """
 
 import numpy as np
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
-from pydrake.multibody.parsing import ModelDirectives, Parser, ProcessModelDirectives
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import Diagram, DiagramBuilder
-from pydrake.systems.primitives import ConstantVectorSource
 
-from hrc_drake.iisy import BASE_FRAME, VARIANTS, add_iisy, add_tool
-from hrc_drake.paths import add_model_package
-from hrc_drake.scenario import NO_TOOL, RobotConfig, Scenario
+from hrc_drake.agent_trees import load_agent_tree
+from hrc_drake.human.builder import add_human
+from hrc_drake.iisy import TCP_FRAME, VARIANTS
+from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
+from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
+from hrc_drake.seeding import stream
+from hrc_drake.station_models import (
+    TOOL_MODEL,
+    add_station_models,
+    make_control_plant,
+    model_parser,
+)
+from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
+from hrc_drake.systems.robot_motion import add_robot_motion
+from hrc_drake.systems.safety_monitor import add_safety_monitor
+from hrc_drake.systems.workpieces import HumanHands, add_workpieces
 
-ROBOT_MODEL = "iisy"
-TOOL_MODEL = "tool"
 VISUALIZER = "meshcat_visualizer"
+HUMAN_NAME = "human"
+GRIPPER_ISSUER = "robot_gripper"
+
+
+def tree_issuer(agent: str) -> str:
+    """How the actors name the commands of `agent`'s behavior tree."""
+    return f"{agent}_tree"
 
 
 def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram:
-    """The whole scenario as one Diagram named after the scenario.
-
-    Exported ports: `robot_state` (q, v of the arm), `robot_desired_state`,
-    `query_object`, `body_poses`.
-    """
+    """The whole scenario as one Diagram named after the scenario (see module docstring)."""
     builder = DiagramBuilder()
-    plant_config = MultibodyPlantConfig(
-        time_step=scenario.time_step, discrete_contact_approximation="sap"
+    plant, scene_graph = AddMultibodyPlant(
+        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
+        builder,
     )
-    plant, scene_graph = AddMultibodyPlant(plant_config, builder)
-    parser = _parser(plant)
-    robot = add_robot(plant, parser, scenario.robot)
-    ProcessModelDirectives(_directives(scenario), plant, parser)
+    arm, _ = add_station_models(plant, model_parser(plant), scenario)
     plant.Finalize()
-    q0 = scenario.configuration(scenario.robot.initial_configuration)
-    plant.SetDefaultPositions(robot, q0)
+    plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
+    controller = _add_controller(builder, scenario, plant, arm)
 
-    controller = _add_controller(builder, scenario, plant, robot)
-    desired = builder.AddNamedSystem(
-        "robot_desired_state", ConstantVectorSource(np.concatenate([q0, np.zeros_like(q0)]))
+    human, human_plant = _add_person(builder, scene_graph, plant, scenario)
+    workpieces = _add_workpieces(builder, scene_graph, plant, scenario, human)
+    motion = add_robot_motion(
+        builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
-    builder.Connect(desired.get_output_port(), controller.get_input_port_desired_state())
-
+    safety = _add_safety(builder, scene_graph, plant, human_plant, motion, scenario)
+    actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
+    trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
     if meshcat is not None:
         _add_visualizer(builder, scene_graph, meshcat, scenario)
 
-    builder.ExportOutput(plant.get_state_output_port(robot), "robot_state")
-    builder.ExportOutput(desired.get_output_port(), "robot_desired_state")
-    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
-    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
+    _export_outputs(builder, plant, arm, scene_graph, actors, trees)
+    _export_open_inputs(builder, [motion, human, workpieces])
     diagram = builder.Build()
     diagram.set_name(scenario.name)
     return diagram
 
 
-def add_robot(plant: MultibodyPlant, parser: Parser, robot: RobotConfig):
-    """Adds the iisy (and its tool on the flange), base welded at the scenario's pose."""
-    arm = add_iisy(plant, robot.variant, parser)
-    plant.RenameModelInstance(arm, ROBOT_MODEL)
-    base_pose = robot.base_pose.GetDeterministicValue()
-    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(BASE_FRAME, arm), base_pose)
-    if robot.tool != NO_TOOL:
-        plant.RenameModelInstance(add_tool(plant, arm, parser), TOOL_MODEL)
-    return arm
-
-
-def make_control_plant(scenario: Scenario) -> MultibodyPlant:
-    """The arm and tool alone, for inverse dynamics (the controller's model of the robot)."""
-    control_plant = MultibodyPlant(time_step=scenario.time_step)
-    add_robot(control_plant, _parser(control_plant), scenario.robot)
-    control_plant.Finalize()
-    return control_plant
-
-
-def _add_controller(builder, scenario, plant, robot) -> InverseDynamicsController:
+def _add_controller(builder, scenario, plant, arm) -> InverseDynamicsController:
     variant = VARIANTS[scenario.robot.variant]
     controller = builder.AddNamedSystem(
         "robot_controller",
@@ -87,12 +85,129 @@ def _add_controller(builder, scenario, plant, robot) -> InverseDynamicsControlle
             kp=variant.kp,
             ki=variant.ki,
             kd=variant.kd,
-            has_reference_acceleration=False,
+            has_reference_acceleration=True,
         ),
     )
-    builder.Connect(plant.get_state_output_port(robot), controller.get_input_port_estimated_state())
-    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(robot))
+    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
+    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
     return controller
+
+
+def _add_person(builder, scene_graph, plant, scenario):
+    if scenario.human is None:
+        return None, None
+    x, y, yaw_deg = scenario.human.start
+    human, human_plant = add_human(
+        builder,
+        scene_graph,
+        scenario.human.height,
+        scenario.human.mass,
+        name=HUMAN_NAME,
+        start_pose=(x, y, np.radians(yaw_deg)),
+        dynamic_plant=plant,
+        issuers=tuple(tree_issuer(agent) for agent in AGENTS),
+    )
+    return human, human_plant
+
+
+def _add_workpieces(builder, scene_graph, plant, scenario, human):
+    if not scenario.workpieces.types:
+        return None
+    tool_frame = None
+    if scenario.robot.tool != NO_TOOL:
+        tool_frame = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
+    workpieces = add_workpieces(
+        builder,
+        scene_graph,
+        plant,
+        scenario.workpieces,
+        seed=stream(scenario.seed, "workpieces"),
+        tool_frame=tool_frame,
+        areas={name: scenario.area(name) for name in scenario.areas},
+        issuers=(*(tree_issuer(agent) for agent in AGENTS), GRIPPER_ISSUER),
+    )
+    if human is not None:
+        hands = builder.AddNamedSystem("human_hands", HumanHands())
+        builder.Connect(human.GetOutputPort("human_status"), hands.get_input_port())
+        builder.Connect(hands.get_output_port(), workpieces.GetInputPort("human_hands"))
+    return workpieces
+
+
+def _add_safety(builder, scene_graph, plant, human_plant, motion, scenario):
+    if human_plant is None or not scenario.safety.enabled:
+        return None
+    safety = add_safety_monitor(
+        builder,
+        scene_graph,
+        plant,
+        human_plant,
+        human_plant.GetModelInstanceByName(HUMAN_NAME),
+        scenario.safety,
+        scenario.robot.variant,
+    )
+    builder.Connect(safety.GetOutputPort("speed_scale"), motion.GetInputPort("speed_scale"))
+    builder.Connect(motion.GetOutputPort("robot_status"), safety.get_robot_status_input_port())
+    return safety
+
+
+def _add_tree(builder, scenario, agent: str, actors: dict) -> BehaviorTreeSystem:
+    """The agent's tree, reading every actor's status and commanding the actors it may:
+    the robot's tree the robot, the person's tree the person, both trees the workpieces and
+    (to call the person) the person."""
+    tree, context = load_agent_tree(scenario, agent)
+    context.seq_start, context.seq_step = AGENTS.index(agent) + 1, len(AGENTS)
+    system = builder.AddNamedSystem(
+        f"bt_{agent}",
+        BehaviorTreeSystem(
+            tree, context, stream(scenario.seed, f"tree/{agent}"), scenario.trees[agent].period
+        ),
+    )
+    for source in STATUS_INPUTS:
+        if actors[source] is not None:
+            builder.Connect(
+                _status_output(source, actors[source]), system.GetInputPort(status_port(source))
+            )
+    commanded = [
+        (HUMAN, f"{tree_issuer(agent)}_command"),
+        (WORKPIECES, f"{tree_issuer(agent)}_command"),
+    ]
+    if agent == ROBOT:
+        commanded.append((ROBOT, "robot_command"))
+    for actor, port in commanded:
+        if actors[actor] is not None:
+            builder.Connect(
+                system.GetOutputPort(command_port(actor)), actors[actor].GetInputPort(port)
+            )
+    return system
+
+
+def _status_output(actor_name: str, system):
+    return system.GetOutputPort(status_port(actor_name))
+
+
+def _export_outputs(builder, plant, arm, scene_graph, actors, trees) -> None:
+    builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
+    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
+    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
+    motion = actors[ROBOT]
+    builder.ExportOutput(motion.GetOutputPort("robot_status"), "robot_status")
+    builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
+    for name in (HUMAN, WORKPIECES, SAFETY):
+        if actors[name] is not None:
+            builder.ExportOutput(_status_output(name, actors[name]), status_port(name))
+    if actors[SAFETY] is not None:
+        builder.ExportOutput(actors[SAFETY].GetOutputPort("safety_signals"), "safety_signals")
+    for tree in trees:
+        builder.ExportOutput(tree.GetOutputPort("tree_status"), f"{tree.agent}_tree_status")
+        builder.ExportOutput(tree.GetOutputPort("task_events"), f"{tree.agent}_task_events")
+
+
+def _export_open_inputs(builder, systems) -> None:
+    for system in (s for s in systems if s is not None):
+        for i in range(system.num_input_ports()):
+            port = system.get_input_port(i)
+            if not builder.IsConnectedOrExported(port):
+                builder.ExportInput(port, f"{system.get_name()}.{port.get_name()}")
 
 
 def _add_visualizer(builder, scene_graph, meshcat, scenario) -> None:
@@ -109,15 +224,3 @@ def _add_visualizer(builder, scene_graph, meshcat, scenario) -> None:
         visualizer = MeshcatVisualizer.AddToBuilder(builder, scene_graph, meshcat, params)
         if role == Role.kIllustration:
             visualizer.set_name(VISUALIZER)
-
-
-def _parser(plant: MultibodyPlant) -> Parser:
-    parser = Parser(plant)
-    add_model_package(parser.package_map())
-    return parser
-
-
-def _directives(scenario: Scenario) -> ModelDirectives:
-    directives = ModelDirectives()
-    directives.directives = scenario.cell
-    return directives

@@ -5,6 +5,8 @@ sequence number it accepted and that command's outcome, so an asynchronous behav
 node knows when *its* command finished (DESIGN.md, "Data flow and timing").
 """
 
+from dataclasses import dataclass
+
 RUNNING = "running"
 SUCCEEDED = "succeeded"
 FAILED = "failed"
@@ -13,3 +15,26 @@ CANCELLED = "cancelled"
 
 OUTCOMES = (RUNNING, SUCCEEDED, FAILED, REJECTED, CANCELLED)
 FINISHED = (SUCCEEDED, FAILED, REJECTED, CANCELLED)
+
+
+def newer_commands(value, seen: int) -> list:
+    """The commands on a command port that are newer than sequence number `seen`.
+
+    A port carries None, one command, or a tuple of recent commands oldest first (a
+    behavior tree may send two commands to one actor in one tick); every command has `seq`.
+    """
+    if value is None:
+        return []
+    commands = value if isinstance(value, tuple) else (value,)
+    return [command for command in commands if command.seq > seen]
+
+
+@dataclass(frozen=True)
+class TaskEvent:
+    """Something a tree reports as done (its Emit node): `name` is e.g. part_finished,
+    part_rejected, helped; reports count them per hour."""
+
+    time: float
+    name: str
+    agent: str = ""
+    value: str = ""

@@ -30,7 +30,6 @@ import hrc_drake
 from hrc_drake.builder import VISUALIZER, build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
-    TaskEvent,
     bt_metrics,
     person_metrics,
     safety_metrics,
@@ -120,10 +119,7 @@ class _RunOutputs:
             times=log.sample_times() if log is not None else np.zeros(0),
             signals=log.data() if log is not None else None,
             status=_final(station, station_context, "safety_status"),
-            events=[
-                TaskEvent(e.time, e.name, getattr(e, "agent", ""))
-                for e in _final(station, station_context, "task_events") or ()
-            ],
+            events=[e for e in _final(station, station_context, "task_events") or ()],
             states=states_log.changes() if states_log is not None else {},
             bt_statistics=_final(station, station_context, "bt_statistics"),
         )

@@ -20,6 +20,7 @@ from pydrake.multibody.parsing import ModelDirective, PackageMap
 from hrc_drake.areas import Area
 from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
+from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
@@ -46,6 +47,7 @@ class RobotConfig:
     tool: str = "vacuum_gripper"
     initial_configuration: str = "home"
     configurations_deg: dict[str, list[float]] = field(default_factory=dict)
+    motion: MotionOptions = field(default_factory=MotionOptions)
 
 
 @dataclass
@@ -218,6 +220,9 @@ def _check_robot(robot: RobotConfig, fail) -> None:
     for name, q in robot.configurations_deg.items():
         if len(q) != joints:
             fail(("configurations_deg", name), f"needs {joints} joint angles, got {len(q)}")
+    for name in ("update_period", "planning_time_budget", "tool_speed_limit"):
+        if not getattr(robot.motion, name) > 0:
+            fail(("motion", name), f"must be positive, got {getattr(robot.motion, name)}")
     known = {"home", *robot.configurations_deg}
     if robot.initial_configuration not in known:
         fail(

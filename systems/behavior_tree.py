@@ -21,7 +21,8 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
 from hrc_drake.bt import NodeCounters, Status, Tree
-from hrc_drake.nodes.context import ACTORS, STATUS_INPUTS, AgentContext, TaskEvent
+from hrc_drake.messages import TaskEvent
+from hrc_drake.nodes.context import ACTORS, STATUS_INPUTS, AgentContext
 
 COMMAND_WINDOW = 16
 """Commands kept per actor port: far more than one tick sends to one actor."""

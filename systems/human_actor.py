@@ -1,6 +1,9 @@
 """HumanActor: the simulated person's state machine as a Drake LeafSystem.
 
-Input `human_command` (abstract): the latest command (hrc_drake.human.messages) or None.
+Inputs `<issuer>_command` (abstract), one per command issuer (default one, `human_command`):
+None, a command (hrc_drake.human.messages) or a tuple of recent commands; each issuer's new
+commands are handled in order (the robot's tree may call the person while the person's own
+tree directs them).
 Outputs, both computed from state only: `human_positions` (the kinematic human plant's q,
 for MultibodyPositionToGeometryPose) and `human_status` (HumanStatus). A periodic
 unrestricted update (60 Hz by default, above Meshcat's frame rate) runs the protocol and
@@ -34,11 +37,15 @@ class HumanActor(LeafSystem):
         clips: dict[str, Clip] | None = None,
         start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
         period: float = UPDATE_PERIOD,
+        issuers: tuple[str, ...] = ("human",),
     ):
         LeafSystem.__init__(self)
         self._ctx = Context(body or human_body(), clips or load_clips())
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
-        self._command = self.DeclareAbstractInputPort("human_command", AbstractValue.Make(None))
+        self._commands = {
+            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))
+            for issuer in issuers
+        }
         self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._status = self.DeclareAbstractState(AbstractValue.Make(HumanStatus()))
         first_pose = self._ctx.body.plant_positions(pose_at(self._ctx, initial, 0.0))
@@ -60,8 +67,11 @@ class HumanActor(LeafSystem):
 
     def _update(self, context, state) -> None:
         t = context.get_time()
-        command = self._command.Eval(context) if self._command.HasValue(context) else None
-        actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, command)
+        commands = {
+            issuer: port.Eval(context) if port.HasValue(context) else None
+            for issuer, port in self._commands.items()
+        }
+        actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, commands)
         state.get_mutable_abstract_state(self._actor).set_value(actor)
         positions = self._ctx.body.plant_positions(actor.pose)
         state.get_mutable_discrete_state(self._positions).set_value(positions)

@@ -19,7 +19,15 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem, ValueProducer
 
 from hrc_drake.iisy import VARIANTS
-from hrc_drake.messages import CANCELLED, FAILED, FINISHED, REJECTED, RUNNING, SUCCEEDED
+from hrc_drake.messages import (
+    CANCELLED,
+    FAILED,
+    FINISHED,
+    REJECTED,
+    RUNNING,
+    SUCCEEDED,
+    newer_commands,
+)
 from hrc_drake.motion.deadline import PlanningFailed
 from hrc_drake.motion.execution import Progress, desired_motion, next_progress
 from hrc_drake.motion.messages import (
@@ -100,9 +108,9 @@ class MotionState:
 class RobotMotion(LeafSystem):
     """Plans and executes the robot's moves; see the module docstring.
 
-    Inputs: `robot_command` (latest command or None), `speed_scale` (safety scale, 1.0 when
-    unconnected), `robot_state` (arm q, v), `workpieces_status` (WorkpiecesStatus, or
-    unconnected when the scenario has no workpieces).
+    Inputs: `robot_command` (None, a command, or a tuple of recent commands), `speed_scale`
+    (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
+    (WorkpiecesStatus, or unconnected when the scenario has no workpieces).
     Outputs: `desired_state` (q, v), `desired_acceleration`, `robot_status` (RobotStatus),
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
@@ -210,8 +218,8 @@ class RobotMotion(LeafSystem):
         x = self._robot_state.Eval(context)
         q, v = x[: self._n], x[self._n :]
         state = self._measured(self._state(context), q, v, self._safety_scale(context), t)
-        command = self._command.Eval(context) if self._command.HasValue(context) else None
-        if command is not None and command.seq > state.seen_seq:
+        commands = self._command.Eval(context) if self._command.HasValue(context) else None
+        for command in newer_commands(commands, state.seen_seq):
             state = self._accept(state.replace(seen_seq=command.seq), command, context, t)
         state = self._workpieces_seen(state, context, t)
         state = self._planned_when_at_rest(state, t)
@@ -312,8 +320,8 @@ class RobotMotion(LeafSystem):
         if not state.gripper_waiting:
             return state
         seq = state.gripper_command.seq
-        if status.outcome_of(GRIPPER_ISSUER, seq) in FINISHED:
-            result = status.result(GRIPPER_ISSUER)
+        result = status.result_of(GRIPPER_ISSUER, seq)
+        if result is not None and result.outcome in FINISHED:
             state = state.replace(gripper_waiting=False)
             return state.with_result(seq, result.outcome, result.reason)
         if t - state.gripper_since > self._options.gripper_timeout:
@@ -397,11 +405,9 @@ def add_robot_motion(
 ) -> RobotMotion:
     """Adds RobotMotion as "robot_motion" between the plant and its InverseDynamicsController.
 
-    Feeds the acceleration forward when the controller takes a reference acceleration, and
-    exports `robot_command`, `speed_scale` (inputs), `robot_status` and
-    `robot_desired_state` (outputs). With `workpieces` (the Workpieces system) the vacuum
-    gripper issues its `robot_gripper` commands and reads its status; without, Grip and
-    Release fail with a reason.
+    Feeds the acceleration forward when the controller takes a reference acceleration. With
+    `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
+    commands and reads its status; without, Grip and Release fail with a reason.
     """
     motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
@@ -419,10 +425,6 @@ def add_robot_motion(
             workpieces.GetInputPort(f"{GRIPPER_ISSUER}_command"),
         )
         builder.Connect(
-            workpieces.GetOutputPort("status"), motion.GetInputPort("workpieces_status")
+            workpieces.GetOutputPort("workpieces_status"), motion.GetInputPort("workpieces_status")
         )
-    for name in ("robot_command", "speed_scale"):
-        builder.ExportInput(motion.GetInputPort(name), name)
-    builder.ExportOutput(motion.GetOutputPort("robot_status"), "robot_status")
-    builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
     return motion

@@ -1,5 +1,5 @@
 """Workpieces: kinematic objects that behavior trees spawn, robot and person carry and hand
-over, conveyors transport, and every other system can track through the `status` port.
+over, conveyors transport, and every other system can track through the `workpieces_status` port.
 
 The objects are a SceneGraph source of their own (proximity + illustration geometry), not
 bodies of the dynamic plant, so they must be collision-filtered against everything else
@@ -60,7 +60,7 @@ class Workpieces(LeafSystem):
     Inputs: `<issuer>_command` for each issuer (the issuer's latest command or None),
     `tool_pose` (RigidTransform of the robot's `tcp` in the world) and `human_hands`
     (HandPoses); an unconnected holder input means that holder does not exist.
-    Outputs: `geometry_pose` (FramePoseVector for SceneGraph) and `status`
+    Outputs: `geometry_pose` (FramePoseVector for SceneGraph) and `workpieces_status`
     (WorkpiecesStatus), both from state only, extrapolated from the last update to the
     context's time. State: one immutable World, updated every `config.update_period`.
     """
@@ -103,7 +103,7 @@ class Workpieces(LeafSystem):
             prerequisites_of_calc=from_state,
         )
         self.DeclareAbstractOutputPort(
-            "status",
+            "workpieces_status",
             lambda: AbstractValue.Make(self.cell.status(initial, 0.0)),
             self._calc_status,
             prerequisites_of_calc=from_state,

@@ -6,25 +6,16 @@ seed. Sections whose source is absent are empty, never missing.
 """
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SIGNALS, SafetyStatus
 from hrc_drake.safety.ssm import ZONES
 
 WAITING_SPEED = 0.05
 """m/s below which the person counts as waiting (standing)."""
 SECONDS_PER_HOUR = 3600.0
-
-
-@dataclass(frozen=True)
-class TaskEvent:
-    """Something a tree reports as done: `name` is e.g. part_finished, part_rejected, helped."""
-
-    time: float
-    name: str
-    agent: str = ""
 
 
 def rounded(x: float, digits: int = 9):

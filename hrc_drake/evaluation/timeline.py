@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
-from hrc_drake.evaluation.metrics import TaskEvent
+from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SIGNALS
 
 HEAT_CELL = 0.1

@@ -46,20 +46,24 @@ def add_human(
     name: str = "human",
     start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
     dynamic_plant: MultibodyPlant | None = None,
+    issuers: tuple[str, ...] = ("human",),
 ) -> tuple[HumanActor, MultibodyPlant]:
     """Add a person: returns the HumanActor and the person's kinematic plant.
 
     The plant (time_step 0) is registered with `scene_graph` but is not a system of the
     diagram: it is never stepped. Its geometry is collision-filtered against itself and
     against every collision geometry `dynamic_plant` has at this point (add the person after
-    the dynamic plant's models). Connect a command source to `actor.GetInputPort("human_command")`.
+    the dynamic plant's models). Connect each issuer's commands to the actor's
+    `<issuer>_command` input (default: `human_command`).
     """
     plant = MultibodyPlant(0.0)
     plant.RegisterAsSourceForSceneGraph(scene_graph)
     parse_human(plant, height, mass, name)
     plant.Finalize()
     body = human_body(height, mass)
-    actor = builder.AddSystem(HumanActor(body, scaled_clips(load_clips(), height), start_pose))
+    actor = builder.AddSystem(
+        HumanActor(body, scaled_clips(load_clips(), height), start_pose, issuers=issuers)
+    )
     actor.set_name(f"{name}_actor")
     to_pose = builder.AddSystem(MultibodyPositionToGeometryPose(plant))
     to_pose.set_name(f"{name}_geometry")

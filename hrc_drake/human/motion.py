@@ -2,7 +2,7 @@
 
 `ActorState` is frozen and holds no Drake objects, so it lives in a System's abstract state
 and copies cheaply. `pose_at(state, t)` gives the joint positions at any time from the state
-alone; `advance(state, t, command)` is one update of the state machine
+alone; `advance(state, t, commands)` is one update of the state machine
 SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 """
 
@@ -25,6 +25,7 @@ from hrc_drake.human.messages import (
     SetCalledCommand,
 )
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
+from hrc_drake.messages import newer_commands
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
@@ -273,7 +274,8 @@ class ActorState:
     state: str = "SETUP"
     activity: Activity | None = None
     running: int = -1
-    seen: int = -1
+    seen: tuple[tuple[str, int], ...] = ()
+    """(issuer, newest seq taken from it), per command issuer."""
     results: tuple[CommandResult, ...] = ()
     called: bool = False
     event: str = ""
@@ -387,7 +389,6 @@ def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **cha
 
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
-    state = replace(state, seen=command.seq)
     if isinstance(command, SetCalledCommand):
         return _record(replace(state, called=command.called), command.seq, "succeeded")
     if isinstance(command, CancelCommand):
@@ -441,8 +442,9 @@ def _events(ctx: Context, state: ActorState, t0: float, t1: float) -> list[str]:
     return fired
 
 
-def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
-    """One update at time t with the latest command on the port (or None)."""
+def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorState:
+    """One update at time t with each issuer's command port value (None, a command or a
+    tuple of recent commands): the commands not seen before are handled in order."""
     previous_t = state.last_update
     if state.state == "SETUP":
         state = replace(
@@ -453,8 +455,12 @@ def advance(ctx: Context, state: ActorState, t: float, command) -> ActorState:
             activity=_idle(state.start_pose, t),
         )
         previous_t = t
-    if command is not None and command.seq > state.seen:
-        state = _handle(ctx, state, command, t)
+    seen = dict(state.seen)
+    for issuer, value in commands.items():
+        for command in newer_commands(value, seen.get(issuer, -1)):
+            seen[issuer] = command.seq
+            state = _handle(ctx, state, command, t)
+    state = replace(state, seen=tuple(sorted(seen.items())))
     if state.running >= 0 and t >= state.activity.end(ctx):
         final = state.activity.final_pose
         state = _record(state, state.running, "succeeded")

@@ -6,12 +6,11 @@ the simulated station: planning never touches the station's context.
 
 import numpy as np
 from pydrake.math import RigidTransform
-from pydrake.multibody.parsing import ModelDirectives, ProcessModelDirectives
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
-from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import NO_TOOL, Scenario
+from hrc_drake.station_models import add_station_models
 
 EDGE_STEP = 0.01
 """Joint-space resolution (rad) of edge collision checks: about 1 cm at the tool."""
@@ -90,17 +89,3 @@ class PlanningModel:
 
     def within_limits(self, q) -> bool:
         return bool(np.all(q >= self.lower - 1e-9) and np.all(q <= self.upper + 1e-9))
-
-
-def add_station_models(plant, parser, scenario: Scenario):
-    """The station's robot (as the builder adds it) and the scenario's static cell; returns
-    the arm and the robot's model instances (arm, then tool if any). Does not finalize."""
-    from hrc_drake.builder import ROBOT_MODEL, TOOL_MODEL, add_robot  # builder imports us
-
-    add_model_package(parser.package_map())
-    arm = add_robot(plant, parser, scenario.robot)
-    directives = ModelDirectives()
-    directives.directives = scenario.cell
-    ProcessModelDirectives(directives, plant, parser)
-    names = [ROBOT_MODEL] + ([TOOL_MODEL] if scenario.robot.tool != NO_TOOL else [])
-    return arm, [plant.GetModelInstanceByName(name) for name in names]

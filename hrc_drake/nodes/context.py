@@ -15,6 +15,7 @@ import numpy as np
 from pydrake.math import RigidTransform
 
 from hrc_drake.areas import Area
+from hrc_drake.messages import TaskEvent
 from hrc_drake.tree_types import AreaRef, Pose
 
 ROBOT = "robot"
@@ -24,16 +25,6 @@ SAFETY = "safety"
 ACTORS = (ROBOT, HUMAN, WORKPIECES)
 """Actors a tree commands; each has a command output and a status input."""
 STATUS_INPUTS = (ROBOT, HUMAN, WORKPIECES, SAFETY)
-
-
-@dataclass(frozen=True)
-class TaskEvent:
-    """A task event a tree emitted (Emit node): what the reports count."""
-
-    time: float
-    agent: str
-    event: str
-    value: str = ""
 
 
 @dataclass
@@ -47,15 +38,17 @@ class Places:
 class AgentContext:
     """The tree's handle on its agent's world (see module docstring)."""
 
-    def __init__(self, agent: str, places: Places):
+    def __init__(self, agent: str, places: Places, seq_start: int = 1, seq_step: int = 1):
         self.agent = agent
         self.places = places
+        self.seq_start = seq_start
+        self.seq_step = seq_step
         self.statuses: dict[str, Any] = dict.fromkeys(STATUS_INPUTS)
         self.now = 0.0
         self.reset()
 
     def reset(self) -> None:
-        self.next_seq = 1
+        self.next_seq = self.seq_start
         self.outbox: dict[str, list] = {actor: [] for actor in ACTORS}
         self.events: list[TaskEvent] = []
 
@@ -83,9 +76,12 @@ class AgentContext:
 
     # commands ------------------------------------------------------------------------
     def send(self, actor: str, make_command: Callable[[int], Any]) -> int:
-        """Queue `make_command(seq)` for `actor`; returns its sequence number."""
+        """Queue `make_command(seq)` for `actor`; returns its sequence number.
+
+        Agents count in disjoint steps (robot 1, 3, 5...; person 2, 4, 6...), so an actor
+        commanded by both trees never sees one number twice."""
         seq = self.next_seq
-        self.next_seq += 1
+        self.next_seq += self.seq_step
         self.outbox[actor].append(make_command(seq))
         return seq
 
@@ -94,7 +90,7 @@ class AgentContext:
         return sent
 
     def emit(self, event: str, value: str = "") -> None:
-        self.events.append(TaskEvent(self.now, self.agent, event, value))
+        self.events.append(TaskEvent(self.now, event, self.agent, value))
 
     # places --------------------------------------------------------------------------
     def transform(self, pose: Pose) -> RigidTransform:

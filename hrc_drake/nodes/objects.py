@@ -144,7 +144,7 @@ class SpawnObject(WorkpiecesCommandNode):
         )
 
     def succeeded(self) -> Status:
-        result = self.context.workpieces.result(self.context.workpieces_issuer)
+        result = self.context.workpieces.result_of(self.context.workpieces_issuer, self.seq)
         self.set_output("object_id", result.object_id)
         return Status.SUCCESS
 

@@ -152,7 +152,8 @@ class WorkpiecesStatus:
 
     time: float
     objects: tuple[ObjectStatus, ...]
-    results: dict[str, CommandResult]
+    results: dict[str, tuple[CommandResult, ...]]
+    """Per issuer its recent command results, newest last."""
     free_slots: dict[str, int]
 
     def object(self, object_id: int) -> ObjectStatus | None:
@@ -162,12 +163,17 @@ class WorkpiecesStatus:
         return next((o for o in self.objects if o.holder == holder), None)
 
     def result(self, issuer: str) -> CommandResult | None:
-        return self.results.get(issuer)
+        """`issuer`'s latest command result."""
+        recent = self.results.get(issuer, ())
+        return recent[-1] if recent else None
+
+    def result_of(self, issuer: str, seq: int) -> CommandResult | None:
+        """The result of `issuer`'s command `seq`, if it is among the recent ones."""
+        return next((r for r in reversed(self.results.get(issuer, ())) if r.seq == seq), None)
 
     def outcome_of(self, issuer: str, seq: int) -> str | None:
-        """The outcome of `issuer`'s command `seq`, if that is its latest one."""
-        result = self.results.get(issuer)
-        return result.outcome if result is not None and result.seq == seq else None
+        result = self.result_of(issuer, seq)
+        return result.outcome if result is not None else None
 
 
 OBJECT_SUPPORT_PREFIX = "object:"

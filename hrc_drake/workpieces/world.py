@@ -29,7 +29,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.areas import Area
-from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
+from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED, newer_commands
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import (
@@ -68,6 +68,8 @@ from hrc_drake.workpieces.surfaces import Supports, Surface
 from hrc_drake.yaml_check import field_path
 
 GRAVITY = 9.81
+RESULTS_KEPT = 8
+"""Recent command results kept per issuer, for nodes waiting on their own command."""
 REST_TOLERANCE = 1e-6
 """m: an object this close above its support rests on it."""
 LAYOUT_STREAM, SPAWN_STREAM = 0, 1
@@ -139,7 +141,7 @@ class World:
     next_id: int
     holders: dict[str, HolderSample]
     seen: dict[str, int]
-    results: dict[str, CommandResult]
+    results: dict[str, tuple[CommandResult, ...]]
 
     def __deepcopy__(self, memo):
         """Never modified after construction, so copies can share it (Drake clones state)."""
@@ -213,13 +215,12 @@ class Workcell:
         self,
         world: World,
         now: float,
-        commands: dict[str, WorkpiecesCommand | None],
+        commands: dict[str, WorkpiecesCommand | tuple | None],
         holder_frames: dict[str, Sampled],
     ) -> World:
         step = _Step(self, world, now, holder_frames)
         for issuer_index, issuer in enumerate(self.issuers):
-            command = commands.get(issuer)
-            if command is not None and command.seq > world.seen.get(issuer, -1):
+            for command in newer_commands(commands.get(issuer), world.seen.get(issuer, -1)):
                 step.execute(issuer, issuer_index, command)
         step.remove_past_belt_ends()
         step.settle(instantly=False)
@@ -315,7 +316,7 @@ class _Step:
             result = handler(command)
         self.changed |= result.outcome == SUCCEEDED
         self.seen[issuer] = command.seq
-        self.results[issuer] = result
+        self.results[issuer] = (*self.results.get(issuer, ()), result)[-RESULTS_KEPT:]
 
     def spawn(self, command: Spawn, rng: np.random.Generator) -> CommandResult:
         kind = self.cell.kinds.get(command.type)

@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from hrc_drake.evaluation.metrics import (
-    TaskEvent,
     bt_metrics,
     person_metrics,
     safety_metrics,
@@ -15,6 +14,7 @@ from hrc_drake.evaluation.metrics import (
 )
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
+from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SIGNALS, SafetyStatus, SafetyTotals
 from hrc_drake.safety.pfl import assess_contact
 from hrc_drake.safety.ssm import ZONES

@@ -224,13 +224,13 @@ def test_transition_speeds_stay_bounded(first):
 def _pose_jump(ctx, state, t, command):
     """Joint jump (rad) when `command` is handled at time t, compared at the same instant."""
     before = pose_at(ctx, state, t)
-    state = advance(ctx, state, t, command)
+    state = advance(ctx, state, t, {"human": command})
     return state, np.abs(pose_at(ctx, state, t) - before)[3:].max()
 
 
 def test_transitions_between_every_pair_of_clips_have_no_jump():
     ctx = Context(human_body(), load_clips())
-    state, seq, worst = advance(ctx, ActorState(), 0.0, None), 0, 0.0
+    state, seq, worst = advance(ctx, ActorState(), 0.0, {}), 0, 0.0
     t = 0.0
     for first, second in itertools.product(ANIMATIONS, ANIMATIONS):
         for command, wait in (

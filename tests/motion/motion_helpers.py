@@ -1,26 +1,17 @@
-"""Test scenarios and a robot-only station (plant, cell, controller, RobotMotion).
+"""Test scenarios and their station (plant, cell, controller, RobotMotion), commanded
+through the inputs the builder exports when no behavior tree drives the robot."""
 
-The station is assembled from the builder's public pieces with the controller taking
-RobotMotion's acceleration feed-forward, as the builder does.
-"""
-
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
-from hrc_drake.systems.robot_motion import add_robot_motion
-from hrc_drake.systems.workpieces import add_workpieces
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform
-from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
-from pydrake.systems.controllers import InverseDynamicsController
-from pydrake.systems.framework import DiagramBuilder, EventStatus
+from pydrake.systems.framework import EventStatus
 
-from hrc_drake.builder import TOOL_MODEL, make_control_plant
-from hrc_drake.iisy import TCP_FRAME, VARIANTS
+from hrc_drake.builder import build_diagram
 from hrc_drake.messages import FINISHED
-from hrc_drake.motion.model import add_station_models
 from hrc_drake.scenario import Scenario
 
 PEDESTAL_TOP = 0.8
@@ -76,10 +67,10 @@ class Station:
         return self.simulator.get_context()
 
     def command(self, command) -> None:
-        self.diagram.GetInputPort("robot_command").FixValue(self.context, command)
+        self.diagram.GetInputPort("robot_motion.robot_command").FixValue(self.context, command)
 
     def set_safety_scale(self, scale: float) -> None:
-        self.diagram.GetInputPort("speed_scale").FixValue(self.context, [scale])
+        self.diagram.GetInputPort("robot_motion.speed_scale").FixValue(self.context, [scale])
 
     def status(self):
         return self.diagram.GetOutputPort("robot_status").Eval(self.context)
@@ -153,35 +144,19 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
     return trace
 
 
-def build_station(scenario: Scenario, options=None, workpieces=None) -> Station:
-    """The robot station; with a WorkpiecesConfig, also the workpieces and the vacuum."""
-    builder = DiagramBuilder()
-    config = MultibodyPlantConfig(
-        time_step=scenario.time_step, discrete_contact_approximation="sap"
-    )
-    plant, scene_graph = AddMultibodyPlant(config, builder)
-    arm, _ = add_station_models(plant, Parser(plant), scenario)
-    plant.Finalize()
-    plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
-    variant = VARIANTS[scenario.robot.variant]
-    controller = builder.AddNamedSystem(
-        "robot_controller",
-        InverseDynamicsController(
-            make_control_plant(scenario), variant.kp, variant.ki, variant.kd, True
-        ),
-    )
-    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
-    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
+def build_station(scenario: Scenario, workpieces=None) -> Station:
+    """The scenario's station; with a WorkpiecesConfig, also the workpieces and the vacuum."""
     if workpieces is not None:
-        tcp = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
-        workpieces = add_workpieces(builder, scene_graph, plant, workpieces, tool_frame=tcp)
-    motion = add_robot_motion(builder, scenario, plant, arm, controller, options, workpieces)
-    builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
-    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
-    diagram = builder.Build()
+        scenario = dataclasses.replace(scenario, workpieces=workpieces)
+    diagram = build_diagram(scenario)
     simulator = Simulator(diagram)
     simulator.Initialize()
-    return Station(diagram, simulator, motion, plant)
+    return Station(
+        diagram,
+        simulator,
+        diagram.GetSubsystemByName("robot_motion"),
+        diagram.GetSubsystemByName("plant"),
+    )
 
 
 def distance_to_polyline(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:

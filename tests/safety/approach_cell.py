@@ -14,10 +14,10 @@ from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 from pydrake.trajectories import PiecewisePolynomial
 
-from hrc_drake.builder import _parser, add_robot
 from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
+from hrc_drake.station_models import add_robot, model_parser
 
 SWING_AMPLITUDE = math.radians(60)
 SWING_RATE = 1.2
@@ -83,7 +83,7 @@ def build(config: SafetyConfig, person: PiecewisePolynomial):
     scenario = load_scenario("base")
     builder = DiagramBuilder()
     scene_graph = builder.AddSystem(SceneGraph())
-    robot = kinematic(builder, scene_graph, lambda p: add_robot(p, _parser(p), scenario.robot))
+    robot = kinematic(builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.robot))
     human_plant, human_instance, human_pose = kinematic(
         builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
     )

@@ -13,7 +13,7 @@ CARTON_HEIGHT = 0.2
 
 def pallet(seed: int) -> list:
     workpieces = Workpieces(load_example(), SceneGraph(), seed=seed)
-    status = workpieces.GetOutputPort("status").Eval(workpieces.CreateDefaultContext())
+    status = workpieces.GetOutputPort("workpieces_status").Eval(workpieces.CreateDefaultContext())
     return [o for o in status.objects if o.type == "carton"]
 
 

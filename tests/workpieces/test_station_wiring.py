@@ -13,12 +13,12 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
-from hrc_drake.builder import TOOL_MODEL, add_robot
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import RobotConfig
+from hrc_drake.station_models import TOOL_MODEL, add_robot
 from hrc_drake.workpieces.messages import ROBOT, Attach, CommandResult, Spawn
 
 
@@ -48,7 +48,9 @@ def station():
     simulator = Simulator(diagram)
     simulator.AdvanceTo(0.5)
     context = simulator.get_context()
-    status = workpieces.GetOutputPort("status").Eval(workpieces.GetMyContextFromRoot(context))
+    status = workpieces.GetOutputPort("workpieces_status").Eval(
+        workpieces.GetMyContextFromRoot(context)
+    )
     return X_WT, status
 
 

@@ -136,7 +136,7 @@ class Rig:
 
     def status(self):
         context = self.workpieces.GetMyContextFromRoot(self.simulator.get_context())
-        return self.workpieces.GetOutputPort("status").Eval(context)
+        return self.workpieces.GetOutputPort("workpieces_status").Eval(context)
 
     def query(self):
         context = self.scene_graph.GetMyContextFromRoot(self.simulator.get_context())
