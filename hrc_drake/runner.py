@@ -6,10 +6,11 @@ bytes, so it holds no wall-clock figures), `replay.html` (a standalone Meshcat r
 `report.html` tying them together. Wall-clock speed is returned to the caller, never
 written to the report.
 
-Optional station outputs the runner measures when they exist: `safety_signals` and
-`safety_status` (SafetyMonitor), `task_events` (a sequence of objects with `time`, `name`,
-`agent`), `actor_states` (a dict actor -> current state name) and `bt_statistics` (a dict
-agent -> node -> figures).
+Optional station parts the runner measures when they exist: `safety_signals` and
+`safety_status` (SafetyMonitor); each agent's `<agent>_task_events` and `<agent>_tree_status`
+and its BehaviorTreeSystem `bt_<agent>` (node statistics; with a run directory also the
+transition logs `bt_<agent>.btlog` for Groot2 and `bt_<agent>.jsonl`); the robot's and the
+person's states for the timeline.
 """
 
 import json
@@ -21,12 +22,13 @@ from pathlib import Path
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import Meshcat
-from pydrake.systems.analysis import Simulator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import LogVectorOutput
 from tqdm import tqdm
 
 import hrc_drake
+from hrc_drake.bt import BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import VISUALIZER, build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
@@ -78,10 +80,11 @@ def run(
     builder.AddSystem(station)
     state_log = LogVectorOutput(station.GetOutputPort("robot_state"), builder, LOG_PERIOD)
     signals_log = _optional_log(station, "safety_signals", builder)
-    states_log = _optional_abstract_log(station, "actor_states", builder)
+    states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
+    tree_logs = _open_tree_logs(station, scenario, out_dir)
 
-    simulator = Simulator(diagram)
+    simulator = make_simulator(diagram, scenario)
     simulator.set_target_realtime_rate(realtime_rate)
     visualizer = _visualizer(station)
     if visualizer is not None:
@@ -89,9 +92,11 @@ def run(
     start = time.perf_counter()
     _advance(simulator, scenario.duration, progress, scenario.name)
     wall_time = time.perf_counter() - start
+    for log in tree_logs:
+        log.close()
 
     context = simulator.get_context()
-    outputs = _RunOutputs.collect(station, context, signals_log, states_log)
+    outputs = _RunOutputs.collect(station, scenario, context, signals_log, states_log)
     metrics = _metrics(scenario, state_log.FindLog(context))
     metrics.update(outputs.metrics(scenario))
     report = Report(metrics, out_dir, wall_time)
@@ -112,16 +117,24 @@ class _RunOutputs:
     bt_statistics: dict | None
 
     @classmethod
-    def collect(cls, station, context, signals_log, states_log) -> "_RunOutputs":
+    def collect(cls, station, scenario, context, signals_log, states_log) -> "_RunOutputs":
         station_context = station.GetMyContextFromRoot(context)
         log = signals_log.FindLog(context) if signals_log is not None else None
+        events = [
+            event
+            for agent in scenario.trees
+            for event in station.GetOutputPort(f"{agent}_task_events").Eval(station_context)
+        ]
         return cls(
             times=log.sample_times() if log is not None else np.zeros(0),
             signals=log.data() if log is not None else None,
             status=_final(station, station_context, "safety_status"),
-            events=[e for e in _final(station, station_context, "task_events") or ()],
-            states=states_log.changes() if states_log is not None else {},
-            bt_statistics=_final(station, station_context, "bt_statistics"),
+            events=sorted(events, key=lambda e: (e.time, e.agent)),
+            states=states_log.changes(),
+            bt_statistics={
+                agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
+                for agent in scenario.trees
+            },
         )
 
     def metrics(self, scenario: Scenario) -> dict:
@@ -151,36 +164,100 @@ class _RunOutputs:
 
 
 class _StateChanges(LeafSystem):
-    """Samples an abstract `dict actor -> state` port and keeps each actor's changes."""
+    """Samples status ports and keeps, per actor, the times its state changed."""
 
-    def __init__(self, period: float):
+    def __init__(self, fields: dict[str, str], period: float):
         super().__init__()
-        self._input = self.DeclareAbstractInputPort("states", AbstractValue.Make(object()))
+        self._inputs = {
+            actor: (self.DeclareAbstractInputPort(actor, AbstractValue.Make(None)), attribute)
+            for actor, attribute in fields.items()
+        }
         self._changes: dict[str, list[tuple[float, str]]] = {}
         self.DeclarePeriodicPublishEvent(period, 0.0, self._sample)
 
     def _sample(self, context) -> None:
-        for actor, state in dict(self._input.Eval(context)).items():
+        for actor, (port, attribute) in self._inputs.items():
+            state = str(getattr(port.Eval(context), attribute))
             history = self._changes.setdefault(actor, [])
             if not history or history[-1][1] != state:
-                history.append((context.get_time(), str(state)))
+                history.append((context.get_time(), state))
 
     def changes(self) -> dict[str, list[tuple[float, str]]]:
         return self._changes
+
+
+STATE_FIELDS = {"robot": ("robot_status", "mode"), "person": ("human_status", "state")}
+"""Actor -> (station output, status attribute) drawn as the actor's state in the timeline."""
+
+
+def _add_state_changes(station, scenario, builder) -> _StateChanges:
+    fields = {
+        actor: (port, attribute)
+        for actor, (port, attribute) in STATE_FIELDS.items()
+        if station.HasOutputPort(port)
+    }
+    fields |= {
+        f"{agent} tree": (f"{agent}_tree_status", "running_path") for agent in scenario.trees
+    }
+    sampler = builder.AddSystem(
+        _StateChanges({actor: attribute for actor, (_, attribute) in fields.items()}, LOG_PERIOD)
+    )
+    for actor, (port, _) in fields.items():
+        builder.Connect(station.GetOutputPort(port), sampler.GetInputPort(actor))
+    return sampler
+
+
+def _node_statistics(tree_system) -> dict:
+    """Per node path: how often it was ticked, succeeded, failed, and how long it ran."""
+    counts = tree_system.counters.counts()
+    return {
+        path: {
+            "ticks": counts[uid].ticks,
+            "successes": counts[uid].successes,
+            "failures": counts[uid].failures,
+            "time_running": counts[uid].time_running,
+        }
+        for uid, path, _ in tree_system.tree.nodes()
+        if uid in counts
+    }
+
+
+def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
+    """Groot2 and JSON-lines transition logs of every tree, in the run directory."""
+    if out_dir is None:
+        return []
+    out_dir.mkdir(parents=True, exist_ok=True)
+    logs = []
+    for agent in scenario.trees:
+        tree = station.GetSubsystemByName(f"bt_{agent}").tree
+        for log in (
+            BtlogWriter(out_dir / f"bt_{agent}.btlog"),
+            JsonLinesWriter(out_dir / f"bt_{agent}.jsonl"),
+        ):
+            tree.add_observer(log)
+            logs.append(log)
+    return logs
+
+
+def make_simulator(diagram, scenario: Scenario) -> Simulator:
+    """A simulator stepping continuous state (the controller's integral) once per plant
+    step: the discrete plant sets the pace, so a higher-order integrator only costs time."""
+    simulator = Simulator(diagram)
+    ApplySimulatorConfig(
+        SimulatorConfig(
+            integration_scheme="explicit_euler",
+            max_step_size=scenario.time_step,
+            use_error_control=False,
+        ),
+        simulator,
+    )
+    return simulator
 
 
 def _optional_log(station, port: str, builder):
     if not station.HasOutputPort(port):
         return None
     return LogVectorOutput(station.GetOutputPort(port), builder, LOG_PERIOD)
-
-
-def _optional_abstract_log(station, port: str, builder):
-    if not station.HasOutputPort(port):
-        return None
-    sampler = builder.AddSystem(_StateChanges(LOG_PERIOD))
-    builder.Connect(station.GetOutputPort(port), sampler.get_input_port())
-    return sampler
 
 
 def _final(station, station_context, port: str):

@@ -88,7 +88,14 @@ class NodeCounters:
 
     def attach(self, tree: Tree) -> None:
         self.tree = tree
-        for node in tree.node_list:
+        self.reset()
+
+    def reset(self) -> None:
+        """Start counting afresh (a new run of the same tree)."""
+        self._running_since.clear()
+        self._time_running.clear()
+        self._last_status.clear()
+        for node in self.tree.node_list:
             node.tick_counts = [0] * len(Status)
 
     def on_transition(self, time: float, node: TreeNode, previous: Status, new: Status) -> None:

@@ -37,7 +37,9 @@ def plot_timeline(
     axes[2].plot(times, _signal(signals, "human_speed"), color="tab:orange", label="person speed")
     axes[2].set_ylabel("m/s")
     axes[2].legend(fontsize=7, loc="upper right")
-    _activity_panel(axes[3], states or {}, events or [])
+    end = float(times[-1]) if times.size else 0.0
+    _activity_panel(axes[3], states or {}, events or [], end)
+    axes[3].set_xlim(0.0, max(end, 1e-3))
     axes[3].set_xlabel("time (s)")
     return save_figure(fig, path)
 
@@ -51,13 +53,14 @@ def _separation_panel(ax, times, signals) -> None:
     ax.legend(fontsize=7, loc="upper right")
 
 
-def _activity_panel(ax, states, events) -> None:
+def _activity_panel(ax, states, events, end: float) -> None:
     """One row per actor with its states as labelled spans; task events as markers."""
     names = list(states)
     for row, actor in enumerate(names):
         changes = states[actor]
-        for (start, state), (end, _) in zip(changes, [*changes[1:], (None, None)], strict=True):
-            ax.barh(row, (end or ax.get_xlim()[1]) - start, left=start, height=0.6, alpha=0.5)
+        for (start, state), (stop, _) in zip(changes, [*changes[1:], (None, None)], strict=True):
+            span_end = end if stop is None else stop
+            ax.barh(row, span_end - start, left=start, height=0.6, alpha=0.5)
             ax.text(start, row, state, fontsize=6, va="center")
     for event in events:
         ax.axvline(event.time, color="gray", lw=0.6)
