@@ -69,13 +69,15 @@ class CountObjects(ObjectsNode):
 
 
 class NextObject(ObjectsNode):
-    """The oldest free object in an area matching a filter; FAILURE when there is none."""
+    """The oldest free object in an area matching a filter; FAILURE when there is none.
+    Its pose is the centre without orientation, so a RobotMove to it (offset to the top
+    face) keeps the tool pointing down."""
 
     ports = (
         AREA_PORT,
         FILTER_PORT,
         OutputPort("object_id", int),
-        OutputPort("pose", Pose, description="the object's pose (its centre)"),
+        OutputPort("pose", Pose, description="the object's centre (position only)"),
     )
 
     def tick(self) -> Status:
@@ -83,7 +85,7 @@ class NextObject(ObjectsNode):
         if not found:
             return Status.FAILURE
         self.set_output("object_id", found[0].id)
-        self.set_output("pose", Pose.from_transform(found[0].pose))
+        self.set_output("pose", Pose(tuple(float(v) for v in found[0].pose.translation())))
         return Status.SUCCESS
 
 
