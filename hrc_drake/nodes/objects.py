@@ -111,6 +111,30 @@ class ObjectAttribute(ObjectsNode):
         return Status.SUCCESS
 
 
+class HeldObject(ObjectsNode):
+    """The object a holder holds (the robot's vacuum cup or the person's hands); FAILURE
+    when it holds nothing. This is how the person finds the box the robot presents at a
+    hand-over, which NextObject (free objects only) cannot see."""
+
+    ports = (
+        InputPort("holder", str, default=wp.ROBOT, description=", ".join(wp.HOLDERS)),
+        OutputPort("object_id", int),
+        OutputPort("pose", Pose, description="the object's centre (position only)"),
+    )
+
+    def tick(self) -> Status:
+        holder = self.get_input("holder")
+        if holder not in wp.HOLDERS:
+            raise self.error(f"unknown holder '{holder}'; known: {', '.join(wp.HOLDERS)}", "holder")
+        status = self.context.workpieces
+        held = status.held_by(holder) if status is not None else None
+        if held is None:
+            return Status.FAILURE
+        self.set_output("object_id", held.id)
+        self.set_output("pose", Pose(tuple(float(v) for v in held.pose.translation())))
+        return Status.SUCCESS
+
+
 class WorkpiecesCommandNode(CommandNode):
     """A command to the Workpieces system, which answers per issuer (this agent's tree)."""
 
@@ -160,4 +184,4 @@ class DespawnObject(WorkpiecesCommandNode):
         return wp.Despawn(seq, self.get_input("object_id"))
 
 
-NODES = (CountObjects, NextObject, ObjectAttribute, SpawnObject, DespawnObject)
+NODES = (CountObjects, NextObject, HeldObject, ObjectAttribute, SpawnObject, DespawnObject)
