@@ -26,7 +26,7 @@ from hrc_drake.safety.geometry import Part, body_parts, human_parts
 from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
-from hrc_drake.safety.proximity import ProximityMeter, Reading
+from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.safety.stopping import ssm_parameters
 
 
@@ -62,8 +62,7 @@ class SafetyMonitor(LeafSystem):
             Part(g, name) for name, obj in robot.carried.items() for g in obj.geometries
         ]
         self._meter = ProximityMeter(inspector, human, robot.parts + carried_parts)
-        self._always_active = np.array([True] * len(robot.parts) + [False] * len(carried_parts))
-        self._carried_names = np.array([p.name for p in robot.parts + carried_parts])
+        self._active_parts = _active_parts(robot.parts, carried_parts)
         self._carried = robot.carried
         self._judge = Judge(
             config,
@@ -79,7 +78,7 @@ class SafetyMonitor(LeafSystem):
         self._scale = self.DeclareDiscreteState(np.ones(1))
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
-        self._reading = self.DeclareAbstractState(AbstractValue.Make(None))
+        self._poses = self.DeclareDiscreteState(np.full(12 * len(self._meter.frames), np.nan))
         self.DeclareStateOutputPort("speed_scale", self._scale)
         self.DeclareStateOutputPort("safety_signals", self._signals)
         self.DeclareStateOutputPort("safety_status", self._status)
@@ -93,27 +92,42 @@ class SafetyMonitor(LeafSystem):
 
     def _update(self, context, state) -> EventStatus:
         before: SafetyStatus = context.get_abstract_state(self._status).get_value()
-        last: Reading | None = context.get_abstract_state(self._reading).get_value()
         held = self._held_object(context)
         time = context.get_time()
         reading = self._meter.measure(
             self._query.Eval(context),
-            last.poses if last else None,
-            time - before.time if last else 0.0,
-            self._always_active | (self._carried_names == held),
+            self._previous_poses(context),
+            time - before.time,
+            self._active_parts.get(held, self._active_parts[None]),
         )
         payload = self._carried[held].mass if held in self._carried else 0.0
         status = self._judge.status(time, reading, before, payload)
         state.get_mutable_abstract_state(self._status).set_value(status)
-        state.get_mutable_abstract_state(self._reading).set_value(reading)
+        state.get_mutable_discrete_state(self._poses).set_value(reading.poses.ravel())
         state.get_mutable_discrete_state(self._scale).set_value([status.scale])
         state.get_mutable_discrete_state(self._signals).set_value(status.signals(reading.person_xy))
         return EventStatus.Succeeded()
+
+    def _previous_poses(self, context) -> np.ndarray | None:
+        """The frame poses of the last update (None before the first): a vector state, as
+        Drake copies it in C++ where an abstract one costs a Python deepcopy per update."""
+        poses = context.get_discrete_state(self._poses).value()
+        return None if np.isnan(poses[0]) else poses.reshape(-1, 3, 4)
 
     def _held_object(self, context) -> str | None:
         if not self._robot_status.HasValue(context):
             return None
         return getattr(self._robot_status.Eval(context), "held_object", None)
+
+
+def _active_parts(robot: list[Part], carried: list[Part]) -> dict[str | None, np.ndarray]:
+    """Indices of the watched robot parts for each held object (None: nothing held)."""
+    always = list(range(len(robot)))
+    held = {None: np.array(always)}
+    for k, part in enumerate(carried, start=len(robot)):
+        held.setdefault(part.name, np.array(always))
+        held[part.name] = np.append(held[part.name], k)
+    return held
 
 
 def robot_model(plant, arm, tool=None, carried=None) -> RobotModel:

@@ -6,11 +6,16 @@ exact signed distances (pair queries ignore collision filters) only where a pair
 closest or touching. Speeds come from the frame poses of the previous measurement.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
+
+BOUND_SLACK = 1e-6
+"""m taken off every capsule bound, so that rounding (in the bound or in Drake's distance)
+cannot skip a pair that is closer than the best one found by a hair."""
 
 
 @dataclass(frozen=True)
@@ -43,87 +48,103 @@ class Reading:
     person_xy: tuple[float, float]
     poses: np.ndarray
 
-    def __deepcopy__(self, memo):
-        return self  # immutable: Drake's state copies may share it
-
 
 class ProximityMeter:
-    """Measures person–robot proximity for fixed sets of human and robot geometries."""
+    """Measures person–robot proximity for fixed sets of human and robot geometries.
+
+    Parts are numbered human first, then robot; `measure` takes the active robot parts as
+    indices into `robot`.
+    """
 
     def __init__(self, inspector, human: list[Part], robot: list[Part]):
         self.human, self.robot = human, robot
-        parts = human + robot
-        self.frames = list(dict.fromkeys(inspector.GetFrameId(p.geometry) for p in parts))
-        frame_index = {frame: i for i, frame in enumerate(self.frames)}
-        self.part_frame = np.array([frame_index[inspector.GetFrameId(p.geometry)] for p in parts])
-        self.X_FG = [inspector.GetPoseInFrame(p.geometry) for p in parts]
-        ends = [
-            self._segment_in_frame(inspector, p, X) for p, X in zip(parts, self.X_FG, strict=True)
-        ]
-        self.p0_F = np.array([e[0] for e in ends])
-        self.p1_F = np.array([e[1] for e in ends])
-        self.radius = np.array([e[2] for e in ends])
         self.n_human = len(human)
-        self.human_frames = np.unique(self.part_frame[: self.n_human])
+        self.geometries = [p.geometry for p in human + robot]
+        part_frames = [inspector.GetFrameId(g) for g in self.geometries]
+        self.frames = list(dict.fromkeys(part_frames))
+        self.part_frame = np.array([self.frames.index(f) for f in part_frames])
+        self.X_FG = np.array([inspector.GetPoseInFrame(g).GetAsMatrix34() for g in self.geometries])
+        segments = [bounding_segment(inspector.GetShape(g)) for g in self.geometries]
+        self.ends_F = np.array(
+            [
+                _homogeneous_ends(X, p0, p1)
+                for X, (p0, p1, _) in zip(self.X_FG, segments, strict=True)
+            ]
+        )
+        radius = np.array([r for _, _, r in segments])
+        self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
+        human_frames = np.unique(self.part_frame[: self.n_human])
+        self.centre_weights = np.zeros(len(self.frames))
+        self.centre_weights[human_frames] = 1.0 / len(human_frames)
 
-    def measure(self, query_object, previous: np.ndarray | None, dt: float, active) -> Reading:
-        """`active` (bool per robot part) switches carried objects in and out."""
+    def measure(self, query_object, previous: np.ndarray | None, dt: float, robot) -> Reading:
+        """`robot` (indices into `robot`) are the active parts: carried objects come and go."""
         poses = np.array([query_object.GetPoseInWorld(f).GetAsMatrix34() for f in self.frames])
         if previous is None or dt <= 0:
             previous, dt = poses, 0.0
-        active = np.asarray(active, dtype=bool)
-        p0, p1 = self._world(poses, self.p0_F), self._world(poses, self.p1_F)
-        h, r = slice(0, self.n_human), slice(self.n_human, None)
-        bound = segment_distances(p0[h], p1[h], p0[r], p1[r])
-        bound -= self.radius[h, None] + self.radius[None, r]
-        bound[:, ~active] = np.inf
-        pairs = self._exact_pairs(query_object, bound)
-        readings = [self._pair_reading(pair, poses, previous, dt) for pair in pairs]
-        centre = poses[self.human_frames, :, 3].mean(axis=0)
+        parts = np.concatenate([np.arange(self.n_human), self.n_human + robot])
+        ends = self._ends(poses, parts)
+        bound = self._bounds(ends, robot)
+        readings = [
+            self._pair_reading(i, self.n_human + robot[j], result, poses, previous, dt)
+            for i, j, result in self._exact_pairs(query_object, bound, robot)
+        ]
+        centre = self.centre_weights @ poses[:, :, 3]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=tuple(x for x in readings if x.distance <= 0.0),
-            robot_speed=self._robot_speed(poses, previous, dt, active),
-            human_speed=_speed(centre, previous[self.human_frames, :, 3].mean(axis=0), dt),
+            robot_speed=self._robot_speed(
+                ends[self.n_human :], previous, dt, parts[self.n_human :]
+            ),
+            human_speed=_speed(centre, self.centre_weights @ previous[:, :, 3], dt),
             person_xy=(float(centre[0]), float(centre[1])),
             poses=poses,
         )
 
-    def _robot_speed(self, poses, previous, dt, active) -> float:
+    def _ends(self, poses: np.ndarray, parts: np.ndarray) -> np.ndarray:
+        """World end points (parts × 3 × 2) of the parts' bounding segments."""
+        return poses[self.part_frame[parts]] @ self.ends_F[parts]
+
+    def _bounds(self, ends: np.ndarray, robot: np.ndarray) -> np.ndarray:
+        """Lower bounds (human × active robot parts) of the signed distances: capsule gaps."""
+        starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
+        h, r = slice(0, self.n_human), slice(self.n_human, None)
+        gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
+        return gaps - self.radii[:, robot]
+
+    def _robot_speed(self, ends, previous, dt, parts) -> float:
         """Fastest end of any active robot part's bounding segment (tool tip included)."""
-        robot = np.flatnonzero(active) + self.n_human
-        ends = [self.p0_F[robot], self.p1_F[robot]]
-        now = np.concatenate([self._world(poses, e, robot) for e in ends])
-        before = np.concatenate([self._world(previous, e, robot) for e in ends])
         if dt <= 0.0:
             return 0.0
-        return float(np.linalg.norm(now - before, axis=1).max(initial=0.0)) / dt
+        moved = ends - self._ends(previous, parts)
+        return math.sqrt(np.einsum("ijk,ijk->ik", moved, moved).max(initial=0.0)) / dt
 
-    def _exact_pairs(self, query_object, bound: np.ndarray) -> list:
-        """Exact signed distances of the pairs that can be the closest or in contact."""
-        best = np.inf
+    def _exact_pairs(self, query_object, bound: np.ndarray, robot: np.ndarray) -> list:
+        """Exact signed distances of the pairs that can be the closest or in contact, as
+        (human part, column of `bound`, result)."""
+        flat = bound.ravel()
+        best = math.inf
         pairs = []
-        for flat in np.argsort(bound, axis=None):
-            lower = bound.flat[flat]
-            if lower == np.inf or (lower >= best and (best > 0.0 or lower > 0.0)):
+        for k in np.argsort(flat):
+            lower = flat[k]
+            if lower >= best and (best > 0.0 or lower > 0.0):
                 break
-            i, j = np.unravel_index(flat, bound.shape)
-            pair = query_object.ComputeSignedDistancePairClosestPoints(
-                self.human[i].geometry, self.robot[j].geometry
+            i, j = divmod(int(k), bound.shape[1])
+            result = query_object.ComputeSignedDistancePairClosestPoints(
+                self.geometries[i], self.geometries[self.n_human + robot[j]]
             )
-            pairs.append((i, j, pair))
-            best = min(best, pair.distance)
+            pairs.append((i, j, result))
+            best = min(best, result.distance)
         return [p for p in pairs if p[2].distance <= max(best, 0.0)]
 
-    def _pair_reading(self, pair, poses, previous, dt) -> PairReading:
-        i, j, result = pair
-        k_h, k_r = i, self.n_human + j
-        v_h = self._point_velocity(k_h, result.p_ACa, poses, previous, dt)
-        v_r = self._point_velocity(k_r, result.p_BCb, poses, previous, dt)
+    def _pair_reading(self, i: int, k: int, result, poses, previous, dt) -> PairReading:
+        """Reading of human part `i` and part `k` (a robot part)."""
+        v_h = self._point_velocity(i, result.p_ACa, poses, previous, dt)
+        v_r = self._point_velocity(k, result.p_BCb, poses, previous, dt)
         towards_human = result.nhat_BA_W
         return PairReading(
             region=self.human[i].name,
-            part=self.robot[j].name,
+            part=self.robot[k - self.n_human].name,
             distance=float(result.distance),
             robot_approach=float(v_r @ towards_human),
             human_approach=float(-v_h @ towards_human),
@@ -132,21 +153,17 @@ class ProximityMeter:
     def _point_velocity(self, part: int, p_G, poses, previous, dt) -> np.ndarray:
         if dt <= 0.0:
             return np.zeros(3)
-        p_F = self.X_FG[part] @ p_G
+        X_FG = self.X_FG[part]
+        p_F = X_FG[:, :3] @ p_G + X_FG[:, 3]
         frame = self.part_frame[part]
-        now = poses[frame, :, :3] @ p_F + poses[frame, :, 3]
-        before = previous[frame, :, :3] @ p_F + previous[frame, :, 3]
-        return (now - before) / dt
+        moved = poses[frame] - previous[frame]
+        return (moved[:, :3] @ p_F + moved[:, 3]) / dt
 
-    def _world(self, poses: np.ndarray, points_F: np.ndarray, parts=None) -> np.ndarray:
-        """Points given per part in its frame, in world (for all parts or the listed ones)."""
-        X = poses[self.part_frame if parts is None else self.part_frame[parts]]
-        return np.einsum("nij,nj->ni", X[:, :, :3], points_F) + X[:, :, 3]
 
-    @staticmethod
-    def _segment_in_frame(inspector, part: Part, X_FG):
-        p0, p1, radius = bounding_segment(inspector.GetShape(part.geometry))
-        return X_FG @ p0, X_FG @ p1, radius
+def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:
+    """A segment's ends in its frame F as the columns of a 4 × 2 matrix (X_WF @ ends)."""
+    ends_F = X_FG[:, :3] @ np.column_stack([p0_G, p1_G]) + X_FG[:, 3:]
+    return np.vstack([ends_F, np.ones(2)])
 
 
 def _speed(now: np.ndarray, before: np.ndarray, dt: float) -> float:
