@@ -5,6 +5,7 @@ nothing the run already wrote is removed.
 """
 
 import argparse
+import logging
 import os
 import sys
 from pathlib import Path
@@ -22,12 +23,14 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
+    logging.getLogger("drake").setLevel(logging.WARNING)  # keep the output to what we print
     parser = _make_parser()
     try:
         args = parser.parse_args(argv)
         return args.command(args)
     except InputError as e:
-        print(f"hrc-drake: error: {e}", file=sys.stderr)
+        for line in str(e).splitlines():
+            print(f"hrc-drake: error: {line}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         print("hrc-drake: interrupted", file=sys.stderr)
@@ -69,7 +72,26 @@ def _make_parser() -> argparse.ArgumentParser:
     validate.add_argument("scenario")
     validate.set_defaults(command=_validate)
 
-    listing = commands.add_parser("list", help="bundled scenarios and robot variants")
+    tree = commands.add_parser("tree", help="render a behavior tree to .svg, .png or .dot")
+    tree.add_argument("source", help="a tree XML file, or a scenario (then give --agent)")
+    tree.add_argument("--agent", choices=("robot", "human"), help="whose tree in the scenario")
+    tree.add_argument("--tree-id", help="which tree of the file (default: its main tree)")
+    tree.add_argument("-o", "--output", type=Path, required=True, help=".svg, .png or .dot")
+    tree.set_defaults(command=_tree)
+
+    listing = commands.add_parser(
+        "list", help="bundled scenarios and robot variants, or the behavior tree nodes"
+    )
+    listing.add_argument(
+        "--nodes", action="store_true", help="every tree node with its ports (the palette)"
+    )
+    listing.add_argument(
+        "--xml",
+        nargs="?",
+        const="-",
+        metavar="FILE",
+        help="with --nodes: write Groot2's TreeNodesModel XML (to FILE, default stdout)",
+    )
     listing.set_defaults(command=_list)
     return parser
 
@@ -105,9 +127,15 @@ def _positive_float(text: str) -> float:
 
 
 def _load(name_or_path: str):
+    """The scenario, with its trees checked against the node library and its places."""
+    from hrc_drake.agent_trees import tree_errors
     from hrc_drake.scenario import load_scenario
 
-    return load_scenario(name_or_path)
+    scenario = load_scenario(name_or_path)
+    errors = tree_errors(scenario)
+    if errors:
+        raise InputError("\n".join(str(error) for error in errors))
+    return scenario
 
 
 def _run(args) -> int:
@@ -124,6 +152,8 @@ def _run(args) -> int:
     seed = scenario.seed if args.seed is None else args.seed
     out = args.out or Path("runs") / f"{scenario.name}-seed{seed}"
     meshcat = Meshcat() if args.meshcat else None
+    if meshcat is not None:
+        print(f"Meshcat: {meshcat.web_url()}")
     report = run(
         scenario,
         seed=seed,
@@ -179,11 +209,39 @@ def _validate(args) -> int:
 
     scenario = _load(args.scenario)
     build_diagram(scenario)
-    print(f"{args.scenario}: ok ({scenario.name})")
+    trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
+    print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
+    return 0
+
+
+def _tree(args) -> int:
+    from hrc_drake.agent_trees import load_agent_tree
+    from hrc_drake.bt import BTError, load_tree, render_tree
+    from hrc_drake.nodes import hrc_registry
+
+    if args.output.suffix.lstrip(".").lower() not in ("svg", "png", "dot"):
+        raise InputError(f"{args.output}: use a .svg, .png or .dot file name")
+    if args.source.endswith(".xml"):
+        try:
+            tree = load_tree(Path(args.source), hrc_registry(), tree_id=args.tree_id)
+        except (BTError, OSError) as error:
+            raise InputError(str(error)) from None
+    else:
+        scenario = _load(args.source)
+        if args.agent not in scenario.trees:
+            known = ", ".join(scenario.trees) or "none"
+            raise InputError(f"{args.source}: give --agent, one of: {known}")
+        tree, _ = load_agent_tree(scenario, args.agent)
+    render_tree(tree, args.output)
+    print(args.output)
     return 0
 
 
 def _list(args) -> int:
+    if args.nodes:
+        return _list_nodes(args.xml)
+    if args.xml:
+        raise InputError("--xml goes with --nodes")
     from hrc_drake.iisy import VARIANTS
     from hrc_drake.scenario import bundled_scenarios, load_scenario
 
@@ -196,6 +254,21 @@ def _list(args) -> int:
             f"  {name:16s} payload {variant.payload:g} kg, reach {variant.reach:g} m, "
             f"{variant.total_mass:g} kg"
         )
+    return 0
+
+
+def _list_nodes(xml_file: str | None) -> int:
+    from hrc_drake.bt import tree_nodes_model_xml
+    from hrc_drake.nodes import hrc_registry, palette_text
+
+    registry = hrc_registry()
+    if xml_file is None:
+        print(palette_text(registry))
+    elif xml_file == "-":
+        print(tree_nodes_model_xml(registry))
+    else:
+        Path(xml_file).write_text(tree_nodes_model_xml(registry) + "\n")
+        print(xml_file)
     return 0
 
 

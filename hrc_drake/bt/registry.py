@@ -62,7 +62,7 @@ class NodeRegistry:
             id or cls.__name__,
             cls,
             params,
-            description or (cls.__doc__ or "").strip().split("\n")[0],
+            description or " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split()),
             builtin,
         )
         if model.id in self._models:

@@ -69,7 +69,9 @@ class HumanStatus:
     `last_seq`/`outcome`/`reason` describe the newest change of any command; `results` keeps
     the recent ones (newest last) so a node can still find its own after a later command.
     Poses are (x, y, z, qw, qx, qy, qz) in world; `base_pose` is (x, y, yaw). `event` is the
-    clip event that fired during the last update ("" if none); `event_count` counts them all.
+    clip event that fired during the last update ("" if none); `event_count` counts them all;
+    `activity_events` are the events fired since the running action started, so a behavior
+    tree ticking slower than the person still sees each one.
     """
 
     state: str = "SETUP"
@@ -85,6 +87,7 @@ class HumanStatus:
     called: bool = False
     event: str = ""
     event_count: int = 0
+    activity_events: tuple[str, ...] = ()
     animation: str = ""
     results: tuple[CommandResult, ...] = field(default_factory=tuple)
     time: float = 0.0

@@ -280,6 +280,8 @@ class ActorState:
     called: bool = False
     event: str = ""
     event_count: int = 0
+    activity_events: tuple[str, ...] = ()
+    """Clip events fired since the current activity started (what a node waits for)."""
     last_update: float = 0.0
     start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     animation: str = ""
@@ -385,7 +387,7 @@ def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **cha
     change = float(np.max(np.abs(offset[3:])))
     duration = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
     activity = replace(activity, blend_offset=offset, blend_start=t, blend_time=duration)
-    return replace(actor, activity=activity, **changes)
+    return replace(actor, activity=activity, activity_events=(), **changes)
 
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
@@ -478,6 +480,7 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
         last_update=t,
         event=fired[-1] if fired else "",
         event_count=state.event_count + len(fired),
+        activity_events=state.activity_events + tuple(fired),
         base=base,
         speed=speed,
         pose=q,
@@ -510,6 +513,7 @@ def status(ctx: Context, state: ActorState, t: float, hands_and_head) -> HumanSt
         called=state.called,
         event=state.event,
         event_count=state.event_count,
+        activity_events=state.activity_events,
         animation=state.animation,
         results=state.results,
         time=t,

@@ -17,6 +17,7 @@ from hrc_drake.bt import (
     SyncActionNode,
 )
 from hrc_drake.bt.controls import SequentialControl
+from hrc_drake.bt.ports import value_to_text
 from hrc_drake.tree_types import Pose
 
 
@@ -133,11 +134,11 @@ class Emit(SyncActionNode):
 
     ports = (
         InputPort("event", str, description="event name, e.g. part_finished"),
-        InputPort("value", str, default="", description="optional detail"),
+        InputPort("value", None, default="", description="optional detail (any type)"),
     )
 
     def tick(self) -> Status:
-        self.context.emit(self.get_input("event"), str(self.get_input("value")))
+        self.context.emit(self.get_input("event"), value_to_text(self.get_input("value")))
         return Status.SUCCESS
 
 

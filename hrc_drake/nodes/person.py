@@ -8,7 +8,7 @@ object, so the object changes hands at the moment the hand is there.
 
 from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
 from hrc_drake.human import messages as human
-from hrc_drake.messages import SUCCEEDED
+from hrc_drake.messages import RUNNING, SUCCEEDED
 from hrc_drake.nodes.command import CommandNode
 from hrc_drake.nodes.context import HUMAN, WORKPIECES
 from hrc_drake.tree_types import Pose
@@ -115,28 +115,25 @@ class TargetedAction(PersonCommandNode):
 
     def command(self, seq: int):
         self.contact_seq = None
-        self.events_seen = self._event_count()
         return human.AnimateCommand(seq, self.clip(), target=self.target_point())
 
     def on_running(self) -> Status:
         if self.contact_seq is None and self._contact_event_fired():
             self.contact_seq = self.context.send(WORKPIECES, self.object_command)
         status = super().on_running()
-        if status is not Status.SUCCESS or self.contact_seq is None:
+        if status is not Status.SUCCESS or not self.contact_event:
             return status
+        if self.contact_seq is None:
+            return Status.FAILURE  # the clip ended without reaching its contact moment
         return self._contact_result()
-
-    def _event_count(self) -> int:
-        status = self.context.human
-        return status.event_count if status is not None else 0
 
     def _contact_event_fired(self) -> bool:
         status = self.context.human
         return (
-            self.contact_event
+            bool(self.contact_event)
             and status is not None
-            and status.event == self.contact_event
-            and status.event_count > self.events_seen
+            and status.outcome_of(self.seq) == RUNNING
+            and self.contact_event in status.activity_events
         )
 
     def _contact_result(self) -> Status:

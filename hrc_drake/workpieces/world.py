@@ -469,7 +469,7 @@ class _Step:
             return problem
         tolerance = self.config.handover_tolerance
         for holder in (piece.holder, to):
-            distance = max(self._distances(piece, holder))
+            distance = self._distance(piece, holder)
             if distance > tolerance:
                 return (
                     f"hand-over refused: {holder} is {distance:.3f} m from object {piece.id} "
@@ -500,7 +500,7 @@ class _Step:
         The vacuum cup must lie on the top face, facing it; hands must be near the surface."""
         if holder == ROBOT:
             return self._cup_distance(piece)
-        distance = max(self._distances(piece, holder))
+        distance = self._distance(piece, holder)
         return distance if distance <= self.config.hand_tolerance else None
 
     def _cup_distance(self, piece: Piece) -> float | None:
@@ -513,12 +513,12 @@ class _Step:
             return None
         return abs(p_OT[2] - solid.height / 2)
 
-    def _distances(self, piece: Piece, holder: str) -> list[float]:
-        """Distance from each grasping point of the holder (both hands: two) to the piece."""
+    def _distance(self, piece: Piece, holder: str) -> float:
+        """Distance from the holder's grasp point to the piece. Both hands grasp at their
+        midpoint, which is where the person aims them (hands close around a small part
+        as much as they span a large box)."""
         solid = self.cell.kinds[piece.type].solid
-        names = (LEFT_HAND, RIGHT_HAND) if holder == BOTH_HANDS else (holder,)
-        X_OW = piece.pose.inverse()
-        return [solid.distance_to(X_OW @ self.holders[name].translation()) for name in names]
+        return solid.distance_to(piece.pose.inverse() @ self.holders[holder].translation())
 
     def _hold(self, piece: Piece, holder: str) -> None:
         X_WH = self.holders[holder]
