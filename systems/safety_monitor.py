@@ -14,6 +14,7 @@ Optional input `robot_status` (RobotMotion's status): its `held_object` switches
 object's geometry into the robot parts and adds its mass to the payload.
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -112,7 +113,7 @@ class SafetyMonitor(LeafSystem):
         """The frame poses of the last update (None before the first): a vector state, as
         Drake copies it in C++ where an abstract one costs a Python deepcopy per update."""
         poses = context.get_discrete_state(self._poses).value()
-        return None if np.isnan(poses[0]) else poses.reshape(-1, 3, 4)
+        return None if math.isnan(poses[0]) else poses.reshape(-1, 3, 4)
 
     def _held_object(self, context) -> str | None:
         if not self._robot_status.HasValue(context):

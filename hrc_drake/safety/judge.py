@@ -1,7 +1,6 @@
 """From one proximity reading to the monitor's status: S_p, violation, speed scale,
 contact assessments and the run's running totals."""
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -65,7 +64,7 @@ class Judge:
             contact=contact,
             ssm_enabled=config.ssm,
         )
-        return dataclasses.replace(now, totals=updated_totals(before, now))
+        return _replaced(now, totals=updated_totals(before, now))
 
     def _person_speed(self, closest) -> float:
         if self.config.measured_human_speed:
@@ -93,7 +92,7 @@ def updated_totals(before: SafetyStatus, now: SafetyStatus) -> SafetyTotals:
     if now.violation:
         changes["worst_deficit"] = max(totals.worst_deficit, now.protective - now.separation)
     changes.update(_contact_totals(before, now, dt))
-    return dataclasses.replace(totals, **changes)
+    return _replaced(totals, **changes)
 
 
 def _contact_totals(before: SafetyStatus, now: SafetyStatus, dt: float) -> dict:
@@ -110,3 +109,9 @@ def _contact_totals(before: SafetyStatus, now: SafetyStatus, dt: float) -> dict:
         "contact_violations": totals.contact_violations + (violates and not episode_violated),
         "worst_contact": worst or totals.worst_contact,
     }
+
+
+def _replaced(message, **changes):
+    """`dataclasses.replace` for our plain frozen messages, without its Python loop over the
+    fields (this runs at every update)."""
+    return type(message)(**{**vars(message), **changes})

@@ -82,44 +82,43 @@ class ProximityMeter:
         poses = np.array([query_object.GetPoseInWorld(f).GetAsMatrix34() for f in self.frames])
         if previous is None or dt <= 0:
             previous, dt = poses, 0.0
-        parts = np.concatenate([np.arange(self.n_human), self.n_human + robot])
-        ends = self._ends(poses, parts)
-        bound = self._bounds(ends, robot)
+        robot_rows = self.n_human + robot
+        ends = self._ends(poses)
+        bound = self._bounds(ends, robot_rows) - self.radii[:, robot]
         readings = [
-            self._pair_reading(i, self.n_human + robot[j], result, poses, previous, dt)
-            for i, j, result in self._exact_pairs(query_object, bound, robot)
+            self._pair_reading(i, robot_rows[j], result, poses, previous, dt)
+            for i, j, result in self._exact_pairs(query_object, bound, robot_rows)
         ]
         centre = self.centre_weights @ poses[:, :, 3]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=tuple(x for x in readings if x.distance <= 0.0),
-            robot_speed=self._robot_speed(
-                ends[self.n_human :], previous, dt, parts[self.n_human :]
-            ),
+            robot_speed=self._robot_speed(ends, previous, dt, robot_rows),
             human_speed=_speed(centre, self.centre_weights @ previous[:, :, 3], dt),
             person_xy=(float(centre[0]), float(centre[1])),
             poses=poses,
         )
 
-    def _ends(self, poses: np.ndarray, parts: np.ndarray) -> np.ndarray:
-        """World end points (parts × 3 × 2) of the parts' bounding segments."""
-        return poses[self.part_frame[parts]] @ self.ends_F[parts]
+    def _ends(self, poses: np.ndarray) -> np.ndarray:
+        """World end points (parts × 3 × 2) of all parts' bounding segments."""
+        return poses[self.part_frame] @ self.ends_F
 
-    def _bounds(self, ends: np.ndarray, robot: np.ndarray) -> np.ndarray:
-        """Lower bounds (human × active robot parts) of the signed distances: capsule gaps."""
+    def _bounds(self, ends: np.ndarray, robot_rows: np.ndarray) -> np.ndarray:
+        """Distances (human × active robot parts) between the bounding segments."""
         starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        h, r = slice(0, self.n_human), slice(self.n_human, None)
-        gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
-        return gaps - self.radii[:, robot]
+        h = slice(0, self.n_human)
+        return segment_distances(
+            starts[h], directions[h], starts[robot_rows], directions[robot_rows]
+        )
 
-    def _robot_speed(self, ends, previous, dt, parts) -> float:
+    def _robot_speed(self, ends, previous, dt, robot_rows) -> float:
         """Fastest end of any active robot part's bounding segment (tool tip included)."""
         if dt <= 0.0:
             return 0.0
-        moved = ends - self._ends(previous, parts)
-        return math.sqrt(np.einsum("ijk,ijk->ik", moved, moved).max(initial=0.0)) / dt
+        moved = (ends - self._ends(previous))[robot_rows]
+        return math.sqrt((moved * moved).sum(axis=1).max()) / dt
 
-    def _exact_pairs(self, query_object, bound: np.ndarray, robot: np.ndarray) -> list:
+    def _exact_pairs(self, query_object, bound: np.ndarray, robot_rows: np.ndarray) -> list:
         """Exact signed distances of the pairs that can be the closest or in contact, as
         (human part, column of `bound`, result)."""
         flat = bound.ravel()
@@ -131,7 +130,7 @@ class ProximityMeter:
                 break
             i, j = divmod(int(k), bound.shape[1])
             result = query_object.ComputeSignedDistancePairClosestPoints(
-                self.geometries[i], self.geometries[self.n_human + robot[j]]
+                self.geometries[i], self.geometries[robot_rows[j]]
             )
             pairs.append((i, j, result))
             best = min(best, result.distance)
@@ -139,8 +138,7 @@ class ProximityMeter:
 
     def _pair_reading(self, i: int, k: int, result, poses, previous, dt) -> PairReading:
         """Reading of human part `i` and part `k` (a robot part)."""
-        v_h = self._point_velocity(i, result.p_ACa, poses, previous, dt)
-        v_r = self._point_velocity(k, result.p_BCb, poses, previous, dt)
+        v_h, v_r = self._point_velocities([i, k], [result.p_ACa, result.p_BCb], poses, previous, dt)
         towards_human = result.nhat_BA_W
         return PairReading(
             region=self.human[i].name,
@@ -150,14 +148,15 @@ class ProximityMeter:
             human_approach=float(-v_h @ towards_human),
         )
 
-    def _point_velocity(self, part: int, p_G, poses, previous, dt) -> np.ndarray:
+    def _point_velocities(self, parts: list, points_G: list, poses, previous, dt) -> np.ndarray:
+        """World velocities (parts × 3) of points fixed in the parts' geometry frames."""
         if dt <= 0.0:
-            return np.zeros(3)
-        X_FG = self.X_FG[part]
-        p_F = X_FG[:, :3] @ p_G + X_FG[:, 3]
-        frame = self.part_frame[part]
-        moved = poses[frame] - previous[frame]
-        return (moved[:, :3] @ p_F + moved[:, 3]) / dt
+            return np.zeros((len(parts), 3))
+        X_FG = self.X_FG[parts]
+        p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
+        frames = self.part_frame[parts]
+        moved = poses[frames] - previous[frames]
+        return (moved[:, :, :3] @ p_F + moved[:, :, 3:])[:, :, 0] / dt
 
 
 def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:
@@ -167,4 +166,4 @@ def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> n
 
 
 def _speed(now: np.ndarray, before: np.ndarray, dt: float) -> float:
-    return float(np.linalg.norm(now - before)) / dt if dt > 0.0 else 0.0
+    return math.dist(now, before) / dt if dt > 0.0 else 0.0
