@@ -1,0 +1,128 @@
+"""Behavior trees drive the robot, the person and the objects inside one Diagram.
+
+Each test gives the agents of the small test cell (`cell.yaml`) trees from `trees/`,
+simulates, and checks what happened in the world: poses, object holders and supports,
+task events, the statuses the actors report.
+"""
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hrc_drake.builder import build_diagram
+from hrc_drake.messages import CANCELLED
+from hrc_drake.runner import make_simulator, run
+from hrc_drake.scenario import AgentTree, load_scenario
+from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT
+
+HERE = Path(__file__).resolve().parent
+
+
+def cell(robot: str | None = None, human: str | None = None, person: bool = True):
+    """The test cell with the given tree files (names in trees/) for its agents."""
+    scenario = load_scenario(HERE / "cell.yaml")
+    trees = {"robot": robot, "human": human}
+    scenario.trees = {agent: AgentTree(str(HERE / "trees" / f)) for agent, f in trees.items() if f}
+    return scenario if person else dataclasses.replace(scenario, human=None)
+
+
+class Simulation:
+    """A scenario's station simulated step by step, with its outputs at hand."""
+
+    def __init__(self, scenario):
+        self.diagram = build_diagram(scenario)
+        self.simulator = make_simulator(self.diagram, scenario)
+        self.simulator.Initialize()
+
+    def advance(self, t: float) -> "Simulation":
+        self.simulator.AdvanceTo(t)
+        return self
+
+    def __getitem__(self, port: str):
+        return self.diagram.GetOutputPort(port).Eval(self.simulator.get_context())
+
+    def events(self, agent: str) -> list[str]:
+        return [e.name for e in self[f"{agent}_task_events"]]
+
+    def tree(self, agent: str):
+        return self.diagram.GetSubsystemByName(f"bt_{agent}").tree
+
+
+def base_xy(status) -> np.ndarray:
+    return np.array(status.base_pose[:2])
+
+
+def test_robot_calls_the_person_who_walks_over_and_resets_the_call():
+    sim = Simulation(cell("call_robot.xml", "call_human.xml"))
+    sim.advance(1.0)
+    assert not sim["human_status"].called
+    called_seen = False
+    for t in np.arange(1.0, 12.0, 0.25):
+        called_seen |= sim.advance(t)["human_status"].called
+    human = sim["human_status"]
+    assert called_seen
+    assert not human.called
+    assert sim.events("robot") == ["called"] and sim.events("human") == ["helped"]
+    table_front = np.array([0.0, 1.55])
+    assert np.linalg.norm(base_xy(human) - table_front) < 0.05
+
+
+def test_movement_to_a_generated_pose_ends_inside_the_area():
+    scenario = cell(human="walk_random.xml")
+    hall = scenario.area("hall")
+    sim = Simulation(scenario).advance(6.0)
+    goal = sim.tree("human").root_blackboard.get("goal")
+    assert hall.contains(goal.xy)
+    assert sim.events("human") == ["arrived"]
+    assert np.linalg.norm(base_xy(sim["human_status"]) - goal.xy) < 0.05
+    assert hall.contains(base_xy(sim["human_status"]))
+
+
+def test_robot_move_succeeds_once_after_a_speed_change_mid_motion():
+    sim = Simulation(cell(robot="move_while_slowing.xml", person=False)).advance(6.0)
+    robot = sim["robot_status"]
+    assert sim.events("robot") == ["moved"]
+    move = sim.tree("robot").node("RobotMove::3")
+    assert move.tick_counts[2] == 1  # one SUCCESS
+    assert robot.speed_fraction == pytest.approx(0.3)
+    np.testing.assert_allclose(robot.tool_pose.translation(), [0.3, 0.3, 1.05], atol=2e-3)
+
+
+def test_reactive_sequence_halts_the_move_and_the_robot_stops_when_the_person_comes():
+    sim = Simulation(cell("stop_when_person_near.xml", "walk_to_table_side.xml"))
+    sim.advance(12.0)
+    robot = sim["robot_status"]
+    assert CANCELLED in [result.outcome for result in robot.results]
+    assert sim.events("robot") == ["halted"]
+    assert robot.tool_speed < 1e-3
+    target = np.array([-0.35, 0.3, 1.0])
+    assert np.linalg.norm(robot.tool_pose.translation() - target) > 0.05
+
+
+def test_spawned_part_goes_from_robot_to_person_and_is_carried_away():
+    sim = Simulation(cell("hand_on_robot.xml", "carry_away.xml"))
+    holders, supports = [], []
+    for t in np.arange(0.5, 24.0, 0.5):
+        objects = sim.advance(t)["workpieces_status"].objects
+        assert len(objects) == 1
+        holders.append(objects[0].holder)
+        supports.append(objects[0].support)
+    assert holders[0] is None and supports[0] == "work_table"
+    assert ROBOT in holders and BOTH_HANDS in holders
+    assert holders.index(ROBOT) < holders.index(BOTH_HANDS)
+    final = sim["workpieces_status"].objects[0]
+    assert final.holder is None and final.support == "floor"
+    np.testing.assert_allclose(final.pose.translation()[:2], [3.0, 2.5], atol=0.1)
+    assert sim.events("robot") == ["placed"] and sim.events("human") == ["carried"]
+
+
+def test_same_scenario_and_seed_give_identical_transition_logs(tmp_path):
+    scenario = cell("call_robot.xml", "walk_random.xml")
+    for name in ("first", "second"):
+        run(scenario, duration=6.0, out_dir=tmp_path / name)
+    for log in ("bt_robot.jsonl", "bt_human.jsonl", "bt_human.btlog", "report.json"):
+        first, second = (tmp_path / name / log for name in ("first", "second"))
+        assert first.read_bytes() == second.read_bytes(), log
+    assert (tmp_path / "first" / "bt_human.jsonl").read_text().count("\n") > 5
