@@ -5,6 +5,8 @@ Every tree's root blackboard holds the scenario's locations (as Poses), areas an
 `parameters`, so a tree can write `{table_top}` as well as the literal `table_top`.
 """
 
+from pydrake.common.schema import Rotation
+
 from hrc_drake.bt import BTError, Tree, load_tree, validate
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.context import AgentContext, Places
@@ -14,15 +16,24 @@ from hrc_drake.tree_types import AreaRef, Pose
 
 def scenario_places(scenario: Scenario) -> Places:
     return Places(
-        locations={name: scenario.location(name) for name in scenario.locations},
+        locations={name: location_pose(scenario, name) for name in scenario.locations},
         areas={name: scenario.area(name) for name in scenario.areas},
     )
+
+
+def location_pose(scenario: Scenario, name: str) -> Pose:
+    """A named location as trees see it: a location written without a rotation has no
+    orientation (the robot keeps its tool down, the person faces where they walk)."""
+    pose = Pose.from_transform(scenario.location(name))
+    if isinstance(scenario.locations[name].rotation.value, Rotation.Identity):
+        return Pose(pose.position)
+    return pose
 
 
 def blackboard_entries(scenario: Scenario) -> dict:
     places = scenario_places(scenario)
     return {
-        **{name: Pose.from_transform(pose) for name, pose in places.locations.items()},
+        **places.locations,
         **places.areas,
         **scenario.parameters,
     }

@@ -31,7 +31,7 @@ STATUS_INPUTS = (ROBOT, HUMAN, WORKPIECES, SAFETY)
 class Places:
     """The scenario's named locations and areas."""
 
-    locations: dict[str, RigidTransform] = field(default_factory=dict)
+    locations: dict[str, Pose] = field(default_factory=dict)
     areas: dict[str, Area] = field(default_factory=dict)
 
 
@@ -93,17 +93,17 @@ class AgentContext:
         self.events.append(TaskEvent(self.now, event, self.agent, value))
 
     # places --------------------------------------------------------------------------
-    def transform(self, pose: Pose) -> RigidTransform:
-        """A pose port's value in the world; names are scenario locations."""
-        if pose.name:
-            if pose.name not in self.places.locations:
-                raise KeyError(f"unknown location '{pose.name}'")
-            return self.places.locations[pose.name]
-        return pose.to_transform()
-
     def resolve_pose(self, pose: Pose) -> Pose:
-        """The pose with a location name replaced by its coordinates."""
-        return Pose.from_transform(self.transform(pose)) if pose.name else pose
+        """The pose with a location name replaced by the scenario's location."""
+        if not pose.name:
+            return pose
+        if pose.name not in self.places.locations:
+            raise KeyError(f"unknown location '{pose.name}'")
+        return self.places.locations[pose.name]
+
+    def transform(self, pose: Pose) -> RigidTransform:
+        """A pose port's value in the world (identity rotation when it has none)."""
+        return self.resolve_pose(pose).to_transform()
 
     def area(self, area: Area | AreaRef) -> Area:
         if isinstance(area, AreaRef):

@@ -26,11 +26,10 @@ class RobotCommandNode(CommandNode):
     def tool_target(self, port: str) -> tuple[RigidTransform, bool]:
         """The target pose; a pose without orientation points the tool down and leaves
         the rotation about the tool axis free."""
-        pose: Pose = self.get_input(port)
-        transform = self.context.transform(pose)
-        if pose.name or pose.quaternion is not None:
-            return transform, False
-        return RigidTransform(TOOL_DOWN, transform.translation()), True
+        pose: Pose = self.context.resolve_pose(self.get_input(port))
+        if pose.quaternion is not None:
+            return pose.to_transform(), False
+        return RigidTransform(TOOL_DOWN, pose.position), True
 
 
 class RobotMove(RobotCommandNode):
