@@ -79,7 +79,7 @@ class SafetyMonitor(LeafSystem):
         self._scale = self.DeclareDiscreteState(np.ones(1))
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
-        self._poses = self.DeclareDiscreteState(np.full(12 * len(self._meter.frames), np.nan))
+        self._memory = self.DeclareDiscreteState(np.full(self._meter.memory_size, np.nan))
         self.DeclareStateOutputPort("speed_scale", self._scale)
         self.DeclareStateOutputPort("safety_signals", self._signals)
         self.DeclareStateOutputPort("safety_status", self._status)
@@ -97,23 +97,23 @@ class SafetyMonitor(LeafSystem):
         time = context.get_time()
         reading = self._meter.measure(
             self._query.Eval(context),
-            self._previous_poses(context),
+            self._last_memory(context),
             time - before.time,
             self._active_parts.get(held, self._active_parts[None]),
         )
         payload = self._carried[held].mass if held in self._carried else 0.0
         status = self._judge.status(time, reading, before, payload)
         state.get_mutable_abstract_state(self._status).set_value(status)
-        state.get_mutable_discrete_state(self._poses).set_value(reading.poses.ravel())
+        state.get_mutable_discrete_state(self._memory).set_value(reading.memory)
         state.get_mutable_discrete_state(self._scale).set_value([status.scale])
         state.get_mutable_discrete_state(self._signals).set_value(status.signals(reading.person_xy))
         return EventStatus.Succeeded()
 
-    def _previous_poses(self, context) -> np.ndarray | None:
-        """The frame poses of the last update (None before the first): a vector state, as
+    def _last_memory(self, context) -> np.ndarray | None:
+        """The meter's memory of the last update (None before the first): a vector state, as
         Drake copies it in C++ where an abstract one costs a Python deepcopy per update."""
-        poses = context.get_discrete_state(self._poses).value()
-        return None if math.isnan(poses[0]) else poses.reshape(-1, 3, 4)
+        memory = context.get_discrete_state(self._memory).value()
+        return None if math.isnan(memory[0]) else memory
 
     def _held_object(self, context) -> str | None:
         if not self._robot_status.HasValue(context):

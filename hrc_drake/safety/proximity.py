@@ -17,6 +17,12 @@ BOUND_SLACK = 1e-6
 """m taken off every capsule bound, so that rounding (in the bound or in Drake's distance)
 cannot skip a pair that is closer than the best one found by a hair."""
 
+REFRESH_DISTANCE = 0.02
+"""m any part may move before the capsule gaps are computed afresh. Until then the gaps of
+the reference less both parts' displacements since bound the distances (a capsule moves no
+farther than its segment's ends); farther moves loosen them into more exact queries than
+the fresh gaps cost."""
+
 
 @dataclass(frozen=True)
 class PairReading:
@@ -39,14 +45,14 @@ class PairReading:
 
 @dataclass(frozen=True)
 class Reading:
-    """One measurement; `poses` (frames × 3 × 4) feed the next one's speeds."""
+    """One measurement; `memory` (a vector) feeds the next one's speeds and bounds."""
 
     closest: PairReading | None
     contacts: tuple[PairReading, ...]
     robot_speed: float
     human_speed: float
     person_xy: tuple[float, float]
-    poses: np.ndarray
+    memory: np.ndarray
 
 
 class ProximityMeter:
@@ -76,15 +82,20 @@ class ProximityMeter:
         human_frames = np.unique(self.part_frame[: self.n_human])
         self.centre_weights = np.zeros(len(self.frames))
         self.centre_weights[human_frames] = 1.0 / len(human_frames)
+        self._memory_splits = np.cumsum([12 * len(self.frames), 6 * len(self.geometries)])
+        self.memory_size = self._memory_splits[-1] + self.radii.size
 
-    def measure(self, query_object, previous: np.ndarray | None, dt: float, robot) -> Reading:
-        """`robot` (indices into `robot`) are the active parts: carried objects come and go."""
+    def measure(self, query_object, memory: np.ndarray | None, dt: float, robot) -> Reading:
+        """`memory` is the last reading's (None at first); `robot` (indices into `robot`) are
+        the active parts: carried objects come and go."""
         poses = np.array([query_object.GetPoseInWorld(f).GetAsMatrix34() for f in self.frames])
-        if previous is None or dt <= 0:
+        previous, reference = self._recall(memory) if memory is not None else (poses, None)
+        if dt <= 0:
             previous, dt = poses, 0.0
         robot_rows = self.n_human + robot
         ends = self._ends(poses)
-        bound = self._bounds(ends, robot_rows) - self.radii[:, robot]
+        gaps, reference = self._gaps(ends, reference)
+        bound = gaps[:, robot] - self.radii[:, robot]
         readings = [
             self._pair_reading(i, robot_rows[j], result, poses, previous, dt)
             for i, j, result in self._exact_pairs(query_object, bound, robot_rows)
@@ -96,20 +107,31 @@ class ProximityMeter:
             robot_speed=self._robot_speed(ends, previous, dt, robot_rows),
             human_speed=_speed(centre, self.centre_weights @ previous[:, :, 3], dt),
             person_xy=(float(centre[0]), float(centre[1])),
-            poses=poses,
+            memory=np.concatenate([poses.ravel(), *(r.ravel() for r in reference)]),
         )
+
+    def _recall(self, memory: np.ndarray):
+        """The last poses and the gaps' reference (part ends, gaps) stored in `memory`."""
+        poses, ends, gaps = np.split(memory, self._memory_splits)
+        return poses.reshape(-1, 3, 4), (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
 
     def _ends(self, poses: np.ndarray) -> np.ndarray:
         """World end points (parts × 3 × 2) of all parts' bounding segments."""
         return poses[self.part_frame] @ self.ends_F
 
-    def _bounds(self, ends: np.ndarray, robot_rows: np.ndarray) -> np.ndarray:
-        """Distances (human × active robot parts) between the bounding segments."""
+    def _gaps(self, ends: np.ndarray, reference) -> tuple:
+        """Lower bounds (human × robot parts) of the distances between the bounding segments,
+        and their reference (part ends, gaps): the last one while no part moved far."""
+        if reference is not None:
+            moved = ends - reference[0]
+            moved = np.sqrt((moved * moved).sum(axis=1).max(axis=1))
+            if moved.max() <= REFRESH_DISTANCE:
+                h, r = moved[: self.n_human, None], moved[None, self.n_human :]
+                return reference[1] - h - r, reference
         starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        h = slice(0, self.n_human)
-        return segment_distances(
-            starts[h], directions[h], starts[robot_rows], directions[robot_rows]
-        )
+        h, r = slice(0, self.n_human), slice(self.n_human, None)
+        gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
+        return gaps, (ends, gaps)
 
     def _robot_speed(self, ends, previous, dt, robot_rows) -> float:
         """Fastest end of any active robot part's bounding segment (tool tip included)."""

@@ -1,0 +1,81 @@
+"""The meter's exactness while it reuses capsule gaps across updates: every reading names
+the pair a brute-force query of all pairs finds closest, and every touching pair."""
+
+import math
+
+import numpy as np
+import pytest
+from approach_cell import kinematic, walk
+from pydrake.geometry import SceneGraph
+from pydrake.systems.framework import DiagramBuilder
+
+from hrc_drake.human.body import parse_human
+from hrc_drake.safety.geometry import body_parts, human_parts
+from hrc_drake.safety.proximity import ProximityMeter
+from hrc_drake.scenario import load_scenario
+from hrc_drake.station_models import add_robot, model_parser
+
+PERIOD = 0.01
+PERSON = walk(stand=0.3, arrive=1.0, leave=5.0, bearing=math.radians(55), start=1.0)
+
+
+class Cell:
+    """The person and the arm in one SceneGraph, posed by hand."""
+
+    def __init__(self):
+        scenario = load_scenario("base")
+        builder = DiagramBuilder()
+        scene_graph = builder.AddSystem(SceneGraph())
+        robot_plant, arm, self.robot_pose = kinematic(
+            builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.robot)
+        )
+        human_plant, human, self.human_pose = kinematic(
+            builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
+        )
+        self.q_home = scenario.configuration("home")
+        self.diagram = builder.Build()
+        self.context = self.diagram.CreateDefaultContext()
+        self.query_port = scene_graph.get_query_output_port()
+        self.scene_graph = scene_graph
+        inspector = scene_graph.model_inspector()
+        self.human = human_parts(human_plant, inspector, human)
+        self.robot = body_parts(robot_plant, [arm])
+        self.meter = ProximityMeter(inspector, self.human, self.robot)
+
+    def query_at(self, time: float):
+        """The QueryObject with the person walking and A1 swinging at `time`."""
+        q = self.q_home.copy()
+        q[0] += math.radians(60) * math.sin(1.2 * time)
+        for pose, positions in ((self.robot_pose, q), (self.human_pose, PERSON.value(time))):
+            pose.get_input_port().FixValue(pose.GetMyContextFromRoot(self.context), positions)
+        return self.query_port.Eval(self.scene_graph.GetMyContextFromRoot(self.context))
+
+    def all_distances(self, query) -> list[tuple[float, str, str]]:
+        return [
+            (
+                query.ComputeSignedDistancePairClosestPoints(h.geometry, r.geometry).distance,
+                h.name,
+                r.name,
+            )
+            for h in self.human
+            for r in self.robot
+        ]
+
+
+def test_reused_gaps_find_the_exact_closest_pair_and_every_contact():
+    cell = Cell()
+    robot = np.arange(len(cell.robot))
+    memory, touched = None, 0
+    for time in np.arange(0.0, 5.0, PERIOD):
+        query = cell.query_at(time)
+        reading = cell.meter.measure(query, memory, PERIOD if memory is not None else 0.0, robot)
+        memory = reading.memory
+        distances = cell.all_distances(query)
+        closest = min(distances)
+        assert reading.closest.distance == pytest.approx(closest[0], abs=1e-12)
+        assert (reading.closest.region, reading.closest.part) == closest[1:]
+        contacts = sorted((d, h, r) for d, h, r in distances if d <= 0.0)
+        measured = sorted((c.distance, c.region, c.part) for c in reading.contacts)
+        assert [c[1:] for c in measured] == [c[1:] for c in contacts]
+        touched += bool(contacts)
+    assert touched > 10  # the walk reaches into the swing
