@@ -3,7 +3,9 @@
 `ProximityMeter.measure` fetches the world poses of the watched frames, bounds every
 (body region, robot part) pair with the capsule broad phase, and asks the QueryObject for
 exact signed distances (pair queries ignore collision filters) only where a pair can be the
-closest or touching. Speeds come from the frame poses of the previous measurement.
+closest or touching. Speeds come from the frame poses of the previous measurement; the
+capsule gaps are reused, less how far the parts moved, until a part moved `REFRESH_DISTANCE`.
+Both live in the reading's `memory`, which the monitor keeps as vector state.
 """
 
 import math
@@ -82,8 +84,10 @@ class ProximityMeter:
         human_frames = np.unique(self.part_frame[: self.n_human])
         self.centre_weights = np.zeros(len(self.frames))
         self.centre_weights[human_frames] = 1.0 / len(human_frames)
-        self._memory_splits = np.cumsum([12 * len(self.frames), 6 * len(self.geometries)])
-        self.memory_size = self._memory_splits[-1] + self.radii.size
+        poses_end = 12 * len(self.frames)
+        ends_end = poses_end + 6 * len(self.geometries)
+        self._memory_parts = slice(0, poses_end), slice(poses_end, ends_end), slice(ends_end, None)
+        self.memory_size = ends_end + self.radii.size
 
     def measure(self, query_object, memory: np.ndarray | None, dt: float, robot) -> Reading:
         """`memory` is the last reading's (None at first); `robot` (indices into `robot`) are
@@ -112,7 +116,7 @@ class ProximityMeter:
 
     def _recall(self, memory: np.ndarray):
         """The last poses and the gaps' reference (part ends, gaps) stored in `memory`."""
-        poses, ends, gaps = np.split(memory, self._memory_splits)
+        poses, ends, gaps = (memory[part] for part in self._memory_parts)
         return poses.reshape(-1, 3, 4), (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
 
     def _ends(self, poses: np.ndarray) -> np.ndarray:
