@@ -23,6 +23,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
+    import pydrake.common  # noqa: F401  (it sets the "drake" logger's level on import)
+
     logging.getLogger("drake").setLevel(logging.WARNING)  # keep the output to what we print
     parser = _make_parser()
     try:

@@ -5,6 +5,7 @@ the simulated station: planning never touches the station's context.
 """
 
 import numpy as np
+from pydrake.common import Parallelism
 from pydrake.math import RigidTransform
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
@@ -30,6 +31,9 @@ class PlanningModel:
             edge_step_size=EDGE_STEP,
             env_collision_padding=clearance,
             self_collision_padding=0.0,
+            # One context: planning runs inside a simulation step, and sweeps already
+            # use every core with one process each.
+            implicit_context_parallelism=Parallelism(1),
         )
         self.plant = self.checker.plant()
         self.arm = arm
