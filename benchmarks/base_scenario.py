@@ -14,23 +14,25 @@ import time
 import numpy as np
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
-from pydrake.systems.analysis import Simulator
 from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
-from hrc_drake.runner import run
+from hrc_drake.runner import make_simulator, run
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot, make_control_plant
 
 
-def bare_diagram(scenario):
-    """The arm with its tool, an inverse-dynamics controller and a constant set point: no
-    cell, no visualizer, no loggers, no runner."""
+def bare_diagram(scenario, desired=None):
+    """The arm with its tool, an inverse-dynamics controller and a desired-state source (by
+    default a constant set point at the initial configuration): no cell, no person, no
+    trees, no monitor, no visualizer, no loggers, no runner."""
     variant = VARIANTS[scenario.robot.variant]
     q0 = scenario.configuration(scenario.robot.initial_configuration)
+    if desired is None:
+        desired = ConstantVectorSource(np.concatenate([q0, 0 * q0]))
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
@@ -46,15 +48,15 @@ def bare_diagram(scenario):
             make_control_plant(scenario), variant.kp, variant.ki, variant.kd, False
         )
     )
-    hold = builder.AddSystem(ConstantVectorSource(np.concatenate([q0, 0 * q0])))
+    hold = builder.AddSystem(desired)
     builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
     builder.Connect(hold.get_output_port(), controller.get_input_port_desired_state())
     builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
     return builder.Build()
 
 
-def time_bare(scenario, duration: float) -> float:
-    simulator = Simulator(bare_diagram(scenario))
+def time_bare(scenario, duration: float, desired=None) -> float:
+    simulator = make_simulator(bare_diagram(scenario, desired), scenario)
     start = time.perf_counter()
     simulator.AdvanceTo(duration)
     return time.perf_counter() - start
