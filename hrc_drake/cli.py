@@ -169,6 +169,8 @@ def _run(args) -> int:
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
     )
+    for line in key_metrics(report.metrics):
+        print(f"  {line}")
     _print_files(report.files)
     return 0
 
@@ -187,6 +189,25 @@ def _sweep(args) -> int:
     )
     _print_files(result.files)
     return 0
+
+
+def key_metrics(metrics: dict) -> list[str]:
+    """The figures a user looks at first: output, safety, how much the robot was slowed."""
+    lines = [
+        f"{name}: {count} ({metrics['tasks']['throughput_per_hour'][name]:g}/h)"
+        for name, count in metrics.get("tasks", {}).get("events", {}).items()
+    ]
+    safety = metrics.get("safety") or {}
+    if safety.get("min_separation"):
+        closest = safety["min_separation"]
+        lines += [
+            f"min separation: {closest['distance']:.3f} m ({closest['region']} / "
+            f"{closest['link']} at {closest['time']:.1f} s)",
+            f"SSM violations: {safety['ssm_violations']['count']}, "
+            f"contacts: {safety['contacts']['count']}, stops: {safety['stops']}, "
+            f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
+        ]
+    return lines
 
 
 def _print_files(files: dict[str, Path]) -> None:

@@ -277,7 +277,7 @@ def _advance(simulator: Simulator, duration: float, progress: bool, name: str) -
         total=round(duration, 3),
         unit="sim s",
         desc=name,
-        disable=not progress,
+        disable=None if progress else True,  # None: only on a terminal
         delay=2.0,
         bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} sim s [{elapsed}<{remaining}]",
     ) as bar:

@@ -57,6 +57,7 @@ def add_human(
     `<issuer>_command` input (default: `human_command`).
     """
     plant = MultibodyPlant(0.0)
+    plant.set_name(f"{name}_plant")  # names its geometry source in SceneGraph
     plant.RegisterAsSourceForSceneGraph(scene_graph)
     parse_human(plant, height, mass, name)
     plant.Finalize()
