@@ -72,7 +72,10 @@ def sweep(
     done = store.done()
     pending = [spec for spec in specs if spec.key not in done]
     with tqdm(
-        total=len(pending), unit="run", desc=scenario_name or "sweep", disable=not progress
+        total=len(pending),
+        unit="run",
+        desc=scenario_name or "sweep",
+        disable=None if progress else True,
     ) as bar:
 
         def on_row(row: dict) -> None:
