@@ -5,7 +5,7 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-DEMO_SCENARIO ?= base
+DEMO_SCENARIO ?= coexistence
 
 .PHONY: demo test lint format graphviz clean
 
