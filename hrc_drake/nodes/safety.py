@@ -18,6 +18,20 @@ class HumanInArea(ConditionNode):
         return Status.SUCCESS if inside else Status.FAILURE
 
 
+class RobotInArea(ConditionNode):
+    """SUCCESS while the robot's tool centre point lies above the area (x, y), e.g. while
+    it works in a tray: the person waits before putting a hand there."""
+
+    ports = (InputPort("area", Area, description="area name or triangles"),)
+
+    def tick(self) -> Status:
+        status = self.context.robot
+        inside = status is not None and self.context.in_area(
+            status.tool_pose.translation()[:2], self.get_input("area")
+        )
+        return Status.SUCCESS if inside else Status.FAILURE
+
+
 class SeparationBelow(ConditionNode):
     """SUCCESS while the smallest person-robot distance is below `distance` (metres)."""
 
@@ -29,4 +43,4 @@ class SeparationBelow(ConditionNode):
         return Status.SUCCESS if close else Status.FAILURE
 
 
-NODES = (HumanInArea, SeparationBelow)
+NODES = (HumanInArea, RobotInArea, SeparationBelow)

@@ -1,0 +1,47 @@
+"""RobotInArea: the person's tree sees whether the robot's tool works above a tray."""
+
+import pytest
+from pydrake.math import RigidTransform
+
+from hrc_drake.areas import Area
+from hrc_drake.bt import Status, load_tree
+from hrc_drake.motion.messages import RobotStatus
+from hrc_drake.nodes import hrc_registry
+from hrc_drake.nodes.context import AgentContext, Places
+
+TRAY = Area.from_polygon([[-0.6, -0.2], [-0.3, -0.2], [-0.3, 0.3], [-0.6, 0.3]])
+
+
+def robot_status(tool_xyz) -> RobotStatus:
+    return RobotStatus(
+        mode="moving",
+        results=(),
+        tool_pose=RigidTransform(list(tool_xyz)),
+        tool_speed=0.0,
+        speed_fraction=1.0,
+        safety_scale=1.0,
+        speed_scale=1.0,
+    )
+
+
+def tick_robot_in_area(status) -> Status:
+    xml = (
+        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
+        '<RobotInArea area="tray"/></BehaviorTree></root>'
+    )
+    context = AgentContext("human", Places(areas={"tray": TRAY}))
+    context.statuses["robot"] = status
+    return load_tree(xml, hrc_registry(), context=context).tick(0.0)
+
+
+@pytest.mark.parametrize(
+    ("tool", "expected"),
+    [((-0.45, 0.0, 0.9), Status.SUCCESS), ((0.0, 0.5, 0.9), Status.FAILURE)],
+    ids=["above the tray", "elsewhere"],
+)
+def test_robot_in_area_follows_the_tool_centre_point(tool, expected):
+    assert tick_robot_in_area(robot_status(tool)) is expected
+
+
+def test_robot_in_area_fails_without_robot_status():
+    assert tick_robot_in_area(None) is Status.FAILURE
