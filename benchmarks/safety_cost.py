@@ -15,7 +15,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-from hrc_drake.systems.safety_monitor import add_safety_monitor
 from pydrake.geometry import CollisionFilterDeclaration, GeometrySet
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
@@ -29,6 +28,7 @@ from hrc_drake.iisy import VARIANTS
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot, make_control_plant, model_parser
+from hrc_drake.systems.safety_monitor import add_safety_monitor
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "safety"))
 from approach_cell import kinematic, walk  # noqa: E402  (the approach test's cell)

@@ -63,7 +63,7 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     motion = add_robot_motion(
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
-    safety = _add_safety(builder, scene_graph, plant, human_plant, motion, scenario)
+    safety = _add_safety(builder, scene_graph, plant, human_plant, motion, workpieces, scenario)
     actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
     trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
     if meshcat is not None:
@@ -133,7 +133,7 @@ def _add_workpieces(builder, scene_graph, plant, scenario, human):
     return workpieces
 
 
-def _add_safety(builder, scene_graph, plant, human_plant, motion, scenario):
+def _add_safety(builder, scene_graph, plant, human_plant, motion, workpieces, scenario):
     if human_plant is None or not scenario.safety.enabled:
         return None
     safety = add_safety_monitor(
@@ -144,9 +144,14 @@ def _add_safety(builder, scene_graph, plant, human_plant, motion, scenario):
         human_plant.GetModelInstanceByName(HUMAN_NAME),
         scenario.safety,
         scenario.robot.variant,
+        carriable=workpieces.geometry_ids if workpieces is not None else (),
     )
     builder.Connect(safety.GetOutputPort("speed_scale"), motion.GetInputPort("speed_scale"))
-    builder.Connect(motion.GetOutputPort("robot_status"), safety.get_robot_status_input_port())
+    if workpieces is not None:
+        builder.Connect(
+            workpieces.GetOutputPort("workpieces_status"),
+            safety.get_workpieces_status_input_port(),
+        )
     return safety
 
 

@@ -10,16 +10,17 @@ and judges them (`hrc_drake.safety.judge`). Outputs, all computed from state:
 - `safety_status`: a `hrc_drake.safety.messages.SafetyStatus` for trees and reports.
 - `safety_signals`: the status as a vector (`SIGNALS`) for loggers, timelines, heat maps.
 
-Optional input `robot_status` (RobotMotion's status): its `held_object` switches that
-object's geometry into the robot parts and adds its mass to the payload.
+Optional input `workpieces_status` (Workpieces' status): the object the robot's gripper
+holds becomes a robot part (its geometry is watched like a link's, reported as
+`carried object`) and its mass is added to the payload.
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.value import AbstractValue
-from pydrake.geometry import QueryObject
+from pydrake.geometry import GeometryId, QueryObject
 from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.safety.config import SafetyConfig
@@ -29,14 +30,10 @@ from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.safety.stopping import ssm_parameters
+from hrc_drake.workpieces.messages import ROBOT
 
-
-@dataclass(frozen=True)
-class CarriedObject:
-    """An object the robot may carry: its geometries (named after the object) and mass."""
-
-    geometries: tuple = ()
-    mass: float = 0.0
+CARRIED = "carried object"
+"""How reports name the robot part that is the object in its gripper."""
 
 
 @dataclass(frozen=True)
@@ -46,7 +43,8 @@ class RobotModel:
     parts: list[Part]
     moving_mass: float
     tool_mass: float
-    carried: dict[str, CarriedObject] = field(default_factory=dict)
+    carriable: tuple[GeometryId, ...] = ()
+    """Geometries of objects the gripper may hold (the workpieces' slots)."""
 
 
 class SafetyMonitor(LeafSystem):
@@ -59,12 +57,9 @@ class SafetyMonitor(LeafSystem):
         variant: str,
     ):
         super().__init__()
-        carried_parts = [
-            Part(g, name) for name, obj in robot.carried.items() for g in obj.geometries
-        ]
+        carried_parts = [Part(g, CARRIED) for g in robot.carriable]
         self._meter = ProximityMeter(inspector, human, robot.parts + carried_parts)
         self._active_parts = _active_parts(robot.parts, carried_parts)
-        self._carried = robot.carried
         self._judge = Judge(
             config,
             ssm_parameters(config, variant),
@@ -73,8 +68,8 @@ class SafetyMonitor(LeafSystem):
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
-        self._robot_status = self.DeclareAbstractInputPort(
-            "robot_status", AbstractValue.Make(object())
+        self._workpieces = self.DeclareAbstractInputPort(
+            "workpieces_status", AbstractValue.Make(object())
         )
         self._scale = self.DeclareDiscreteState(np.ones(1))
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
@@ -88,20 +83,21 @@ class SafetyMonitor(LeafSystem):
     def get_query_object_input_port(self):
         return self._query
 
-    def get_robot_status_input_port(self):
-        return self._robot_status
+    def get_workpieces_status_input_port(self):
+        return self._workpieces
 
     def _update(self, context, state) -> EventStatus:
         before: SafetyStatus = context.get_abstract_state(self._status).get_value()
         held = self._held_object(context)
         time = context.get_time()
+        geometry = held.geometry_id if held is not None else None
         reading = self._meter.measure(
             self._query.Eval(context),
             self._last_memory(context),
             time - before.time,
-            self._active_parts.get(held, self._active_parts[None]),
+            self._active_parts.get(geometry, self._active_parts[None]),
         )
-        payload = self._carried[held].mass if held in self._carried else 0.0
+        payload = held.mass if held is not None else 0.0
         status = self._judge.status(time, reading, before, payload)
         state.get_mutable_abstract_state(self._status).set_value(status)
         state.get_mutable_discrete_state(self._memory).set_value(reading.memory)
@@ -115,23 +111,24 @@ class SafetyMonitor(LeafSystem):
         memory = context.get_discrete_state(self._memory).value()
         return None if math.isnan(memory[0]) else memory
 
-    def _held_object(self, context) -> str | None:
-        if not self._robot_status.HasValue(context):
+    def _held_object(self, context):
+        """The workpiece the robot's gripper holds (an ObjectStatus), if any."""
+        if not self._workpieces.HasValue(context):
             return None
-        return getattr(self._robot_status.Eval(context), "held_object", None)
+        return self._workpieces.Eval(context).held_by(ROBOT)
 
 
-def _active_parts(robot: list[Part], carried: list[Part]) -> dict[str | None, np.ndarray]:
-    """Indices of the watched robot parts for each held object (None: nothing held)."""
-    always = list(range(len(robot)))
-    held = {None: np.array(always)}
+def _active_parts(robot: list[Part], carried: list[Part]) -> dict:
+    """Indices of the watched robot parts for each held object's geometry (None: nothing
+    held): the arm and tool always, a carried object while it is held."""
+    always = np.arange(len(robot))
+    held = {None: always}
     for k, part in enumerate(carried, start=len(robot)):
-        held.setdefault(part.name, np.array(always))
-        held[part.name] = np.append(held[part.name], k)
+        held[part.geometry] = np.append(always, k)
     return held
 
 
-def robot_model(plant, arm, tool=None, carried=None) -> RobotModel:
+def robot_model(plant, arm, tool=None, carriable=()) -> RobotModel:
     """The arm (and tool) of `plant`: geometry parts and moving mass (bodies not welded to
     the world)."""
     fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
@@ -141,7 +138,7 @@ def robot_model(plant, arm, tool=None, carried=None) -> RobotModel:
         parts=body_parts(plant, [arm] + ([tool] if tool is not None else [])),
         moving_mass=sum(body.default_mass() for body in moving),
         tool_mass=sum(body.default_mass() for body in tools),
-        carried=dict(carried or {}),
+        carriable=tuple(carriable),
     )
 
 
@@ -153,13 +150,14 @@ def add_safety_monitor(
     human_instance,
     config: SafetyConfig,
     variant: str,
-    carried: dict[str, CarriedObject] | None = None,
+    carriable: tuple = (),
 ) -> SafetyMonitor:
     """Adds the monitor named `safety` and connects its QueryObject input.
 
     `plant` holds the robot as model instances `iisy` and `tool` (if present); the person's
-    geometry belongs to `human_instance` of `human_plant`. The caller connects
-    `speed_scale` to RobotMotion and, if objects are carried, `robot_status`.
+    geometry belongs to `human_instance` of `human_plant`; `carriable` are the geometries of
+    objects the gripper may hold. The caller connects `speed_scale` to RobotMotion and, when
+    objects can be carried, the workpieces' status to `workpieces_status`.
     """
     arm = plant.GetModelInstanceByName("iisy")
     tool = plant.GetModelInstanceByName("tool") if plant.HasModelInstanceNamed("tool") else None
@@ -169,7 +167,7 @@ def add_safety_monitor(
         SafetyMonitor(
             inspector,
             human_parts(human_plant, inspector, human_instance),
-            robot_model(plant, arm, tool, carried),
+            robot_model(plant, arm, tool, carriable),
             config,
             variant,
         ),

@@ -5,7 +5,6 @@ walking away. Both are placed in one SceneGraph by MultibodyPositionToGeometryPo
 import math
 
 import numpy as np
-from hrc_drake.systems.safety_monitor import add_safety_monitor
 from pydrake.geometry import SceneGraph
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.analysis import Simulator
@@ -18,6 +17,7 @@ from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot, model_parser
+from hrc_drake.systems.safety_monitor import add_safety_monitor
 
 SWING_AMPLITUDE = math.radians(60)
 SWING_RATE = 1.2

@@ -3,9 +3,10 @@ and every carton rests on the pallet or on the carton below it."""
 
 import numpy as np
 import pytest
-from hrc_drake.systems.workpieces import Workpieces
 from pydrake.geometry import SceneGraph
 from workpieces_rig import load_example
+
+from hrc_drake.systems.workpieces import Workpieces
 
 PALLET_TOP = 0.144
 CARTON_HEIGHT = 0.2

@@ -3,7 +3,6 @@ person's hands come from HumanActor's status."""
 
 import numpy as np
 import pytest
-from hrc_drake.systems.workpieces import add_workpieces, hand_poses
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
@@ -19,6 +18,7 @@ from hrc_drake.messages import SUCCEEDED
 from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import RobotConfig
 from hrc_drake.station_models import TOOL_MODEL, add_robot
+from hrc_drake.systems.workpieces import add_workpieces, hand_poses
 from hrc_drake.workpieces.messages import ROBOT, Attach, CommandResult, Spawn
 
 

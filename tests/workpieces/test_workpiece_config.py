@@ -3,10 +3,10 @@
 import dataclasses
 
 import pytest
-from hrc_drake.systems.workpieces import Workpieces
 from pydrake.geometry import SceneGraph
 from workpieces_rig import EXAMPLE, Section, load_example
 
+from hrc_drake.systems.workpieces import Workpieces
 from hrc_drake.workpieces.config import (
     ConveyorConfig,
     GridLayout,

@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from hrc_drake.systems.workpieces import add_workpieces
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.schema import Transform
 from pydrake.common.value import AbstractValue
@@ -22,6 +21,7 @@ from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
+from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.yaml_check import check_node, compose

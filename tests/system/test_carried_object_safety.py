@@ -1,0 +1,29 @@
+"""An object in the robot's gripper is part of the robot for the safety monitor: its
+distance to the person counts, and its mass adds to the payload of contact estimates."""
+
+import dataclasses
+
+from test_trees_in_diagram import Simulation, cell
+
+from hrc_drake.systems.safety_monitor import CARRIED
+from hrc_drake.workpieces.config import ObjectType
+
+BAR = ObjectType(shape="box", size=[0.7, 0.04, 0.02], mass=1.5, capacity=1)
+
+
+def test_the_bar_the_robot_holds_is_what_comes_closest_to_the_person():
+    scenario = cell("hold_bar.xml", "stand_by_the_bar.xml")
+    types = {**scenario.workpieces.types, "bar": BAR}
+    scenario = dataclasses.replace(
+        scenario, workpieces=dataclasses.replace(scenario.workpieces, types=types)
+    )
+    sim = Simulation(scenario)
+    links_before_grip = {sim.advance(t)["safety_status"].link for t in (0.5, 1.0)}
+    assert CARRIED not in links_before_grip
+    sim.advance(12.0)
+    assert sim.events("robot") == ["holding"]
+    assert sim["workpieces_status"].held_by("robot").type == "bar"
+    status = sim["safety_status"]
+    assert status.link == CARRIED
+    bar_end_x = 0.25 + BAR.size[0] / 2
+    assert 0.0 < status.separation < 1.15 - bar_end_x
