@@ -155,7 +155,6 @@ def load_scenario(name_or_path: str | Path) -> Scenario:
     except Exception as e:  # Drake's reader; our check above catches the common cases first.
         raise InputError(f"{path}: {e}") from None
     _check_meaning(path, root, scenario)
-    _resolve_tree_files(path, root, scenario)
     return scenario
 
 
@@ -180,35 +179,23 @@ def _check_meaning(path: Path, root, scenario: Scenario) -> None:
         fail(("workpieces", *names), message)
     if scenario.human is not None:
         _check_human(scenario.human, lambda names, msg: fail(("human", *names), msg))
+    _resolve_tree_files(
+        path.parent, scenario.trees, lambda names, msg: fail(("trees", *names), msg)
+    )
 
 
-def _resolve_tree_files(path: Path, root, scenario: Scenario) -> None:
+def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree], fail) -> None:
     """Tree files are named relative to the scenario file; keep them as absolute paths so
     the loaded scenario works from any directory (and in sweep workers)."""
-    for agent, tree in scenario.trees.items():
-        where = ("trees", agent)
+    for agent, tree in trees.items():
         if agent not in AGENTS:
-            raise located_error(
-                path, node_at(root, where), field_path(where), _unknown("agent", agent, AGENTS)
-            )
-        file = (path.parent / tree.file).resolve()
+            fail((agent,), _unknown("agent", agent, AGENTS))
+        file = (directory / tree.file).resolve()
         if not file.is_file():
-            where = (*where, "file")
-            raise located_error(
-                path,
-                node_at(root, where),
-                field_path(where),
-                f"tree file '{tree.file}' not found (looked at {file})",
-            )
+            fail((agent, "file"), f"tree file '{tree.file}' not found (looked at {file})")
         tree.file = str(file)
         if not tree.period > 0:
-            where = (*where, "period")
-            raise located_error(
-                path,
-                node_at(root, where),
-                field_path(where),
-                f"must be positive, got {tree.period}",
-            )
+            fail((agent, "period"), f"must be positive, got {tree.period}")
 
 
 def _check_robot(robot: RobotConfig, fail) -> None:

@@ -11,7 +11,6 @@ from dataclasses import dataclass, field
 NULL_QUATERNION = (0.0, 0.0, 0.0, 0.0)
 """Target orientation meaning "end facing the walking direction"."""
 
-OUTCOMES = ("running", "succeeded", "failed", "rejected", "cancelled")
 STATES = ("SETUP", "IDLE", "MOVEMENT", "ANIMATION")
 
 
