@@ -59,9 +59,11 @@ class HumanActor(LeafSystem):
         return self._ctx.body
 
     def _frames(self, q: np.ndarray):
+        """The hands' and head's poses: one forward kinematics for the three."""
         body = self._ctx.body
+        body.set(q)
         return tuple(
-            _pose_tuple(body.frame_pose(name, q))
+            _pose_tuple(body.frame_pose(name))
             for name in ("left_hand_grasp", "right_hand_grasp", "head_gaze")
         )
 

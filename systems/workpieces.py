@@ -82,6 +82,8 @@ class Workpieces(LeafSystem):
         self.frame_ids = self._register_slots(scene_graph, config)
         inspector = scene_graph.model_inspector()
         self.geometry_ids = [inspector.GetGeometries(f)[0] for f in self.frame_ids]
+        self._parked = [parked_pose(slot) for slot in range(len(self.frame_ids))]
+        self._resting = (None, FramePoseVector(), [])
         initial = self.cell.initial_world()
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
@@ -144,16 +146,34 @@ class Workpieces(LeafSystem):
         )
         state.get_mutable_abstract_state(self._state).set_value(world)
 
+    def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:
+        """Every slot's pose while `world` lasts, but for the moving pieces, and those pieces:
+        computed once per update, not once per plant step (a World is immutable, so its
+        identity is the key)."""
+        if self._resting[0] is not world:
+            poses = FramePoseVector()
+            for frame_id, X_WS in zip(self.frame_ids, self._parked, strict=True):
+                poses.set_value(frame_id, X_WS)
+            moving = []
+            for piece in world.pieces.values():
+                if piece.velocity.get_coeffs().any():
+                    moving.append(piece)
+                else:
+                    X_WO = self.cell.pose_at(piece, world, world.time)
+                    poses.set_value(self.frame_ids[piece.slot], X_WO)
+            self._resting = (world, poses, moving)
+        return self._resting[1:]
+
     def _calc_poses(self, context: Context, output: AbstractValue) -> None:
+        """Resting and parked slots as at the last update; moving pieces extrapolated to the
+        context's time."""
         world = self.world(context)
-        poses = FramePoseVector()
-        for slot, frame_id in enumerate(self.frame_ids):
-            poses.set_value(frame_id, parked_pose(slot))
-        for piece in world.pieces.values():
-            poses.set_value(
-                self.frame_ids[piece.slot], self.cell.pose_at(piece, world, context.get_time())
-            )
-        output.set_value(poses)
+        resting, moving = self._resting_poses(world)
+        output.set_value(resting)
+        poses = output.get_mutable_value()
+        for piece in moving:
+            X_WO = self.cell.pose_at(piece, world, context.get_time())
+            poses.set_value(self.frame_ids[piece.slot], X_WO)
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
         status = self.cell.status(self.world(context), context.get_time(), self.geometry_ids)

@@ -12,7 +12,7 @@ translations in metres, one frame per line.
 
 import json
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -43,9 +43,10 @@ class Clip:
     def duration(self) -> float:
         return (len(self.frames) - 1) / self.fps
 
-    @property
+    @cached_property
     def root_shift(self) -> np.ndarray:
-        """Displacement of the root over one loop (zero for clips that stay in place)."""
+        """Displacement of the root over one loop (zero for clips that stay in place);
+        cached: sampling a loop needs it for each of its four neighbouring frames."""
         shift = np.zeros(self.frames.shape[1])
         if self.loop:
             for joint in ROOT_MOTION:

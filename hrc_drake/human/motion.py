@@ -162,9 +162,19 @@ class WalkSegment:
     speed: float
 
     @cached_property
+    def points(self) -> np.ndarray:
+        return np.array(self.path)
+
+    @cached_property
     def lengths(self) -> np.ndarray:
-        steps = np.diff(np.array(self.path), axis=0)
+        steps = np.diff(self.points, axis=0)
         return np.concatenate([[0.0], np.cumsum(np.linalg.norm(steps, axis=1))])
+
+    @cached_property
+    def directions(self) -> np.ndarray:
+        """Direction of each leg, unwrapped (no jumps of 2π between legs)."""
+        steps = np.diff(self.points, axis=0)
+        return np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
 
     def end(self, ctx: Context) -> float:
         return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
@@ -173,7 +183,7 @@ class WalkSegment:
         return travel(t - self.start, self.lengths[-1], self.speed)[0]
 
     def point(self, along: float) -> np.ndarray:
-        lengths, path = self.lengths, np.array(self.path)
+        lengths, path = self.lengths, self.points
         along = min(max(along, 0.0), lengths[-1])
         k = min(np.searchsorted(lengths, along, side="right") - 1, len(path) - 2)
         s = (along - lengths[k]) / max(lengths[k + 1] - lengths[k], 1e-9)
@@ -181,9 +191,7 @@ class WalkSegment:
 
     def heading(self, along: float) -> float:
         """Path direction, turning smoothly through each waypoint."""
-        path, lengths = np.array(self.path), self.lengths
-        steps = np.diff(path, axis=0)
-        directions = np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
+        directions, lengths = self.directions, self.lengths
         k = min(max(np.searchsorted(lengths, along, side="right") - 1, 0), len(directions) - 1)
         heading = directions[k]
         for corner in range(1, len(directions)):
