@@ -38,7 +38,7 @@ from hrc_drake.human.messages import HumanStatus
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
-from hrc_drake.workpieces.world import Workcell, World, holder_frames
+from hrc_drake.workpieces.world import Workcell, World, holder_frames, since
 
 DEFAULT_ISSUERS = ("robot_tree", "human_tree", "robot_gripper")
 PARKING_DEPTH = -1000.0
@@ -147,7 +147,7 @@ class Workpieces(LeafSystem):
         state.get_mutable_abstract_state(self._state).set_value(world)
 
     def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:
-        """Every slot's pose while `world` lasts, but for the moving pieces, and those pieces:
+        """Every slot's pose while `world` lasts, but for the moving pieces, and their drifts:
         computed once per update, not once per plant step (a World is immutable, so its
         identity is the key)."""
         if self._resting[0] is not world:
@@ -157,7 +157,7 @@ class Workpieces(LeafSystem):
             moving = []
             for piece in world.pieces.values():
                 if piece.velocity.get_coeffs().any():
-                    moving.append(piece)
+                    moving.append((self.frame_ids[piece.slot], self.cell.drift(piece)))
                 else:
                     X_WO = self.cell.pose_at(piece, world, world.time)
                     poses.set_value(self.frame_ids[piece.slot], X_WO)
@@ -171,9 +171,9 @@ class Workpieces(LeafSystem):
         resting, moving = self._resting_poses(world)
         output.set_value(resting)
         poses = output.get_mutable_value()
-        for piece in moving:
-            X_WO = self.cell.pose_at(piece, world, context.get_time())
-            poses.set_value(self.frame_ids[piece.slot], X_WO)
+        dt = since(world, context.get_time())
+        for frame_id, drift in moving:
+            poses.set_value(frame_id, drift.after(dt))
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
         status = self.cell.status(self.world(context), context.get_time(), self.geometry_ids)

@@ -121,12 +121,24 @@ def twist_between(X0: RigidTransform, X1: RigidTransform, dt: float) -> SpatialV
 
 def moved(X: RigidTransform, V: SpatialVelocity, dt: float) -> RigidTransform:
     """X after moving with V for dt (rotation about its own origin)."""
-    w = V.rotational()
-    angle = float(np.linalg.norm(w)) * dt
-    R = X.rotation()
-    if angle > 0:
-        R = RotationMatrix(AngleAxis(angle, w / np.linalg.norm(w))) @ R
-    return RigidTransform(R, X.translation() + V.translational() * dt)
+    return Drift(X, V).after(dt)
+
+
+class Drift:
+    """X moving with V, taken apart once for evaluation at many dt (every plant step)."""
+
+    def __init__(self, X: RigidTransform, V: SpatialVelocity):
+        self._R, self._p = X.rotation(), X.translation()
+        self._v, self._w = V.translational(), V.rotational()
+        self._rate = float(np.linalg.norm(self._w))
+
+    def after(self, dt: float) -> RigidTransform:
+        """The pose after dt (rotation about its own origin)."""
+        angle = self._rate * dt
+        R = self._R
+        if angle > 0:
+            R = RotationMatrix(AngleAxis(angle, self._w / np.linalg.norm(self._w))) @ R
+        return RigidTransform(R, self._p + self._v * dt)
 
 
 def velocity_at(V_H: SpatialVelocity, p_WH: np.ndarray, p_WO: np.ndarray) -> SpatialVelocity:

@@ -33,6 +33,7 @@ from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED, newer_commands
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import (
+    Drift,
     Solid,
     footprint,
     moved,
@@ -227,7 +228,12 @@ class Workcell:
         return step.world()
 
     def pose_at(self, piece: Piece, world: World, time: float) -> RigidTransform:
-        return moved(piece.pose, piece.velocity, max(time - world.time, 0.0))
+        return self.drift(piece).after(since(world, time))
+
+    @staticmethod
+    def drift(piece: Piece) -> Drift:
+        """The piece moving on from its pose at the world's time (see `since`)."""
+        return Drift(piece.pose, piece.velocity)
 
     def status(self, world: World, time: float, geometry_ids=()) -> WorkpiecesStatus:
         """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
@@ -248,6 +254,11 @@ class Workcell:
         used = [p.type for p in world.pieces.values()]
         free = {name: len(kind.slots) - used.count(name) for name, kind in self.kinds.items()}
         return WorkpiecesStatus(time, objects, dict(world.results), free)
+
+
+def since(world: World, time: float) -> float:
+    """How long the world's objects have moved on from their poses at `time` (never back)."""
+    return max(time - world.time, 0.0)
 
 
 def _kinds(config: WorkpiecesConfig) -> dict[str, Kind]:
