@@ -17,16 +17,21 @@ OUTCOMES = (RUNNING, SUCCEEDED, FAILED, REJECTED, CANCELLED)
 FINISHED = (SUCCEEDED, FAILED, REJECTED, CANCELLED)
 
 
-def newer_commands(value, seen: int) -> list:
-    """The commands on a command port that are newer than sequence number `seen`.
+def newer_commands(value, seen: int, cancels: tuple[type, ...] = ()) -> list:
+    """The commands on a command port that are newer than sequence number `seen`, cancels
+    first.
 
     A port carries None, one command, or a tuple of recent commands oldest first (a
     behavior tree may send two commands to one actor in one tick); every command has `seq`.
+    Commands of the `cancels` types are handled before the others: when a reactive node
+    interrupts a running action, the new action is sent before the halted one's cancel,
+    and the actor must be free before it can take the new one.
     """
     if value is None:
         return []
     commands = value if isinstance(value, tuple) else (value,)
-    return [command for command in commands if command.seq > seen]
+    newer = [command for command in commands if command.seq > seen]
+    return sorted(newer, key=lambda command: not isinstance(command, cancels))
 
 
 @dataclass(frozen=True)

@@ -219,8 +219,9 @@ class RobotMotion(LeafSystem):
         q, v = x[: self._n], x[self._n :]
         state = self._measured(self._state(context), q, v, self._safety_scale(context), t)
         commands = self._command.Eval(context) if self._command.HasValue(context) else None
-        for command in newer_commands(commands, state.seen_seq):
-            state = self._accept(state.replace(seen_seq=command.seq), command, context, t)
+        for command in newer_commands(commands, state.seen_seq, cancels=(Stop,)):
+            seen = max(state.seen_seq, command.seq)
+            state = self._accept(state.replace(seen_seq=seen), command, context, t)
         state = self._workpieces_seen(state, context, t)
         state = self._planned_when_at_rest(state, t)
         state = self._advanced(state, q, v, t)

@@ -12,7 +12,8 @@ and judges them (`hrc_drake.safety.judge`). Outputs, all computed from state:
 
 Optional input `workpieces_status` (Workpieces' status): the object the robot's gripper
 holds becomes a robot part (its geometry is watched like a link's, reported as
-`carried object`) and its mass is added to the payload.
+`carried object`) and its mass is added to the payload. The person's hand on that object
+while the robot stands still is a hand-over grasp, not a contact.
 """
 
 import math
@@ -26,14 +27,11 @@ from pydrake.systems.framework import EventStatus, LeafSystem
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import Part, body_parts, human_parts
 from hrc_drake.safety.judge import Judge
-from hrc_drake.safety.messages import SafetyStatus
+from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.safety.stopping import ssm_parameters
 from hrc_drake.workpieces.messages import ROBOT
-
-CARRIED = "carried object"
-"""How reports name the robot part that is the object in its gripper."""
 
 
 @dataclass(frozen=True)

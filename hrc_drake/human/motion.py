@@ -467,8 +467,8 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
         previous_t = t
     seen = dict(state.seen)
     for issuer, value in commands.items():
-        for command in newer_commands(value, seen.get(issuer, -1)):
-            seen[issuer] = command.seq
+        for command in newer_commands(value, seen.get(issuer, -1), cancels=(CancelCommand,)):
+            seen[issuer] = max(seen.get(issuer, -1), command.seq)
             state = _handle(ctx, state, command, t)
     state = replace(state, seen=tuple(sorted(seen.items())))
     if state.running >= 0 and t >= state.activity.end(ctx):

@@ -44,12 +44,17 @@ class RobotMove(RobotCommandNode):
 
 
 class RobotMoveLinear(RobotCommandNode):
-    """Moves the tool along a straight line to `target` (approach and retreat)."""
+    """Moves the tool along a straight line to `target` (approach and retreat); a target
+    without orientation keeps the tool's present orientation."""
 
     ports = (InputPort("target", Pose, description="tool pose, x;y;z[;qw;qx;qy;qz] or name"),)
 
     def command(self, seq: int):
-        return robot.MoveLinear(seq, self.tool_target("target")[0])
+        pose: Pose = self.context.resolve_pose(self.get_input("target"))
+        status = self.context.robot
+        if pose.quaternion is not None or status is None:
+            return robot.MoveLinear(seq, self.tool_target("target")[0])
+        return robot.MoveLinear(seq, RigidTransform(status.tool_pose.rotation(), pose.position))
 
 
 class RobotMoveJoints(RobotCommandNode):

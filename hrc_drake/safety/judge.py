@@ -5,7 +5,7 @@ import math
 from dataclasses import dataclass
 
 from hrc_drake.safety.config import SafetyConfig
-from hrc_drake.safety.messages import SafetyStatus, SafetyTotals
+from hrc_drake.safety.messages import CARRIED, SafetyStatus, SafetyTotals
 from hrc_drake.safety.pfl import assess_contact
 from hrc_drake.safety.proximity import Reading
 from hrc_drake.safety.ssm import (
@@ -42,11 +42,13 @@ class Judge:
         )
         scale = next_scale(before.scale, safe, safe_with_margin, config.min_scale)
         scale = scale if config.ssm else 1.0
+        robot_at_rest = reading.robot_speed <= config.moving_speed
         contact = tuple(
             assess_contact(
                 c.region, c.relative_speed, self.robot_mass + payload, config.contact_area_cm2
             )
             for c in reading.contacts
+            if not (robot_at_rest and is_handover_grasp(c))
         )
         now = SafetyStatus(
             time=time,
@@ -115,3 +117,13 @@ def _replaced(message, **changes):
     """`dataclasses.replace` for our plain frozen messages, without its Python loop over the
     fields (this runs at every update)."""
     return type(message)(**{**vars(message), **changes})
+
+
+HANDOVER_REGIONS = ("hand", "lower_arm")
+"""Body regions that take hold of the object a robot at rest presents in a hand-over."""
+
+
+def is_handover_grasp(pair) -> bool:
+    """The person's hand on the object in the robot's gripper: an intended contact with
+    the workpiece, not a collision with the robot, while the robot stands still."""
+    return pair.part == CARRIED and pair.region in HANDOVER_REGIONS

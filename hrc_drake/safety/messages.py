@@ -14,6 +14,10 @@ from hrc_drake.safety.ssm import FREE, ZONES
 NO_PART = ""
 
 
+CARRIED = "carried object"
+"""How reports name the robot part that is the object in its gripper."""
+
+
 @dataclass(frozen=True)
 class SafetyTotals:
     """Running totals since the start of the run (times in seconds)."""

@@ -5,7 +5,7 @@ import dataclasses
 
 from test_trees_in_diagram import Simulation, cell
 
-from hrc_drake.systems.safety_monitor import CARRIED
+from hrc_drake.safety.messages import CARRIED
 from hrc_drake.workpieces.config import ObjectType
 
 BAR = ObjectType(shape="box", size=[0.7, 0.04, 0.02], mass=1.5, capacity=1)

@@ -69,6 +69,17 @@ def test_robot_calls_the_person_who_walks_over_and_resets_the_call():
     assert np.linalg.norm(base_xy(human) - table_front) < 0.05
 
 
+def test_a_call_interrupts_the_persons_animation_and_the_walk_is_accepted():
+    """The ReactiveFallback starts the walk and halts the animation in one tick: the
+    person takes the cancel first, so the walk is not refused as 'busy'."""
+    sim = Simulation(cell("call_robot.xml", "interrupted_by_call.xml")).advance(10.0)
+    human = sim["human_status"]
+    assert sim.events("human") == ["helped"]
+    assert "rejected" not in [result.outcome for result in human.results]
+    assert "cancelled" in [result.outcome for result in human.results]
+    assert np.linalg.norm(base_xy(human) - np.array([0.0, 1.55])) < 0.05
+
+
 def test_movement_to_a_generated_pose_ends_inside_the_area():
     scenario = cell(human="walk_random.xml")
     hall = scenario.area("hall")
