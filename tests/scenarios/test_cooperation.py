@@ -111,22 +111,27 @@ def look(outcome: Outcome, objects, scenario: Scenario) -> None:
 
 def assert_sorted_correctly(outcome: Outcome) -> None:
     """Good parts only ever go out on the belt, defective ones only to the reject zone and
-    the scrap bin; the events count exactly the parts that got there."""
+    the scrap bin; the events count the parts that got there (an event comes after the
+    release, so the last part put down may still lack its event when the run ends)."""
     for part_id, place in outcome.place.items():
         allowed = PLACES_OF_DEFECTIVE if outcome.defective[part_id] else PLACES_OF_GOOD
         assert place in allowed, (
             f"part {part_id} (defective={outcome.defective[part_id]}) is {place}"
         )
     assert outcome.count("part_arrived") == len(outcome.place)
-    assert outcome.count("part_good") == outcome.parts(False, "outfeed") + outcome.parts(
-        False, GONE
-    )
-    in_hand = outcome.parts(True, "person")
+    out = outcome.parts(False, "outfeed") + outcome.parts(False, GONE)
     scrapped = outcome.parts(True, "scrap_bin")
-    assert outcome.count("part_scrapped") == scrapped
-    rejected = outcome.parts(True, "reject_zone") + in_hand + scrapped
-    assert outcome.count("part_rejected") == rejected
-    assert outcome.count("part_inspected") - outcome.count("part_good") - rejected in (0, 1)
+    rejected = outcome.parts(True, "reject_zone") + outcome.parts(True, "person") + scrapped
+    for event, parts in (
+        ("part_good", out),
+        ("part_rejected", rejected),
+        ("part_scrapped", scrapped),
+    ):
+        assert parts - outcome.count(event) in (0, 1), (
+            f"{event}: {outcome.count(event)} for {parts}"
+        )
+    sorted_parts = outcome.count("part_good") + outcome.count("part_rejected")
+    assert outcome.count("part_inspected") - sorted_parts in (0, 1)
 
 
 def assert_safe(outcome: Outcome) -> None:
@@ -148,6 +153,9 @@ def test_short_run_sorts_parts_and_fills_the_reject_zone():
 
 @pytest.mark.long
 def test_ten_seeds_sort_every_part_and_clear_the_reject_zone():
+    """Every seed sorts correctly and safely; every seed sends good parts out, and most
+    seeds (which draw enough defective parts) fill the zone, bring the person, slow the
+    robot down and make it wait with a rejected part."""
     scenario = load_scenario(SCENARIO)
     shown = Counter()
     for seed in range(10):
