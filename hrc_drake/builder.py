@@ -14,10 +14,11 @@ Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_stat
 """
 
 import numpy as np
-from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role, SceneGraph
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.human.builder import add_human
@@ -49,21 +50,23 @@ def tree_issuer(agent: str) -> str:
 def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram:
     """The whole scenario as one Diagram named after the scenario (see module docstring)."""
     builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlant(
+    plant, physics = AddMultibodyPlant(
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
         builder,
     )
+    physics.set_name("physics_scene_graph")
     arm, _ = add_station_models(plant, model_parser(plant), scenario)
     plant.Finalize()
     plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
     controller = _add_controller(builder, scenario, plant, arm)
+    scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
-    human, human_plant = _add_person(builder, scene_graph, plant, scenario)
-    workpieces = _add_workpieces(builder, scene_graph, plant, scenario, human)
+    human, human_plant = _add_person(builder, scene_graph, scenario)
+    workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
     motion = add_robot_motion(
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
-    safety = _add_safety(builder, scene_graph, plant, human_plant, motion, workpieces, scenario)
+    safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
     actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
     trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
     if meshcat is not None:
@@ -93,7 +96,32 @@ def _add_controller(builder, scenario, plant, arm) -> InverseDynamicsController:
     return controller
 
 
-def _add_person(builder, scene_graph, plant, scenario):
+def _add_world_scene(builder, plant, scenario):
+    """The SceneGraph everyone else sees: a kinematic mirror of the robot and cell, posed
+    from the dynamic plant's state, with the person and the workpieces beside it.
+
+    The dynamic plant keeps a SceneGraph of its own for contact. Its every step re-poses
+    only its own geometry; the person's and the workpieces' frames are re-posed only when
+    someone queries this scene (the safety monitor at 100 Hz, Meshcat when it draws).
+    Nothing here takes part in physics, so no collision filters are needed between them.
+    """
+    scene_graph = builder.AddNamedSystem("scene_graph", SceneGraph())
+    mirror = MultibodyPlant(0.0)
+    mirror.set_name("station_mirror")
+    mirror.RegisterAsSourceForSceneGraph(scene_graph)
+    add_station_models(mirror, model_parser(mirror), scenario)
+    mirror.Finalize()
+    to_pose = builder.AddNamedSystem(
+        "station_mirror_geometry", MultibodyPositionToGeometryPose(mirror, True)
+    )
+    builder.Connect(plant.get_state_output_port(), to_pose.get_input_port())
+    builder.Connect(
+        to_pose.get_output_port(), scene_graph.get_source_pose_port(mirror.get_source_id())
+    )
+    return scene_graph, mirror
+
+
+def _add_person(builder, scene_graph, scenario):
     if scenario.human is None:
         return None, None
     x, y, yaw_deg = scenario.human.start
@@ -104,13 +132,13 @@ def _add_person(builder, scene_graph, plant, scenario):
         scenario.human.mass,
         name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
-        dynamic_plant=plant,
         issuers=tuple(tree_issuer(agent) for agent in AGENTS),
     )
     return human, human_plant
 
 
-def _add_workpieces(builder, scene_graph, plant, scenario, human):
+def _add_workpieces(builder, scene_graph, plant, mirror, scenario, human):
+    """Workpieces rest on the mirror's cell surfaces and follow the dynamic plant's tool."""
     if not scenario.workpieces.types:
         return None
     tool_frame = None
@@ -119,7 +147,7 @@ def _add_workpieces(builder, scene_graph, plant, scenario, human):
     workpieces = add_workpieces(
         builder,
         scene_graph,
-        plant,
+        mirror,
         scenario.workpieces,
         seed=stream(scenario.seed, "workpieces"),
         tool_frame=tool_frame,
@@ -133,13 +161,13 @@ def _add_workpieces(builder, scene_graph, plant, scenario, human):
     return workpieces
 
 
-def _add_safety(builder, scene_graph, plant, human_plant, motion, workpieces, scenario):
+def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario):
     if human_plant is None or not scenario.safety.enabled:
         return None
     safety = add_safety_monitor(
         builder,
         scene_graph,
-        plant,
+        mirror,
         human_plant,
         human_plant.GetModelInstanceByName(HUMAN_NAME),
         scenario.safety,

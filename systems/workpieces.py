@@ -258,7 +258,7 @@ def add_workpieces(
     static geometry, its poses go to SceneGraph, it is collision-filtered against all the
     proximity geometry registered so far (add it after the plant and the person's geometry,
     or filter later geometry against `geometry_set()`), and, given the robot's `tcp` frame,
-    its `tool_pose` input is fed from the plant's body poses."""
+    its `tool_pose` input is fed from the body poses of that frame's plant."""
     surfaces = cell_surfaces(plant, scene_graph) if config.derive_surfaces else []
     workpieces = builder.AddNamedSystem(
         "workpieces", Workpieces(config, scene_graph, seed, issuers, surfaces, areas)
@@ -273,7 +273,8 @@ def add_workpieces(
         other_proximity_geometry(scene_graph, workpieces.source_id),
     )
     if tool_frame is not None:
-        tcp = builder.AddNamedSystem("tool_pose", TcpPose(plant, tool_frame))
-        builder.Connect(plant.get_body_poses_output_port(), tcp.get_input_port())
+        robot_plant = tool_frame.GetParentPlant()  # may be another plant than the cell's
+        tcp = builder.AddNamedSystem("tool_pose", TcpPose(robot_plant, tool_frame))
+        builder.Connect(robot_plant.get_body_poses_output_port(), tcp.get_input_port())
         builder.Connect(tcp.get_output_port(), workpieces.GetInputPort("tool_pose"))
     return workpieces
