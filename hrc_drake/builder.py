@@ -6,6 +6,12 @@ SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a 
 visualizer. Each part is present when the scenario asks for it: no `human:` section, no
 person and no monitor; no workpiece types, no Workpieces; no `trees:`, no behavior trees.
 
+Two SceneGraphs: the dynamic plant keeps its own for contact (robot and cell only), and
+the world scene, named `scene_graph`, holds a kinematic mirror of the robot and cell
+(posed from the plant's state), the person and the workpieces. The safety monitor,
+Meshcat and the `query_object` output see the world scene; the plant's 1 kHz steps never
+pay for the person's or the objects' geometry.
+
 Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
