@@ -47,7 +47,9 @@ class HumanActor(LeafSystem):
             for issuer in issuers
         }
         self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))
-        self._status = self.DeclareAbstractState(AbstractValue.Make(HumanStatus()))
+        self._status = self.DeclareAbstractState(
+            AbstractValue.Make(HumanStatus(base_pose=initial.start_pose))  # before its first update
+        )
         first_pose = self._ctx.body.plant_positions(pose_at(self._ctx, initial, 0.0))
         self._positions = self.DeclareDiscreteState(first_pose)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)

@@ -110,7 +110,8 @@ class RobotMotion(LeafSystem):
 
     Inputs: `robot_command` (None, a command, or a tuple of recent commands), `speed_scale`
     (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
-    (WorkpiecesStatus, or unconnected when the scenario has no workpieces).
+    (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
+    (where the person stands, for `avoid_person`; optional).
     Outputs: `desired_state` (q, v), `desired_acceleration`, `robot_status` (RobotStatus),
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
@@ -133,6 +134,7 @@ class RobotMotion(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort(
             "workpieces_status", AbstractValue.Make(None)
         )
+        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
         from_state_and_time = {self.time_ticket(), self.all_state_ticket()}
         self._desired_motion = self.DeclareCacheEntry(
             "desired q, v and vdot",
@@ -223,7 +225,7 @@ class RobotMotion(LeafSystem):
             seen = max(state.seen_seq, command.seq)
             state = self._accept(state.replace(seen_seq=seen), command, context, t)
         state = self._workpieces_seen(state, context, t)
-        state = self._planned_when_at_rest(state, t)
+        state = self._planned_when_at_rest(state, t, self._person_xy(context))
         state = self._advanced(state, q, v, t)
         new_state.get_mutable_abstract_state(self._state_index).set_value(state)
         return EventStatus.Succeeded()
@@ -330,13 +332,20 @@ class RobotMotion(LeafSystem):
             return state.with_result(seq, FAILED, "the workpieces system did not answer")
         return state
 
-    def _planned_when_at_rest(self, state: MotionState, t: float) -> MotionState:
+    def _person_xy(self, context):
+        """Where the person stands, when moves are to be planned around them."""
+        if not self._options.avoid_person or not self._human.HasValue(context):
+            return None
+        status = self._human.Eval(context)
+        return status.base_pose[:2] if status is not None else None
+
+    def _planned_when_at_rest(self, state: MotionState, t: float, person_xy) -> MotionState:
         if state.pending is None or state.path is not None:
             return state
         command = state.pending
         state = state.replace(pending=None)
         try:
-            path = self._planner.plan(command, np.array(state.hold))
+            path = self._planner.plan(command, np.array(state.hold), person_xy)
         except PlanningFailed as failure:
             return state.with_result(command.seq, FAILED, str(failure))
         if path is None:

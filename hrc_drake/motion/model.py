@@ -4,8 +4,11 @@ It is a RobotDiagram (plant + SceneGraph) inside a SceneGraphCollisionChecker, s
 the simulated station: planning never touches the station's context.
 """
 
+from contextlib import contextmanager
+
 import numpy as np
 from pydrake.common import Parallelism
+from pydrake.geometry import Capsule
 from pydrake.math import RigidTransform
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
@@ -15,6 +18,11 @@ from hrc_drake.station_models import add_station_models
 
 EDGE_STEP = 0.01
 """Joint-space resolution (rad) of edge collision checks: about 1 cm at the tool."""
+
+
+PERSON_GROUP = "person"
+PERSON_HEIGHT = 1.9
+"""m: a standing person with some margin overhead."""
 
 
 class PlanningModel:
@@ -84,6 +92,17 @@ class PlanningModel:
         """Smallest robot-cell and robot-robot distance (m) at q, padding not subtracted."""
         distances = self.checker.CalcRobotClearance(q, 1.0).distances()
         return float(distances.min()) if distances.size else np.inf
+
+    @contextmanager
+    def person_obstacle(self, xy, radius: float):
+        """The person as a standing capsule in the collision checks, for one plan."""
+        X_WP = RigidTransform([xy[0], xy[1], PERSON_HEIGHT / 2])
+        shape = Capsule(radius, PERSON_HEIGHT - 2 * radius)
+        self.checker.AddCollisionShapeToBody(PERSON_GROUP, self.plant.world_body(), shape, X_WP)
+        try:
+            yield
+        finally:
+            self.checker.RemoveAllAddedCollisionShapes(PERSON_GROUP)
 
     def collision_free(self, q) -> bool:
         return self.checker.CheckConfigCollisionFree(q)

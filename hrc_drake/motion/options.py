@@ -16,6 +16,9 @@ class MotionOptions:
     settle_timeout: seconds a finished move may take to arrive before it fails.
     gripper_timeout: seconds to wait for the workpieces system to answer Grip/Release.
     seed: seed of the planner's random sampling (the plan is deterministic).
+    avoid_person: plan around the person where they stand when the move is planned (a
+        vertical capsule of `person_radius` around them), the "environment perception"
+        the original system wanted; off, the planner sees the static cell only.
     """
 
     update_period: float = 0.01
@@ -27,3 +30,5 @@ class MotionOptions:
     settle_timeout: float = 2.0
     gripper_timeout: float = 0.5
     seed: int = 0
+    avoid_person: bool = False
+    person_radius: float = 0.35

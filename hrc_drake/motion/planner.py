@@ -30,8 +30,29 @@ class MotionPlanner:
         self.model = PlanningModel(scenario, options.clearance)
         self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
 
-    def plan(self, command, q_start) -> TimedPath | None:
-        """The timed path for `command` from `q_start`; None when already there."""
+    def plan(self, command, q_start, person_xy=None) -> TimedPath | None:
+        """The timed path for `command` from `q_start`; None when already there. With
+        `person_xy`, the person standing there is an obstacle for this plan."""
+        if person_xy is None:
+            return self._plan(command, q_start)
+        self._check_target_clear_of(person_xy, command)
+        with self.model.person_obstacle(person_xy, self.options.person_radius):
+            return self._plan(command, q_start)
+
+    def _check_target_clear_of(self, person_xy, command) -> None:
+        """A tool target inside the person's space fails at once (no IK search)."""
+        pose = getattr(command, "pose", None)
+        if pose is None:
+            return
+        gap = np.linalg.norm(pose.translation()[:2] - np.asarray(person_xy)[:2])
+        if gap < self.options.person_radius + self.options.clearance:
+            x, y = person_xy[:2]
+            raise PlanningFailed(
+                f"the target is in the space of the person standing at ({x:.2f}, {y:.2f}) "
+                "(collision with the person)"
+            )
+
+    def _plan(self, command, q_start) -> TimedPath | None:
         q_start = np.asarray(q_start, dtype=float)
         deadline = Deadline(self.options.planning_time_budget)
         rng = np.random.default_rng(self.options.seed)
