@@ -30,6 +30,8 @@ SHORT_SEED = 0
 """Its first three parts are defective and its fourth good: a short run fills the reject
 zone, brings the person to clear it and sends a part out on the belt."""
 SHORT_DURATION = 45.0
+BEHAVIOURS = {"part_rejected": 8, "part_scrapped": 8, "speed_reduced": 8, "reject_wait": 2}
+"""Events and in how many of ten seeds (at least) a full-length run shows them."""
 
 
 @dataclass
@@ -118,7 +120,7 @@ def assert_sorted_correctly(outcome: Outcome) -> None:
         assert place in allowed, (
             f"part {part_id} (defective={outcome.defective[part_id]}) is {place}"
         )
-    assert outcome.count("part_arrived") == len(outcome.place)
+    assert len(outcome.place) - outcome.count("part_arrived") in (0, 1)
     out = outcome.parts(False, "outfeed") + outcome.parts(False, GONE)
     scrapped = outcome.parts(True, "scrap_bin")
     rejected = outcome.parts(True, "reject_zone") + outcome.parts(True, "person") + scrapped
@@ -153,9 +155,10 @@ def test_short_run_sorts_parts_and_fills_the_reject_zone():
 
 @pytest.mark.long
 def test_ten_seeds_sort_every_part_and_clear_the_reject_zone():
-    """Every seed sorts correctly and safely; every seed sends good parts out, and most
-    seeds (which draw enough defective parts) fill the zone, bring the person, slow the
-    robot down and make it wait with a rejected part."""
+    """Every seed sorts correctly and safely and sends good parts out. Most seeds draw
+    enough defective parts to fill the zone, bring the person and slow the robot down; a
+    rejected part arriving while the zone is full or being cleared (the robot waits) is
+    rarer, a few seeds in ten."""
     scenario = load_scenario(SCENARIO)
     shown = Counter()
     for seed in range(10):
@@ -163,13 +166,7 @@ def test_ten_seeds_sort_every_part_and_clear_the_reject_zone():
         assert_sorted_correctly(outcome)
         assert_safe(outcome)
         assert outcome.count("sort_failed") == 0
-        for behaviour in (
-            "part_good",
-            "part_rejected",
-            "part_scrapped",
-            "reject_wait",
-            "speed_reduced",
-        ):
-            shown[behaviour] += outcome.count(behaviour) > 0
-    assert shown["part_good"] == 10
-    assert min(shown.values()) >= 6, shown
+        assert outcome.count("part_good") >= 1
+        shown.update(name for name in BEHAVIOURS if outcome.count(name) > 0)
+    for name, seeds in BEHAVIOURS.items():
+        assert shown[name] >= seeds, f"{name} shown by {shown[name]} seeds of 10"
