@@ -198,6 +198,6 @@ def test_short_run_is_safe(short_run):
 @pytest.mark.parametrize("seed", range(10))
 def test_production_and_the_persons_work_coexist(seed):
     outcome = simulate(seed, duration=load_scenario(SCENARIO).duration)
-    assert_parts_keep_coming(outcome, at_least=5, longest_gap=60.0)
+    assert_parts_keep_coming(outcome, at_least=5, longest_gap=45.0)
     assert_consistent(outcome)
     assert len({e.name for e in outcome.named(*ACTIVITIES)}) >= 4
