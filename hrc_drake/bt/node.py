@@ -7,6 +7,7 @@ Authors subclass :class:`SyncActionNode`, :class:`ConditionNode`,
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -68,7 +69,7 @@ class NodeConfig:
     postconditions: dict[str, Script] = field(default_factory=dict)
 
 
-class TreeNode:
+class TreeNode(ABC):
     """A node of an instantiated tree. ``status`` is read by parents; ``tick`` is the
     node's own logic; ``execute_tick`` wraps it with pre/post-conditions."""
 
@@ -174,8 +175,9 @@ class TreeNode:
         )
 
     # ticking -----------------------------------------------------------------------
+    @abstractmethod
     def tick(self) -> Status:
-        raise NotImplementedError
+        """The node's own logic for one tick."""
 
     def execute_tick(self) -> Status:
         try:
@@ -239,7 +241,7 @@ class TreeNode:
             self.set_status(IDLE)
 
     # halting ------------------------------------------------------------------------
-    def halt(self) -> None:
+    def halt(self) -> None:  # noqa: B027  (a hook: most leaves have nothing to stop)
         """Stop the node's own activity; leaves and composites override this."""
 
     def halt_node(self) -> None:
@@ -250,7 +252,7 @@ class TreeNode:
             if on_halted is not None:
                 on_halted(self.script_env)
 
-    def on_tree_reset(self) -> None:
+    def on_tree_reset(self) -> None:  # noqa: B027  (a hook: most nodes keep no memory)
         """Forget memory that survives a halt (Tree.reset calls this on every node)."""
 
 
@@ -278,11 +280,13 @@ class StatefulActionNode(TreeNode):
     """An asynchronous action: ``on_start`` when first ticked, ``on_running`` on later
     ticks while RUNNING, ``on_halted`` if it is interrupted while RUNNING."""
 
+    @abstractmethod
     def on_start(self) -> Status:
-        raise NotImplementedError
+        """First tick: start the action; RUNNING, or its result at once."""
 
+    @abstractmethod
     def on_running(self) -> Status:
-        raise NotImplementedError
+        """Later ticks while RUNNING: RUNNING until the action has its result."""
 
     def on_halted(self) -> None:
         """Cancel whatever the action started (default: nothing)."""

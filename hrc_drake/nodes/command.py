@@ -5,6 +5,7 @@ knows when *its* command finished even if other commands came after it. Halting 
 cancels the command where the actor has a cancel (Stop for the robot, Cancel for the
 person)."""
 
+from abc import abstractmethod
 from typing import ClassVar
 
 from hrc_drake.bt import StatefulActionNode, Status
@@ -19,8 +20,9 @@ class CommandNode(StatefulActionNode):
     cancel_command: ClassVar[type | None] = None
     """Command class (built from a seq) sent when the node is halted; None: nothing."""
 
+    @abstractmethod
     def command(self, seq: int):
-        raise NotImplementedError
+        """The command to send, numbered `seq`."""
 
     def outcome(self) -> str | None:
         status = self.context.statuses[self.actor]

@@ -6,6 +6,8 @@ Targeted actions play a clip aimed at a point; at the clip's contact event (`gra
 object, so the object changes hands at the moment the hand is there.
 """
 
+from abc import abstractmethod
+
 from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.messages import RUNNING, SUCCEEDED
@@ -104,14 +106,17 @@ class TargetedAction(PersonCommandNode):
     contact_event = ""
     """Clip event at which the object changes hands ("": the action moves no object)."""
 
+    @abstractmethod
     def clip(self) -> str:
-        raise NotImplementedError
+        """The clip to play."""
 
+    @abstractmethod
     def target_point(self) -> tuple[float, float, float]:
-        raise NotImplementedError
+        """Where the clip aims the hand(s), in the world."""
 
     def object_command(self, seq: int):
-        raise NotImplementedError
+        """The Workpieces command at the contact event (actions that have one)."""
+        raise TypeError(f"{type(self).__name__} moves no object")
 
     def command(self, seq: int):
         self.contact_seq = None

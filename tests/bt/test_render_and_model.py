@@ -39,6 +39,9 @@ class MoveTo(StatefulActionNode):
         self.set_output("reached", self.get_input("target"))
         return Status.SUCCESS
 
+    def on_running(self):
+        return Status.SUCCESS
+
 
 def test_tree_nodes_model_lists_custom_nodes_with_ports():
     reg = registry()
