@@ -10,7 +10,7 @@ from pydrake.common.schema import Rotation
 from hrc_drake.bt import BTError, Tree, load_tree, validate
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.context import AgentContext, Places
-from hrc_drake.scenario import Scenario
+from hrc_drake.scenario import AGENTS, Scenario
 from hrc_drake.tree_types import AreaRef, Pose
 
 
@@ -40,9 +40,17 @@ def blackboard_entries(scenario: Scenario) -> dict:
 
 
 def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]:
-    """The agent's tree, its context, and its root blackboard filled from the scenario."""
+    """The agent's tree, its context, and its root blackboard filled from the scenario.
+
+    Agents number their commands in disjoint steps (robot 1, 3, 5...; person 2, 4, 6...)
+    so an actor that both trees command never sees one number twice."""
     config = scenario.trees[agent]
-    context = AgentContext(agent, scenario_places(scenario))
+    context = AgentContext(
+        agent,
+        scenario_places(scenario),
+        seq_start=AGENTS.index(agent) + 1,
+        seq_step=len(AGENTS),
+    )
     tree = load_tree(config.file, hrc_registry(), tree_id=config.tree_id or None, context=context)
     for key, value in blackboard_entries(scenario).items():
         tree.root_blackboard.set(key, value)

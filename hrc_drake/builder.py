@@ -196,7 +196,6 @@ def _add_tree(builder, scenario, agent: str, actors: dict) -> BehaviorTreeSystem
     the robot's tree the robot, the person's tree the person, both trees the workpieces and
     (to call the person) the person."""
     tree, context = load_agent_tree(scenario, agent)
-    context.seq_start, context.seq_step = AGENTS.index(agent) + 1, len(AGENTS)
     system = builder.AddNamedSystem(
         f"bt_{agent}",
         BehaviorTreeSystem(

@@ -15,6 +15,32 @@ CANCELLED = "cancelled"
 
 OUTCOMES = (RUNNING, SUCCEEDED, FAILED, REJECTED, CANCELLED)
 FINISHED = (SUCCEEDED, FAILED, REJECTED, CANCELLED)
+RESULTS_KEPT = 16
+"""Recent command results an actor reports, so a node still finds its own after others."""
+
+
+@dataclass(frozen=True)
+class CommandResult:
+    """The outcome of one command, by sequence number."""
+
+    seq: int
+    outcome: str
+    reason: str = ""
+
+    def __post_init__(self):
+        if self.outcome not in OUTCOMES:
+            raise ValueError(f"unknown outcome '{self.outcome}'")
+
+
+def recorded(results: tuple, result) -> tuple:
+    """`results` with `result` as the newest, replacing an earlier one of the same seq."""
+    kept = tuple(r for r in results if r.seq != result.seq)
+    return (*kept, result)[-RESULTS_KEPT:]
+
+
+def result_of(results: tuple, seq: int):
+    """The result of command `seq` among `results` (newest first), or None."""
+    return next((r for r in reversed(results) if r.seq == seq), None)
 
 
 def newer_commands(value, seen: int, cancels: tuple[type, ...] = ()) -> list:

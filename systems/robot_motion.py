@@ -27,6 +27,7 @@ from hrc_drake.messages import (
     RUNNING,
     SUCCEEDED,
     newer_commands,
+    recorded,
 )
 from hrc_drake.motion.deadline import PlanningFailed
 from hrc_drake.motion.execution import Progress, desired_motion, next_progress
@@ -53,8 +54,6 @@ from hrc_drake.workpieces.messages import Release as WorkpiecesRelease
 
 GRIPPER_ISSUER = "robot_gripper"
 """The workpieces system's issuer (input `robot_gripper_command`) that the vacuum uses."""
-RESULTS_KEPT = 16
-"""How many recent command results the status carries."""
 ARRIVAL_SPEED = 0.01
 """rad/s: joint speeds below which a finished move counts as at rest."""
 
@@ -97,8 +96,7 @@ class MotionState:
         return np.concatenate([hold, np.zeros(2 * hold.size)])
 
     def with_result(self, seq: int, outcome: str, reason: str = "") -> "MotionState":
-        kept = tuple(r for r in self.results if r.seq != seq)
-        results = (*kept, CommandResult(seq, outcome, reason))[-RESULTS_KEPT:]
+        results = recorded(self.results, CommandResult(seq, outcome, reason))
         return dataclasses.replace(self, results=results)
 
     def replace(self, **changes) -> "MotionState":

@@ -8,6 +8,8 @@ never conflicts.
 
 from dataclasses import dataclass, field
 
+from hrc_drake.messages import CommandResult, result_of
+
 NULL_QUATERNION = (0.0, 0.0, 0.0, 0.0)
 """Target orientation meaning "end facing the walking direction"."""
 
@@ -55,13 +57,6 @@ HumanCommand = MoveCommand | AnimateCommand | CancelCommand | SetCalledCommand
 
 
 @dataclass(frozen=True)
-class CommandResult:
-    seq: int
-    outcome: str
-    reason: str = ""
-
-
-@dataclass(frozen=True)
 class HumanStatus:
     """What the person reports after every update.
 
@@ -97,4 +92,5 @@ class HumanStatus:
 
     def outcome_of(self, seq: int) -> str | None:
         """The outcome of command `seq`, if it is still in the recent results."""
-        return next((r.outcome for r in reversed(self.results) if r.seq == seq), None)
+        result = result_of(self.results, seq)
+        return result.outcome if result is not None else None

@@ -19,13 +19,12 @@ from hrc_drake.human.messages import (
     NULL_QUATERNION,
     AnimateCommand,
     CancelCommand,
-    CommandResult,
     HumanStatus,
     MoveCommand,
     SetCalledCommand,
 )
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
-from hrc_drake.messages import newer_commands
+from hrc_drake.messages import CommandResult, newer_commands, recorded
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
@@ -41,7 +40,6 @@ SPEED_RAMP = 0.6
 MIN_TURN = np.radians(3.0)
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
-RESULTS_KEPT = 8
 IDLE_CLIP = "idle"
 
 
@@ -385,8 +383,7 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
-    results = (*[r for r in state.results if r.seq != seq], CommandResult(seq, outcome, reason))
-    return replace(state, results=results[-RESULTS_KEPT:])
+    return replace(state, results=recorded(state.results, CommandResult(seq, outcome, reason)))
 
 
 def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
@@ -504,14 +501,14 @@ def progress(ctx: Context, state: ActorState, t: float) -> float:
 
 def status(ctx: Context, state: ActorState, t: float, hands_and_head) -> HumanStatus:
     """The status after an update; `hands_and_head(q)` gives the three frames' world poses."""
-    last = state.results[-1] if state.results else CommandResult(-1, "")
+    last = state.results[-1] if state.results else None
     q = state.pose
     left, right, head = hands_and_head(q)
     return HumanStatus(
         state=state.state,
-        last_seq=last.seq,
-        outcome=last.outcome,
-        reason=last.reason,
+        last_seq=last.seq if last else -1,
+        outcome=last.outcome if last else "",
+        reason=last.reason if last else "",
         progress=progress(ctx, state, t),
         base_pose=_base_pose(ctx, q),
         base_speed=state.speed,

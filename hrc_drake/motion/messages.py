@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 from pydrake.math import RigidTransform
 
-from hrc_drake.messages import OUTCOMES
+from hrc_drake.messages import CommandResult, result_of
 
 IDLE = "idle"
 PLANNING = "planning"
@@ -91,19 +91,6 @@ MOTION_COMMANDS = (MoveTo, MoveJoints, MoveLinear)
 
 
 @dataclass(frozen=True)
-class CommandResult:
-    """Outcome of one accepted (or rejected) command."""
-
-    seq: int
-    outcome: str
-    reason: str = ""
-
-    def __post_init__(self):
-        if self.outcome not in OUTCOMES:
-            raise ValueError(f"unknown outcome '{self.outcome}'")
-
-
-@dataclass(frozen=True)
 class RobotStatus:
     """What RobotMotion reports, computed at its last update.
 
@@ -138,7 +125,7 @@ class RobotStatus:
 
     def result_of(self, seq: int) -> CommandResult | None:
         """The result of command `seq`, if it is still among the recent ones."""
-        return next((r for r in reversed(self.results) if r.seq == seq), None)
+        return result_of(self.results, seq)
 
     def outcome_of(self, seq: int) -> str | None:
         result = self.result_of(seq)

@@ -76,10 +76,7 @@ class AgentContext:
 
     # commands ------------------------------------------------------------------------
     def send(self, actor: str, make_command: Callable[[int], Any]) -> int:
-        """Queue `make_command(seq)` for `actor`; returns its sequence number.
-
-        Agents count in disjoint steps (robot 1, 3, 5...; person 2, 4, 6...), so an actor
-        commanded by both trees never sees one number twice."""
+        """Queue `make_command(seq)` for `actor`; returns its sequence number."""
         seq = self.next_seq
         self.next_seq += self.seq_step
         self.outbox[actor].append(make_command(seq))

@@ -29,7 +29,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.areas import Area
-from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED, newer_commands
+from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED, newer_commands, recorded
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import (
@@ -69,8 +69,6 @@ from hrc_drake.workpieces.surfaces import Supports, Surface
 from hrc_drake.yaml_check import field_path
 
 GRAVITY = 9.81
-RESULTS_KEPT = 8
-"""Recent command results kept per issuer, for nodes waiting on their own command."""
 REST_TOLERANCE = 1e-6
 """m: an object this close above its support rests on it."""
 LAYOUT_STREAM, SPAWN_STREAM = 0, 1
@@ -327,7 +325,7 @@ class _Step:
             result = handler(command)
         self.changed |= result.outcome == SUCCEEDED
         self.seen[issuer] = command.seq
-        self.results[issuer] = (*self.results.get(issuer, ()), result)[-RESULTS_KEPT:]
+        self.results[issuer] = recorded(self.results.get(issuer, ()), result)
 
     def spawn(self, command: Spawn, rng: np.random.Generator) -> CommandResult:
         kind = self.cell.kinds.get(command.type)
