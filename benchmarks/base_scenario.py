@@ -14,22 +14,20 @@ import time
 import numpy as np
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
-from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
-from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
 from hrc_drake.runner import make_simulator, run
 from hrc_drake.scenario import load_scenario
-from hrc_drake.station_models import add_robot, make_control_plant
+from hrc_drake.station_models import add_robot
+from hrc_drake.systems.robot_controller import add_robot_controller
 
 
 def bare_diagram(scenario, desired=None):
     """The arm with its tool, an inverse-dynamics controller and a desired-state source (by
     default a constant set point at the initial configuration): no cell, no person, no
     trees, no monitor, no visualizer, no loggers, no runner."""
-    variant = VARIANTS[scenario.robot.variant]
     q0 = scenario.configuration(scenario.robot.initial_configuration)
     if desired is None:
         desired = ConstantVectorSource(np.concatenate([q0, 0 * q0]))
@@ -43,15 +41,9 @@ def bare_diagram(scenario, desired=None):
     arm = add_robot(plant, parser, scenario.robot)
     plant.Finalize()
     plant.SetDefaultPositions(arm, q0)
-    controller = builder.AddSystem(
-        InverseDynamicsController(
-            make_control_plant(scenario), variant.kp, variant.ki, variant.kd, False
-        )
-    )
+    controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)
     hold = builder.AddSystem(desired)
-    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
-    builder.Connect(hold.get_output_port(), controller.get_input_port_desired_state())
-    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
+    builder.Connect(hold.get_output_port(), controller.GetInputPort("desired_state"))
     return builder.Build()
 
 

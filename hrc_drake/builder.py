@@ -22,23 +22,22 @@ Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_stat
 import numpy as np
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role, SceneGraph
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
-from pydrake.systems.controllers import InverseDynamicsController
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.human.builder import add_human
-from hrc_drake.iisy import TCP_FRAME, VARIANTS
+from hrc_drake.iisy import TCP_FRAME
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
 from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station_models import (
     TOOL_MODEL,
     add_station_models,
-    make_control_plant,
     model_parser,
 )
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
+from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 from hrc_drake.systems.workpieces import HumanHands, add_workpieces
@@ -64,7 +63,7 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     arm, _ = add_station_models(plant, model_parser(plant), scenario)
     plant.Finalize()
     plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
-    controller = _add_controller(builder, scenario, plant, arm)
+    controller = add_robot_controller(builder, scenario, plant, arm)
     scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
     human, human_plant = _add_person(builder, scene_graph, scenario)
@@ -85,23 +84,6 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     diagram = builder.Build()
     diagram.set_name(scenario.name)
     return diagram
-
-
-def _add_controller(builder, scenario, plant, arm) -> InverseDynamicsController:
-    variant = VARIANTS[scenario.robot.variant]
-    controller = builder.AddNamedSystem(
-        "robot_controller",
-        InverseDynamicsController(
-            make_control_plant(scenario),
-            kp=variant.kp,
-            ki=variant.ki,
-            kd=variant.kd,
-            has_reference_acceleration=True,
-        ),
-    )
-    builder.Connect(plant.get_state_output_port(arm), controller.get_input_port_estimated_state())
-    builder.Connect(controller.get_output_port_control(), plant.get_actuation_input_port(arm))
-    return controller
 
 
 def _add_world_scene(builder, plant, scenario):

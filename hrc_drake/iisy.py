@@ -33,16 +33,14 @@ The joint conventions of all three variants agree (A2 = -90 deg is upright, A5 =
 turns the tool down when the forearm is horizontal), so one home pose serves all.
 """
 
-INTEGRAL_GAIN = 1.0
-"""Small: the control plant carries the tool, so the integrator only removes payload error."""
-
 
 @dataclass(frozen=True)
 class RobotVariant:
     """One LBR iisy variant: what the builder, planner and controller need to know.
 
     All joint tuples are ordered A1..A6, in SI units (rad, rad/s, N*m, rad/s^2).
-    Controller gains are for InverseDynamicsController, whose gains act on accelerations.
+    Controller gains are RobotController's (hrc_drake.systems.robot_controller): they act
+    on accelerations.
     """
 
     name: str
@@ -56,7 +54,6 @@ class RobotVariant:
     acceleration_limits: tuple[float, ...]
     home: tuple[float, ...]
     kp: tuple[float, ...]
-    ki: tuple[float, ...]
     kd: tuple[float, ...]
     joint_names: tuple[str, ...] = JOINT_NAMES
 
@@ -95,7 +92,6 @@ def _variant(
         acceleration_limits=acceleration,
         home=_radians(HOME_DEG),
         kp=kp,
-        ki=(INTEGRAL_GAIN,) * len(kp),
         kd=tuple(2.0 * math.sqrt(k) for k in kp),
     )
 

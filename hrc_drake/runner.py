@@ -240,8 +240,9 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
 
 
 def make_simulator(diagram, scenario: Scenario) -> Simulator:
-    """A simulator stepping continuous state (the controller's integral) once per plant
-    step: the discrete plant sets the pace, so a higher-order integrator only costs time."""
+    """The scenario's simulator: one step per plant step. The station has no continuous
+    state (the discrete plant sets the pace); should a system add some, it is stepped with
+    the plant by explicit Euler, as a higher-order integrator would only cost time."""
     simulator = Simulator(diagram)
     ApplySimulatorConfig(
         SimulatorConfig(

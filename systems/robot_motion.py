@@ -411,7 +411,7 @@ def add_robot_motion(
     options: MotionOptions | None = None,
     workpieces=None,
 ) -> RobotMotion:
-    """Adds RobotMotion as "robot_motion" between the plant and its InverseDynamicsController.
+    """Adds RobotMotion as "robot_motion" between the plant and its RobotController.
 
     Feeds the acceleration forward when the controller takes a reference acceleration. With
     `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
@@ -419,13 +419,11 @@ def add_robot_motion(
     """
     motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
-    builder.Connect(
-        motion.GetOutputPort("desired_state"), controller.get_input_port_desired_state()
-    )
+    builder.Connect(motion.GetOutputPort("desired_state"), controller.GetInputPort("desired_state"))
     if controller.HasInputPort("desired_acceleration"):
         builder.Connect(
             motion.GetOutputPort("desired_acceleration"),
-            controller.get_input_port_desired_acceleration(),
+            controller.GetInputPort("desired_acceleration"),
         )
     if workpieces is not None:
         builder.Connect(

@@ -31,7 +31,7 @@ def test_hold_is_the_controllers_work():
     simulator.AdvanceTo(0.2)
     controller = diagram.GetSubsystemByName("robot_controller")
     context = controller.GetMyContextFromRoot(simulator.get_context())
-    torque = controller.get_output_port_control().Eval(context)
+    torque = controller.GetOutputPort("generalized_force").Eval(context)
     assert abs(torque[1]) > 1.0  # A2 carries the arm against gravity
 
 

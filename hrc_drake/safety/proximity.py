@@ -6,6 +6,10 @@ exact signed distances (pair queries ignore collision filters) only where a pair
 closest or touching. Speeds come from the frame poses of the previous measurement; the
 capsule gaps are reused, less how far the parts moved, until a part moved `REFRESH_DISTANCE`.
 Both live in the reading's `memory`, which the monitor keeps as vector state.
+
+Only the active parts are measured: the person, the arm and tool, and the object the robot
+holds, not every workpiece it might hold. Frames of inactive parts are NaN in the memory; a
+part that becomes active has no previous pose, so it counts as resting for that update.
 """
 
 import math
@@ -81,9 +85,7 @@ class ProximityMeter:
         )
         radius = np.array([r for _, _, r in segments])
         self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
-        human_frames = np.unique(self.part_frame[: self.n_human])
-        self.centre_weights = np.zeros(len(self.frames))
-        self.centre_weights[human_frames] = 1.0 / len(human_frames)
+        self.human_frames = np.unique(self.part_frame[: self.n_human])
         poses_end = 12 * len(self.frames)
         ends_end = poses_end + 6 * len(self.geometries)
         self._memory_parts = slice(0, poses_end), slice(poses_end, ends_end), slice(ends_end, None)
@@ -92,56 +94,73 @@ class ProximityMeter:
     def measure(self, query_object, memory: np.ndarray | None, dt: float, robot) -> Reading:
         """`memory` is the last reading's (None at first); `robot` (indices into `robot`) are
         the active parts: carried objects come and go."""
-        poses = np.array([query_object.GetPoseInWorld(f).GetAsMatrix34() for f in self.frames])
-        previous, reference = self._recall(memory) if memory is not None else (poses, None)
+        robot_rows = self.n_human + robot
+        poses = self._poses(query_object, robot_rows)
+        previous, reference = self._recall(memory, poses) if memory is not None else (poses, None)
         if dt <= 0:
             previous, dt = poses, 0.0
-        robot_rows = self.n_human + robot
         ends = self._ends(poses)
-        gaps, reference = self._gaps(ends, reference)
-        bound = gaps[:, robot] - self.radii[:, robot]
+        gaps, reference = self._gaps(ends, reference, robot)
+        bound = gaps - self.radii[:, robot]
         readings = [
             self._pair_reading(i, robot_rows[j], result, poses, previous, dt)
             for i, j, result in self._exact_pairs(query_object, bound, robot_rows)
         ]
-        centre = self.centre_weights @ poses[:, :, 3]
+        centre = poses[self.human_frames, :, 3].mean(axis=0)
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=tuple(x for x in readings if x.distance <= 0.0),
             robot_speed=self._robot_speed(ends, previous, dt, robot_rows),
-            human_speed=_speed(centre, self.centre_weights @ previous[:, :, 3], dt),
+            human_speed=_speed(centre, previous[self.human_frames, :, 3].mean(axis=0), dt),
             person_xy=(float(centre[0]), float(centre[1])),
             memory=np.concatenate([poses.ravel(), *(r.ravel() for r in reference)]),
         )
 
-    def _recall(self, memory: np.ndarray):
-        """The last poses and the gaps' reference (part ends, gaps) stored in `memory`."""
-        poses, ends, gaps = (memory[part] for part in self._memory_parts)
-        return poses.reshape(-1, 3, 4), (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
+    def _poses(self, query_object, robot_rows: np.ndarray) -> np.ndarray:
+        """World poses (frames × 3 × 4) of the person's and the active robot parts' frames;
+        NaN for the others (SceneGraph's pose lookups are most of the meter's cost)."""
+        poses = np.full((len(self.frames), 3, 4), np.nan)
+        active = np.unique(np.concatenate([self.human_frames, self.part_frame[robot_rows]]))
+        for f in active:
+            poses[f] = query_object.GetPoseInWorld(self.frames[f]).GetAsMatrix34()
+        return poses
 
-    def _ends(self, poses: np.ndarray) -> np.ndarray:
-        """World end points (parts × 3 × 2) of all parts' bounding segments."""
-        return poses[self.part_frame] @ self.ends_F
+    def _recall(self, memory: np.ndarray, poses: np.ndarray):
+        """The last poses (the current ones for frames that were not measured then) and the
+        gaps' reference (part ends, gaps) stored in `memory`."""
+        previous, ends, gaps = (memory[part] for part in self._memory_parts)
+        previous = previous.reshape(poses.shape)
+        previous = np.where(np.isnan(previous), poses, previous)
+        return previous, (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
 
-    def _gaps(self, ends: np.ndarray, reference) -> tuple:
-        """Lower bounds (human × robot parts) of the distances between the bounding segments,
-        and their reference (part ends, gaps): the last one while no part moved far."""
+    def _ends(self, poses: np.ndarray, parts=slice(None)) -> np.ndarray:
+        """World end points (parts × 3 × 2) of the parts' bounding segments (NaN for parts
+        whose frame was not measured)."""
+        return poses[self.part_frame[parts]] @ self.ends_F[parts]
+
+    def _gaps(self, ends: np.ndarray, reference, robot: np.ndarray) -> tuple:
+        """Lower bounds (human × active robot parts) of the distances between the bounding
+        segments, and their reference (part ends, gaps of all parts, NaN where not
+        computed): the last one while no active part moved far (or became active)."""
+        rows = np.concatenate([np.arange(self.n_human), self.n_human + robot])
         if reference is not None:
-            moved = ends - reference[0]
+            moved = ends[rows] - reference[0][rows]
             moved = np.sqrt((moved * moved).sum(axis=1).max(axis=1))
-            if moved.max() <= REFRESH_DISTANCE:
+            if moved.max() <= REFRESH_DISTANCE:  # False when a part was not measured then
                 h, r = moved[: self.n_human, None], moved[None, self.n_human :]
-                return reference[1] - h - r, reference
+                return reference[1][:, robot] - h - r, reference
         starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        h, r = slice(0, self.n_human), slice(self.n_human, None)
+        h, r = slice(0, self.n_human), rows[self.n_human :]
         gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
-        return gaps, (ends, gaps)
+        all_gaps = np.full((self.n_human, len(self.robot)), np.nan)
+        all_gaps[:, robot] = gaps
+        return gaps, (ends, all_gaps)
 
     def _robot_speed(self, ends, previous, dt, robot_rows) -> float:
         """Fastest end of any active robot part's bounding segment (tool tip included)."""
         if dt <= 0.0:
             return 0.0
-        moved = (ends - self._ends(previous))[robot_rows]
+        moved = ends[robot_rows] - self._ends(previous, robot_rows)
         return math.sqrt((moved * moved).sum(axis=1).max()) / dt
 
     def _exact_pairs(self, query_object, bound: np.ndarray, robot_rows: np.ndarray) -> list:

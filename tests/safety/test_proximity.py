@@ -79,3 +79,25 @@ def test_reused_gaps_find_the_exact_closest_pair_and_every_contact():
         assert [c[1:] for c in measured] == [c[1:] for c in contacts]
         touched += bool(contacts)
     assert touched > 10  # the walk reaches into the swing
+
+
+def test_parts_that_come_and_go_are_measured_exactly_and_without_speed_jumps():
+    """A carried object is a robot part only while held: readings over the active parts stay
+    exact, and a part that becomes active does not jump from a stale pose (which would read
+    as a robot speed no part ever had)."""
+    cell = Cell()
+    every = np.arange(len(cell.robot))
+    memory_all = memory_some = None
+    for k, time in enumerate(np.arange(0.0, 3.0, PERIOD)):
+        active = every if (k // 25) % 2 else every[:-2]
+        query = cell.query_at(time)
+        dt = PERIOD if k else 0.0
+        full = cell.meter.measure(query, memory_all, dt, every)
+        some = cell.meter.measure(query, memory_some, dt, active)
+        memory_all, memory_some = full.memory, some.memory
+        names = {cell.robot[j].name for j in active}
+        closest = min(d for d in cell.all_distances(query) if d[2] in names)
+        assert (some.closest.distance, some.closest.region, some.closest.part) == pytest.approx(
+            closest, abs=1e-12
+        )
+        assert some.robot_speed <= full.robot_speed + 1e-9
