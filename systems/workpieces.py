@@ -83,7 +83,11 @@ class Workpieces(LeafSystem):
         inspector = scene_graph.model_inspector()
         self.geometry_ids = [inspector.GetGeometries(f)[0] for f in self.frame_ids]
         self._parked = [parked_pose(slot) for slot in range(len(self.frame_ids))]
-        self._resting = (None, FramePoseVector(), [])
+        self._poses = FramePoseVector()
+        for frame_id, X_WS in zip(self.frame_ids, self._parked, strict=True):
+            self._poses.set_value(frame_id, X_WS)
+        self._written = [None] * len(self.frame_ids)  # the piece each slot's pose is of
+        self._resting = (None, [])
         initial = self.cell.initial_world()
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
@@ -147,22 +151,25 @@ class Workpieces(LeafSystem):
         state.get_mutable_abstract_state(self._state).set_value(world)
 
     def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:
-        """Every slot's pose while `world` lasts, but for the moving pieces, and their drifts:
-        computed once per update, not once per plant step (a World is immutable, so its
-        identity is the key)."""
+        """Every slot's pose while `world` lasts, but for the moving pieces, and their drifts.
+        Computed once per update, not once per plant step (a World is immutable, so its
+        identity is the key), and only for slots whose piece changed: a resting piece stays
+        the same object from update to update."""
         if self._resting[0] is not world:
-            poses = FramePoseVector()
-            for frame_id, X_WS in zip(self.frame_ids, self._parked, strict=True):
-                poses.set_value(frame_id, X_WS)
+            by_slot = {piece.slot: piece for piece in world.pieces.values()}
             moving = []
-            for piece in world.pieces.values():
-                if piece.velocity.get_coeffs().any():
-                    moving.append((self.frame_ids[piece.slot], self.cell.drift(piece)))
-                else:
-                    X_WO = self.cell.pose_at(piece, world, world.time)
-                    poses.set_value(self.frame_ids[piece.slot], X_WO)
-            self._resting = (world, poses, moving)
-        return self._resting[1:]
+            for slot, frame_id in enumerate(self.frame_ids):
+                piece = by_slot.get(slot)
+                if piece is not None and piece.velocity.get_coeffs().any():
+                    moving.append((frame_id, self.cell.drift(piece)))
+                elif piece is not self._written[slot]:
+                    self._poses.set_value(frame_id, self._slot_pose(slot, piece, world))
+                self._written[slot] = piece
+            self._resting = (world, moving)
+        return self._poses, self._resting[1]
+
+    def _slot_pose(self, slot: int, piece, world: World) -> RigidTransform:
+        return self._parked[slot] if piece is None else self.cell.pose_at(piece, world, world.time)
 
     def _calc_poses(self, context: Context, output: AbstractValue) -> None:
         """Resting and parked slots as at the last update; moving pieces extrapolated to the
