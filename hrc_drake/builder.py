@@ -71,9 +71,12 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     motion = add_robot_motion(
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
-    if human is not None:
-        builder.Connect(human.GetOutputPort("human_status"), motion.GetInputPort("human_status"))
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
+    for reader in (motion, safety):
+        if human is not None and reader is not None:
+            builder.Connect(
+                human.GetOutputPort("human_status"), reader.GetInputPort("human_status")
+            )
     actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
     trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
     if meshcat is not None:

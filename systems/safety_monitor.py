@@ -14,6 +14,9 @@ Optional input `workpieces_status` (Workpieces' status): the object the robot's 
 holds becomes a robot part (its geometry is watched like a link's, reported as
 `carried object`) and its mass is added to the payload. The person's hand on that object
 while the robot stands still is a hand-over grasp, not a contact.
+
+Optional input `human_status` (HumanActor's status): its time is when the person's pose was
+sampled, so the person's speeds are measured between their own pose samples.
 """
 
 import math
@@ -69,6 +72,7 @@ class SafetyMonitor(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort(
             "workpieces_status", AbstractValue.Make(object())
         )
+        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(object()))
         self._scale = self.DeclareDiscreteState(np.ones(1))
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
@@ -84,6 +88,9 @@ class SafetyMonitor(LeafSystem):
     def get_workpieces_status_input_port(self):
         return self._workpieces
 
+    def get_human_status_input_port(self):
+        return self._human
+
     def _update(self, context, state) -> EventStatus:
         before: SafetyStatus = context.get_abstract_state(self._status).get_value()
         held = self._held_object(context)
@@ -92,8 +99,9 @@ class SafetyMonitor(LeafSystem):
         reading = self._meter.measure(
             self._query.Eval(context),
             self._last_memory(context),
-            time - before.time,
+            time,
             self._active_parts.get(geometry, self._active_parts[None]),
+            self._person_time(context),
         )
         payload = held.mass if held is not None else 0.0
         status = self._judge.status(time, reading, before, payload)
@@ -108,6 +116,11 @@ class SafetyMonitor(LeafSystem):
         Drake copies it in C++ where an abstract one costs a Python deepcopy per update."""
         memory = context.get_discrete_state(self._memory).value()
         return None if math.isnan(memory[0]) else memory
+
+    def _person_time(self, context) -> float | None:
+        """When the person's current pose was sampled (None: no HumanActor tells)."""
+        status = self._human.Eval(context) if self._human.HasValue(context) else None
+        return status.time if status is not None else None
 
     def _held_object(self, context):
         """The workpiece the robot's gripper holds (an ObjectStatus), if any."""

@@ -3,15 +3,18 @@
 `ProximityMeter.measure` fetches the world poses of the watched frames, bounds every
 (body region, robot part) pair with the capsule broad phase, and asks the QueryObject for
 exact signed distances (pair queries ignore collision filters) only where a pair can be the
-closest or touching. Speeds come from the frame poses of the previous measurement; the
-capsule gaps are reused, less how far the parts moved, until a part moved `REFRESH_DISTANCE`.
-Both live in the reading's `memory`, which the monitor keeps as vector state.
+closest or touching. Speeds come from the frame poses of the previous measurement (the
+person's from their previous pose sample: HumanActor holds a pose between its updates, so
+differencing at the monitor's rate would read 0 or too fast); the capsule gaps are reused,
+less how far the parts moved, until a part moved `REFRESH_DISTANCE`. All of it lives in the
+reading's `memory`, which the monitor keeps as vector state.
 
 Only the active parts are measured: the person, the arm and tool, and the object the robot
 holds, not every workpiece it might hold. Frames of inactive parts are NaN in the memory; a
 part that becomes active has no previous pose, so it counts as resting for that update.
 """
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -86,34 +89,40 @@ class ProximityMeter:
         radius = np.array([r for _, _, r in segments])
         self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
         self.human_frames = np.unique(self.part_frame[: self.n_human])
-        poses_end = 12 * len(self.frames)
-        ends_end = poses_end + 6 * len(self.geometries)
-        self._memory_parts = slice(0, poses_end), slice(poses_end, ends_end), slice(ends_end, None)
-        self.memory_size = ends_end + self.radii.size
+        sizes = [2, 12 * len(self.frames), 12 * len(self.human_frames)]
+        bounds = np.cumsum([0, *sizes, 6 * len(self.geometries), self.radii.size])
+        self._memory_parts = [slice(a, b) for a, b in itertools.pairwise(bounds)]
+        self.memory_size = int(bounds[-1])
 
-    def measure(self, query_object, memory: np.ndarray | None, dt: float, robot) -> Reading:
+    def measure(
+        self, query_object, memory: np.ndarray | None, time: float, robot, person_time=None
+    ) -> Reading:
         """`memory` is the last reading's (None at first); `robot` (indices into `robot`) are
-        the active parts: carried objects come and go."""
+        the active parts: carried objects come and go. `person_time` is when the person's
+        pose was sampled (None: continuously, at `time`)."""
+        person_time = time if person_time is None else person_time
         robot_rows = self.n_human + robot
         poses = self._poses(query_object, robot_rows)
-        previous, reference = self._recall(memory, poses) if memory is not None else (poses, None)
-        if dt <= 0:
-            previous, dt = poses, 0.0
+        if memory is None:
+            rates, reference = np.zeros_like(poses), None
+        else:
+            rates, reference = self._recall(memory, poses, time, person_time)
         ends = self._ends(poses)
         gaps, reference = self._gaps(ends, reference, robot)
         bound = gaps - self.radii[:, robot]
         readings = [
-            self._pair_reading(i, robot_rows[j], result, poses, previous, dt)
+            self._pair_reading(i, robot_rows[j], result, rates)
             for i, j, result in self._exact_pairs(query_object, bound, robot_rows)
         ]
         centre = poses[self.human_frames, :, 3].mean(axis=0)
+        memory = [[time, person_time], poses, rates[self.human_frames], *reference]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=tuple(x for x in readings if x.distance <= 0.0),
-            robot_speed=self._robot_speed(ends, previous, dt, robot_rows),
-            human_speed=_speed(centre, previous[self.human_frames, :, 3].mean(axis=0), dt),
+            robot_speed=self._robot_speed(rates, robot_rows),
+            human_speed=float(np.linalg.norm(rates[self.human_frames, :, 3].mean(axis=0))),
             person_xy=(float(centre[0]), float(centre[1])),
-            memory=np.concatenate([poses.ravel(), *(r.ravel() for r in reference)]),
+            memory=np.concatenate([np.ravel(m) for m in memory]),
         )
 
     def _poses(self, query_object, robot_rows: np.ndarray) -> np.ndarray:
@@ -125,13 +134,22 @@ class ProximityMeter:
             poses[f] = query_object.GetPoseInWorld(self.frames[f]).GetAsMatrix34()
         return poses
 
-    def _recall(self, memory: np.ndarray, poses: np.ndarray):
-        """The last poses (the current ones for frames that were not measured then) and the
-        gaps' reference (part ends, gaps) stored in `memory`."""
-        previous, ends, gaps = (memory[part] for part in self._memory_parts)
+    def _recall(self, memory: np.ndarray, poses: np.ndarray, time: float, person_time: float):
+        """Rates of change (frames × 3 × 4) of the poses since the last reading (zero for
+        frames not measured then), the person's since their last pose sample, and the gaps'
+        reference (part ends, gaps) stored in `memory`."""
+        times, previous, person_rates, ends, gaps = (memory[part] for part in self._memory_parts)
         previous = previous.reshape(poses.shape)
         previous = np.where(np.isnan(previous), poses, previous)
-        return previous, (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
+        dt = time - times[0]
+        rates = (poses - previous) / dt if dt > 0.0 else np.zeros_like(poses)
+        person_dt = person_time - times[1]
+        humans = self.human_frames
+        if person_dt > 0.0:
+            rates[humans] = (poses[humans] - previous[humans]) / person_dt
+        else:
+            rates[humans] = person_rates.reshape(-1, 3, 4)
+        return rates, (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
 
     def _ends(self, poses: np.ndarray, parts=slice(None)) -> np.ndarray:
         """World end points (parts × 3 × 2) of the parts' bounding segments (NaN for parts
@@ -156,12 +174,10 @@ class ProximityMeter:
         all_gaps[:, robot] = gaps
         return gaps, (ends, all_gaps)
 
-    def _robot_speed(self, ends, previous, dt, robot_rows) -> float:
+    def _robot_speed(self, rates: np.ndarray, robot_rows: np.ndarray) -> float:
         """Fastest end of any active robot part's bounding segment (tool tip included)."""
-        if dt <= 0.0:
-            return 0.0
-        moved = ends[robot_rows] - self._ends(previous, robot_rows)
-        return math.sqrt((moved * moved).sum(axis=1).max()) / dt
+        velocities = self._ends(rates, robot_rows)
+        return math.sqrt((velocities * velocities).sum(axis=1).max())
 
     def _exact_pairs(self, query_object, bound: np.ndarray, robot_rows: np.ndarray) -> list:
         """Exact signed distances of the pairs that can be the closest or in contact, as
@@ -181,9 +197,9 @@ class ProximityMeter:
             best = min(best, result.distance)
         return [p for p in pairs if p[2].distance <= max(best, 0.0)]
 
-    def _pair_reading(self, i: int, k: int, result, poses, previous, dt) -> PairReading:
+    def _pair_reading(self, i: int, k: int, result, rates: np.ndarray) -> PairReading:
         """Reading of human part `i` and part `k` (a robot part)."""
-        v_h, v_r = self._point_velocities([i, k], [result.p_ACa, result.p_BCb], poses, previous, dt)
+        v_h, v_r = self._point_velocities([i, k], [result.p_ACa, result.p_BCb], rates)
         towards_human = result.nhat_BA_W
         return PairReading(
             region=self.human[i].name,
@@ -193,22 +209,15 @@ class ProximityMeter:
             human_approach=float(-v_h @ towards_human),
         )
 
-    def _point_velocities(self, parts: list, points_G: list, poses, previous, dt) -> np.ndarray:
+    def _point_velocities(self, parts: list, points_G: list, rates: np.ndarray) -> np.ndarray:
         """World velocities (parts × 3) of points fixed in the parts' geometry frames."""
-        if dt <= 0.0:
-            return np.zeros((len(parts), 3))
         X_FG = self.X_FG[parts]
         p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
-        frames = self.part_frame[parts]
-        moved = poses[frames] - previous[frames]
-        return (moved[:, :, :3] @ p_F + moved[:, :, 3:])[:, :, 0] / dt
+        rate = rates[self.part_frame[parts]]
+        return (rate[:, :, :3] @ p_F + rate[:, :, 3:])[:, :, 0]
 
 
 def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:
     """A segment's ends in its frame F as the columns of a 4 × 2 matrix (X_WF @ ends)."""
     ends_F = X_FG[:, :3] @ np.column_stack([p0_G, p1_G]) + X_FG[:, 3:]
     return np.vstack([ends_F, np.ones(2)])
-
-
-def _speed(now: np.ndarray, before: np.ndarray, dt: float) -> float:
-    return math.dist(now, before) / dt if dt > 0.0 else 0.0

@@ -42,11 +42,13 @@ class Cell:
         self.robot = body_parts(robot_plant, [arm])
         self.meter = ProximityMeter(inspector, self.human, self.robot)
 
-    def query_at(self, time: float):
-        """The QueryObject with the person walking and A1 swinging at `time`."""
+    def query_at(self, time: float, person=PERSON, person_time: float | None = None):
+        """The QueryObject with A1 swinging at `time` and the person walking as `person` at
+        `person_time` (default: `time`)."""
         q = self.q_home.copy()
         q[0] += math.radians(60) * math.sin(1.2 * time)
-        for pose, positions in ((self.robot_pose, q), (self.human_pose, PERSON.value(time))):
+        person_q = person.value(time if person_time is None else person_time)
+        for pose, positions in ((self.robot_pose, q), (self.human_pose, person_q)):
             pose.get_input_port().FixValue(pose.GetMyContextFromRoot(self.context), positions)
         return self.query_port.Eval(self.scene_graph.GetMyContextFromRoot(self.context))
 
@@ -68,7 +70,7 @@ def test_reused_gaps_find_the_exact_closest_pair_and_every_contact():
     memory, touched = None, 0
     for time in np.arange(0.0, 5.0, PERIOD):
         query = cell.query_at(time)
-        reading = cell.meter.measure(query, memory, PERIOD if memory is not None else 0.0, robot)
+        reading = cell.meter.measure(query, memory, time, robot)
         memory = reading.memory
         distances = cell.all_distances(query)
         closest = min(distances)
@@ -91,9 +93,8 @@ def test_parts_that_come_and_go_are_measured_exactly_and_without_speed_jumps():
     for k, time in enumerate(np.arange(0.0, 3.0, PERIOD)):
         active = every if (k // 25) % 2 else every[:-2]
         query = cell.query_at(time)
-        dt = PERIOD if k else 0.0
-        full = cell.meter.measure(query, memory_all, dt, every)
-        some = cell.meter.measure(query, memory_some, dt, active)
+        full = cell.meter.measure(query, memory_all, time, every)
+        some = cell.meter.measure(query, memory_some, time, active)
         memory_all, memory_some = full.memory, some.memory
         names = {cell.robot[j].name for j in active}
         closest = min(d for d in cell.all_distances(query) if d[2] in names)
@@ -101,3 +102,22 @@ def test_parts_that_come_and_go_are_measured_exactly_and_without_speed_jumps():
             closest, abs=1e-12
         )
         assert some.robot_speed <= full.robot_speed + 1e-9
+
+
+def test_person_speed_is_measured_between_their_pose_samples():
+    """HumanActor holds each pose for 1/60 s; the meter at 100 Hz must read the person's
+    walking speed, not 0 on a held pose and too fast just after a new one."""
+    cell = Cell()
+    speed = 1.2
+    person = walk(stand=0.5, arrive=3.0, leave=10.0, bearing=math.radians(55), speed=speed)
+    robot = np.arange(len(cell.robot))
+    memory, readings = None, []
+    for time in np.arange(0.0, 2.9, PERIOD):
+        sample = math.floor(time * 60.0 + 1e-9) / 60.0
+        reading = cell.meter.measure(
+            cell.query_at(time, person, sample), memory, time, robot, sample
+        )
+        memory = reading.memory
+        if time > 1.0:  # walking in a straight line since 0.92 s
+            readings.append(reading.human_speed)
+    np.testing.assert_allclose(readings, speed, rtol=1e-9)
