@@ -4,7 +4,8 @@ The cell is the base scenario's station (dynamic plant with iisy, tool and cell,
 inverse-dynamics controller and RobotMotion holding home). The person variant adds the
 scenario's `human:` section, walking back and forth between two points for the whole run
 (turns included).
-Both variants run in this process, alternating, best of the repeats.
+Both variants run in this process, alternating, best of the repeats. Times are the process's
+CPU time, so that other work on the machine does not blur the comparison.
 
     .venv/bin/python benchmarks/human_cost.py [--duration 10] [--repeats 3]
 """
@@ -61,11 +62,12 @@ def cell(with_person: bool):
 
 
 def real_time_factor(with_person: bool, duration: float) -> float:
+    """Simulated seconds per second of CPU time."""
     simulator = Simulator(cell(with_person))
     simulator.Initialize()
-    start = time.perf_counter()
+    start = time.process_time()
     simulator.AdvanceTo(duration)
-    return duration / (time.perf_counter() - start)
+    return duration / (time.process_time() - start)
 
 
 def main() -> None:

@@ -21,11 +21,13 @@ from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
 
 UPDATE_PERIOD = 1.0 / 60.0
+REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
+"""The frames whose world poses the status reports (hands, then head)."""
 
 
 def _pose_tuple(X) -> tuple[float, ...]:
-    quaternion = X.rotation().ToQuaternion()
-    return (*X.translation(), quaternion.w(), quaternion.x(), quaternion.y(), quaternion.z())
+    """(x, y, z, qw, qx, qy, qz) of a RigidTransform, in as few calls into Drake as it takes."""
+    return (*X.translation().tolist(), *X.rotation().ToQuaternion().wxyz().tolist())
 
 
 class HumanActor(LeafSystem):
@@ -52,6 +54,8 @@ class HumanActor(LeafSystem):
         )
         first_pose = self._ctx.body.plant_positions(pose_at(self._ctx, initial, 0.0))
         self._positions = self.DeclareDiscreteState(first_pose)
+        plant = self._ctx.body.plant
+        self._reported = tuple(plant.GetFrameByName(name) for name in REPORTED_FRAMES)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
         self.DeclareStateOutputPort("human_positions", self._positions)
         self.DeclareStateOutputPort("human_status", self._status)
@@ -60,14 +64,11 @@ class HumanActor(LeafSystem):
     def body(self) -> HumanBody:
         return self._ctx.body
 
-    def _frames(self, q: np.ndarray):
-        """The hands' and head's poses: one forward kinematics for the three."""
+    def _frames(self, positions: np.ndarray) -> tuple[tuple[float, ...], ...]:
+        """The hands' and head's poses at the plant's `positions`: one forward kinematics."""
         body = self._ctx.body
-        body.set(q)
-        return tuple(
-            _pose_tuple(body.frame_pose(name))
-            for name in ("left_hand_grasp", "right_hand_grasp", "head_gaze")
-        )
+        body.plant.SetPositions(body.context, positions)
+        return tuple(_pose_tuple(frame.CalcPoseInWorld(body.context)) for frame in self._reported)
 
     def _update(self, context, state) -> None:
         t = context.get_time()
@@ -79,5 +80,5 @@ class HumanActor(LeafSystem):
         state.get_mutable_abstract_state(self._actor).set_value(actor)
         positions = self._ctx.body.plant_positions(actor.pose)
         state.get_mutable_discrete_state(self._positions).set_value(positions)
-        message = status(self._ctx, actor, t, self._frames)
+        message = status(self._ctx, actor, t, self._frames(positions))
         state.get_mutable_abstract_state(self._status).set_value(message)

@@ -116,8 +116,11 @@ def mirror_pose(body: HumanBody, q: np.ndarray) -> np.ndarray:
     return mirrored
 
 
-def minimum_jerk(s: np.ndarray) -> np.ndarray:
-    s = np.clip(s, 0.0, 1.0)
+def minimum_jerk(s):
+    """Ease from 0 to 1 as s goes from 0 to 1 (clamped): zero speed and acceleration at both
+    ends. Arrays or floats; a float stays a plain float, which is several times quicker than
+    a 0-d array (the person's update eases a few scalars at every update)."""
+    s = min(max(s, 0.0), 1.0) if isinstance(s, float) else np.clip(s, 0.0, 1.0)
     return s**3 * (10 - 15 * s + 6 * s**2)
 
 

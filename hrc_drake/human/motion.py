@@ -6,9 +6,12 @@ alone; `advance(state, t, commands)` is one update of the state machine
 SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 """
 
+from bisect import bisect_right
 from dataclasses import dataclass, replace
 from functools import cached_property
-from math import atan2, cos, pi, sin
+from itertools import pairwise
+from math import atan2, copysign, cos, hypot, inf, pi, radians, sin
+from typing import NamedTuple
 
 import numpy as np
 
@@ -34,10 +37,10 @@ MINIMUM_JERK_PEAK = 1.875
 """Peak speed of a minimum-jerk fade relative to its average."""
 SEGMENT_BLEND = 0.3
 """Cross-fade between the turn and walk parts of one movement (s)."""
-TURN_PER_CYCLE = np.radians(60.0)
+TURN_PER_CYCLE = radians(60.0)
 SPEED_RAMP = 0.6
 """Seconds to reach walking speed, and to stop."""
-MIN_TURN = np.radians(3.0)
+MIN_TURN = radians(3.0)
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
@@ -53,6 +56,11 @@ class Context:
     def index(self, name: str) -> int:
         return self.body.index(name)
 
+    @cached_property
+    def root(self) -> tuple[int, int, int]:
+        """Indices of base_x, base_y and base_yaw, looked up once: every pose places the root."""
+        return self.index("base_x"), self.index("base_y"), self.index("base_yaw")
+
 
 def _wrap(angle: float) -> float:
     return (angle + pi) % (2 * pi) - pi
@@ -60,12 +68,13 @@ def _wrap(angle: float) -> float:
 
 def place(ctx: Context, q: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:
     """A clip pose (root in the clip frame) put into the world at (x, y) facing yaw."""
-    ix, iy, iyaw = ctx.index("base_x"), ctx.index("base_y"), ctx.index("base_yaw")
+    ix, iy, iyaw = ctx.root
     placed = q.copy()
+    qx, qy = float(q[ix]), float(q[iy])
     c, s = cos(yaw), sin(yaw)
-    placed[ix] = x + c * q[ix] - s * q[iy]
-    placed[iy] = y + s * q[ix] + c * q[iy]
-    placed[iyaw] = yaw + q[iyaw]
+    placed[ix] = x + c * qx - s * qy
+    placed[iy] = y + s * qx + c * qy
+    placed[iyaw] = yaw + float(q[iyaw])
     return placed
 
 
@@ -105,7 +114,7 @@ class ClipSegment:
     aim: TargetedOffset | None = None
 
     def end(self, ctx: Context) -> float:
-        return np.inf if self.forever else self.start + ctx.clips[self.clip].duration / self.speed
+        return inf if self.forever else self.start + ctx.clips[self.clip].duration / self.speed
 
     def clip_time(self, ctx: Context, t: float) -> float:
         clip_time = (t - self.start) * self.speed
@@ -135,7 +144,7 @@ class TurnSegment:
         change = self.yaw_to - self.yaw_from
         rate = TURN_PER_CYCLE / 0.9
         turned, total = travel(t - self.start, abs(change), rate, ramp=0.3)
-        return np.sign(change) * turned, total
+        return copysign(turned, change), total
 
     def end(self, ctx: Context) -> float:
         return self.start + self.angle(self.start)[1]
@@ -145,13 +154,17 @@ class TurnSegment:
         clip = ctx.clips["turn_left" if self.yaw_to >= self.yaw_from else "turn_right"]
         clip_time = abs(turned) / TURN_PER_CYCLE * clip.duration
         q = clip.sample(clip_time)
-        q[ctx.index("base_yaw")] = 0.0
+        q[ctx.root[2]] = 0.0
         return place(ctx, q, *self.position, self.yaw_from + turned)
 
 
 @dataclass(frozen=True, eq=False)
 class WalkSegment:
-    """Walk along a polyline; the walk cycle advances by distance / animation_distance."""
+    """Walk along a polyline; the walk cycle advances by distance / animation_distance.
+
+    The path's legs are kept as plain floats: a pose looks up one point and one heading, and
+    scalar arithmetic is quicker than numpy's for that.
+    """
 
     start: float
     path: tuple[tuple[float, float], ...]
@@ -160,19 +173,16 @@ class WalkSegment:
     speed: float
 
     @cached_property
-    def points(self) -> np.ndarray:
-        return np.array(self.path)
+    def lengths(self) -> tuple[float, ...]:
+        """Distance along the path to each waypoint."""
+        steps = np.diff(np.array(self.path), axis=0)
+        return (0.0, *np.cumsum(np.linalg.norm(steps, axis=1)).tolist())
 
     @cached_property
-    def lengths(self) -> np.ndarray:
-        steps = np.diff(self.points, axis=0)
-        return np.concatenate([[0.0], np.cumsum(np.linalg.norm(steps, axis=1))])
-
-    @cached_property
-    def directions(self) -> np.ndarray:
+    def directions(self) -> tuple[float, ...]:
         """Direction of each leg, unwrapped (no jumps of 2π between legs)."""
-        steps = np.diff(self.points, axis=0)
-        return np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
+        steps = np.diff(np.array(self.path), axis=0)
+        return tuple(np.unwrap(np.arctan2(steps[:, 1], steps[:, 0])).tolist())
 
     def end(self, ctx: Context) -> float:
         return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
@@ -180,35 +190,40 @@ class WalkSegment:
     def distance(self, t: float) -> float:
         return travel(t - self.start, self.lengths[-1], self.speed)[0]
 
-    def point(self, along: float) -> np.ndarray:
-        lengths, path = self.lengths, self.points
+    def clip_time(self, ctx: Context, t: float) -> float:
+        """Time into the walk cycle (past its duration: later cycles)."""
+        return self.distance(t) / self.animation_distance * ctx.clips[self.clip].duration
+
+    def point(self, along: float) -> tuple[float, float]:
+        lengths, path = self.lengths, self.path
         along = min(max(along, 0.0), lengths[-1])
-        k = min(np.searchsorted(lengths, along, side="right") - 1, len(path) - 2)
+        k = min(bisect_right(lengths, along) - 1, len(path) - 2)
         s = (along - lengths[k]) / max(lengths[k + 1] - lengths[k], 1e-9)
-        return path[k] + s * (path[k + 1] - path[k])
+        (x0, y0), (x1, y1) = path[k], path[k + 1]
+        return x0 + s * (x1 - x0), y0 + s * (y1 - y0)
 
     def heading(self, along: float) -> float:
         """Path direction, turning smoothly through each waypoint."""
         directions, lengths = self.directions, self.lengths
-        k = min(max(np.searchsorted(lengths, along, side="right") - 1, 0), len(directions) - 1)
+        k = min(max(bisect_right(lengths, along) - 1, 0), len(directions) - 1)
         heading = directions[k]
         for corner in range(1, len(directions)):
             offset = along - lengths[corner]
             if abs(offset) < CORNER_RADIUS:
-                w = float(minimum_jerk(np.array((offset + CORNER_RADIUS) / (2 * CORNER_RADIUS))))
+                w = minimum_jerk((offset + CORNER_RADIUS) / (2 * CORNER_RADIUS))
                 heading = directions[corner - 1] + w * (directions[corner] - directions[corner - 1])
-        return float(heading)
+        return heading
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
         clip = ctx.clips[self.clip]
         covered = self.distance(t)
         clip_time = covered / self.animation_distance * clip.duration
         q = clip.sample(clip_time)
-        ix, iy = ctx.index("base_x"), ctx.index("base_y")
-        along = covered + q[ix] - clip_time / clip.duration * clip.animation_distance
+        ix, iy, _ = ctx.root
+        forward, sideways = float(q[ix]), float(q[iy])
+        along = covered + forward - clip_time / clip.duration * clip.animation_distance
         heading = self.heading(along)
         x, y = self.point(along)
-        sideways = q[iy]
         q[ix], q[iy] = 0.0, 0.0
         return place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
 
@@ -222,16 +237,29 @@ class Activity:
 
     Fading the offset (rather than mixing two moving poses) keeps the pose continuous when a
     new activity starts and adds no more speed than the offset's own minimum-jerk decay.
+    Make one with `Activity.plan`, which works out once what depends on the plan alone.
     """
 
     segments: tuple[Segment, ...]
+    joins: tuple[np.ndarray, ...]
+    """At each join between segments, the earlier segment's pose minus the later one's: the
+    offset that fades out after the join."""
+    end: float
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     blend_offset: np.ndarray | None = None
     blend_start: float = 0.0
     blend_time: float = BLEND_TIME
-    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
-    def end(self, ctx: Context) -> float:
-        return self.segments[-1].end(ctx)
+    @classmethod
+    def plan(cls, ctx: Context, segments, final_pose: tuple[float, float, float]) -> "Activity":
+        """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
+        its joins are worked out here, once, rather than at every update that needs them."""
+        segments = tuple(segments)
+        joins = tuple(
+            difference(ctx, before.pose(ctx, after.start), after.pose(ctx, after.start))
+            for before, after in pairwise(segments)
+        )
+        return cls(segments, joins, segments[-1].end(ctx), final_pose)
 
     def start(self) -> float:
         return self.segments[0].start
@@ -244,10 +272,7 @@ class Activity:
         q = self.segments[k].pose(ctx, t)
         join = self.segments[k].start
         if k > 0 and t < join + SEGMENT_BLEND:
-            before = self.segments[k - 1].pose(ctx, join)
-            q = q + fade(t - join, SEGMENT_BLEND) * difference(
-                ctx, before, self.segments[k].pose(ctx, join)
-            )
+            q = q + fade(t - join, SEGMENT_BLEND) * self.joins[k - 1]
         return q
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
@@ -259,23 +284,26 @@ class Activity:
 
 def fade(elapsed: float, duration: float) -> float:
     """1 at the start of a fade, 0 at its end, minimum-jerk in between."""
-    return 1.0 - float(minimum_jerk(np.array(elapsed / duration)))
+    return 1.0 - minimum_jerk(elapsed / duration)
 
 
 def difference(ctx: Context, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a - b, with the yaw difference taken the short way round."""
     offset = a - b
-    iyaw = ctx.index("base_yaw")
-    offset[iyaw] = _wrap(offset[iyaw])
+    iyaw = ctx.root[2]
+    offset[iyaw] = _wrap(float(offset[iyaw]))
     return offset
 
 
 # --- the protocol -------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True, eq=False)
-class ActorState:
-    """Everything the person remembers between updates."""
+class ActorState(NamedTuple):
+    """Everything the person remembers between updates.
+
+    A named tuple rather than a dataclass: every update makes a new one, and a tuple's
+    `_replace` costs a fraction of `dataclasses.replace`.
+    """
 
     state: str = "SETUP"
     activity: Activity | None = None
@@ -315,16 +343,13 @@ def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
     return state.activity.pose(ctx, t)
 
 
-def _idle(pose: tuple[float, float, float], t: float) -> Activity:
-    return Activity((ClipSegment(IDLE_CLIP, t, pose, forever=True),), final_pose=pose)
+def _idle(ctx: Context, pose: tuple[float, float, float], t: float) -> Activity:
+    return Activity.plan(ctx, (ClipSegment(IDLE_CLIP, t, pose, forever=True),), pose)
 
 
 def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
-    return (
-        float(q[ctx.index("base_x")]),
-        float(q[ctx.index("base_y")]),
-        _wrap(float(q[ctx.index("base_yaw")])),
-    )
+    ix, iy, iyaw = ctx.root
+    return float(q[ix]), float(q[iy]), _wrap(float(q[iyaw]))
 
 
 def _yaw_of(quaternion) -> float:
@@ -364,7 +389,7 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
             segments.append(TurnSegment(start, path[-1], heading, final_yaw))
     if not segments:
         segments.append(TurnSegment(t, (x, y), yaw, yaw))
-    return Activity(tuple(segments), final_pose=(*path[-1], _wrap(final_yaw)))
+    return Activity.plan(ctx, segments, (*path[-1], _wrap(final_yaw)))
 
 
 def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Activity:
@@ -379,11 +404,11 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
             raise Unreachable(f"'{clip.name}' takes no target")
         aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), command.target)
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim)
-    return Activity((segment,), final_pose=pose)
+    return Activity.plan(ctx, (segment,), pose)
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
-    return replace(state, results=recorded(state.results, CommandResult(seq, outcome, reason)))
+    return state._replace(results=recorded(state.results, CommandResult(seq, outcome, reason)))
 
 
 def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
@@ -392,12 +417,12 @@ def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **cha
     change = float(np.max(np.abs(offset[3:])))
     duration = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
     activity = replace(activity, blend_offset=offset, blend_start=t, blend_time=duration)
-    return replace(actor, activity=activity, activity_events=(), **changes)
+    return actor._replace(activity=activity, activity_events=(), **changes)
 
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
     if isinstance(command, SetCalledCommand):
-        return _record(replace(state, called=command.called), command.seq, "succeeded")
+        return _record(state._replace(called=command.called), command.seq, "succeeded")
     if isinstance(command, CancelCommand):
         if state.running < 0:
             return _record(state, command.seq, "succeeded", "nothing to cancel")
@@ -405,7 +430,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         state = _switch(
             ctx,
             state,
-            _idle(state.base, t),
+            _idle(ctx, state.base, t),
             t,
             state="IDLE",
             running=-1,
@@ -428,25 +453,39 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
 
 
 def _events(ctx: Context, state: ActorState, t0: float, t1: float) -> list[str]:
-    """Clip events whose time passed between two updates."""
+    """Clip events whose time passed between two updates (turning on the spot fires none)."""
     if state.activity is None or t1 <= t0:
         return []
     fired = []
     for segment in state.activity.segments:
-        if isinstance(segment, ClipSegment):
-            clip = ctx.clips[segment.clip]
+        if not isinstance(segment, TurnSegment):
             a, b = segment.clip_time(ctx, t0), segment.clip_time(ctx, t1)
-        elif isinstance(segment, WalkSegment):
-            clip = ctx.clips[segment.clip]
-            scale = clip.duration / segment.animation_distance
-            a, b = segment.distance(t0) * scale, segment.distance(t1) * scale
-        else:
-            continue
-        cycles = range(int(a // clip.duration), int(b // clip.duration) + 1) if clip.loop else [0]
-        for name, time in clip.events.items():
-            if any(a < time + n * clip.duration <= b for n in cycles) or (a == 0 == time < b):
-                fired.append(name)
+            if a < b:  # the segment's clip played during this update
+                fired += _clip_events(ctx.clips[segment.clip], a, b)
     return fired
+
+
+def _clip_events(clip: Clip, a: float, b: float) -> list[str]:
+    """Events of `clip` in the clip-time span (a, b] (in any cycle of a loop); an event at
+    time 0 also fires when the span starts at 0."""
+    cycles = range(int(a // clip.duration), int(b // clip.duration) + 1) if clip.loop else [0]
+    return [
+        name
+        for name, time in clip.events.items()
+        if any(a < time + n * clip.duration <= b for n in cycles) or a == 0 == time
+    ]
+
+
+def _take_commands(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorState:
+    """Handle each issuer's commands not seen before, in order (most updates bring none)."""
+    seen = dict(state.seen)
+    for issuer, value in commands.items():
+        for command in newer_commands(value, seen.get(issuer, -1), cancels=(CancelCommand,)):
+            seen[issuer] = max(seen.get(issuer, -1), command.seq)
+            state = _handle(ctx, state, command, t)
+    if seen == dict(state.seen):
+        return state
+    return state._replace(seen=tuple(sorted(seen.items())))
 
 
 def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorState:
@@ -454,34 +493,27 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
     tuple of recent commands): the commands not seen before are handled in order."""
     previous_t = state.last_update
     if state.state == "SETUP":
-        state = replace(
-            state,
+        state = state._replace(
             state="IDLE",
             base=state.start_pose,
             animation=IDLE_CLIP,
-            activity=_idle(state.start_pose, t),
+            activity=_idle(ctx, state.start_pose, t),
         )
         previous_t = t
-    seen = dict(state.seen)
-    for issuer, value in commands.items():
-        for command in newer_commands(value, seen.get(issuer, -1), cancels=(CancelCommand,)):
-            seen[issuer] = max(seen.get(issuer, -1), command.seq)
-            state = _handle(ctx, state, command, t)
-    state = replace(state, seen=tuple(sorted(seen.items())))
-    if state.running >= 0 and t >= state.activity.end(ctx):
+    state = _take_commands(ctx, state, t, commands)
+    if state.running >= 0 and t >= state.activity.end:
         final = state.activity.final_pose
         state = _record(state, state.running, "succeeded")
         state = _switch(
-            ctx, state, _idle(final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
+            ctx, state, _idle(ctx, final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
         )
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
     q = pose_at(ctx, state, t)
     base = _base_pose(ctx, q)
     speed = 0.0
     if t > previous_t:
-        speed = float(np.hypot(base[0] - state.base[0], base[1] - state.base[1]) / (t - previous_t))
-    return replace(
-        state,
+        speed = hypot(base[0] - state.base[0], base[1] - state.base[1]) / (t - previous_t)
+    return state._replace(
         last_update=t,
         event=fired[-1] if fired else "",
         event_count=state.event_count + len(fired),
@@ -495,22 +527,22 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
 def progress(ctx: Context, state: ActorState, t: float) -> float:
     if state.running < 0 or state.activity is None:
         return 1.0 if state.results and state.results[-1].outcome == "succeeded" else 0.0
-    start, end = state.activity.start(), state.activity.end(ctx)
+    start, end = state.activity.start(), state.activity.end
     return float(min(max((t - start) / max(end - start, 1e-9), 0.0), 1.0))
 
 
-def status(ctx: Context, state: ActorState, t: float, hands_and_head) -> HumanStatus:
-    """The status after an update; `hands_and_head(q)` gives the three frames' world poses."""
+def status(ctx: Context, state: ActorState, t: float, hands_and_head: tuple) -> HumanStatus:
+    """The status after an update; `hands_and_head` are the world poses of the left and right
+    hand grasp frames and the head gaze frame at state.pose, (x, y, z, qw, qx, qy, qz) each."""
     last = state.results[-1] if state.results else None
-    q = state.pose
-    left, right, head = hands_and_head(q)
+    left, right, head = hands_and_head
     return HumanStatus(
         state=state.state,
         last_seq=last.seq if last else -1,
         outcome=last.outcome if last else "",
         reason=last.reason if last else "",
         progress=progress(ctx, state, t),
-        base_pose=_base_pose(ctx, q),
+        base_pose=state.base,
         base_speed=state.speed,
         left_hand=left,
         right_hand=right,

@@ -57,11 +57,11 @@ class TargetedOffset:
 
     def weight(self, clip_time: float) -> float:
         if clip_time <= self.event:
-            return float(minimum_jerk(np.array(clip_time / self.event)))
+            return minimum_jerk(clip_time / self.event)
         if clip_time <= self.hold_end:
             return 1.0
         span = max(self.duration - self.hold_end, 1e-6)
-        return float(1.0 - minimum_jerk(np.array((clip_time - self.hold_end) / span)))
+        return 1.0 - minimum_jerk((clip_time - self.hold_end) / span)
 
 
 def _hold_end(clip: Clip, event: str) -> float:
