@@ -1,8 +1,10 @@
 """Conditions on where the person is and how close they are to the robot, for trees that
-adapt the robot's behaviour (the original's speed rule: slower while someone is near)."""
+adapt the robot's behaviour (the original's speed rule: slower while someone is near), and
+on what the robot does, for a person who must not reach in while it moves."""
 
 from hrc_drake.areas import Area
 from hrc_drake.bt import ConditionNode, InputPort, Status
+from hrc_drake.motion.messages import IDLE
 
 
 class HumanInArea(ConditionNode):
@@ -32,6 +34,16 @@ class RobotInArea(ConditionNode):
         return Status.SUCCESS if inside else Status.FAILURE
 
 
+class RobotAtRest(ConditionNode):
+    """SUCCESS while the robot holds still with no motion under way. A robot in a monitored
+    stop is not at rest: it goes on along its path as soon as the person steps back, so a
+    person waiting for it to reach its waiting pose must not reach in yet."""
+
+    def tick(self) -> Status:
+        status = self.context.robot
+        return Status.SUCCESS if status is not None and status.mode == IDLE else Status.FAILURE
+
+
 class SeparationBelow(ConditionNode):
     """SUCCESS while the smallest person-robot distance is below `distance` (metres)."""
 
@@ -43,4 +55,4 @@ class SeparationBelow(ConditionNode):
         return Status.SUCCESS if close else Status.FAILURE
 
 
-NODES = (HumanInArea, RobotInArea, SeparationBelow)
+NODES = (HumanInArea, RobotInArea, RobotAtRest, SeparationBelow)

@@ -1,4 +1,5 @@
-"""RobotInArea: the person's tree sees whether the robot's tool works above a tray."""
+"""RobotInArea and RobotAtRest: the person's tree sees whether the robot's tool works above
+a tray and whether the robot holds still before they reach in."""
 
 import pytest
 from pydrake.math import RigidTransform
@@ -12,9 +13,9 @@ from hrc_drake.nodes.context import AgentContext, Places
 TRAY = Area.from_polygon([[-0.6, -0.2], [-0.3, -0.2], [-0.3, 0.3], [-0.6, 0.3]])
 
 
-def robot_status(tool_xyz) -> RobotStatus:
+def robot_status(tool_xyz=(0.0, 0.0, 0.9), mode="moving") -> RobotStatus:
     return RobotStatus(
-        mode="moving",
+        mode=mode,
         results=(),
         tool_pose=RigidTransform(list(tool_xyz)),
         tool_speed=0.0,
@@ -24,14 +25,15 @@ def robot_status(tool_xyz) -> RobotStatus:
     )
 
 
-def tick_robot_in_area(status) -> Status:
-    xml = (
-        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
-        '<RobotInArea area="tray"/></BehaviorTree></root>'
-    )
+def tick_condition(node: str, status) -> Status:
+    xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{node}</BehaviorTree></root>'
     context = AgentContext("human", Places(areas={"tray": TRAY}))
     context.statuses["robot"] = status
     return load_tree(xml, hrc_registry(), context=context).tick(0.0)
+
+
+def tick_robot_in_area(status) -> Status:
+    return tick_condition('<RobotInArea area="tray"/>', status)
 
 
 @pytest.mark.parametrize(
@@ -45,3 +47,22 @@ def test_robot_in_area_follows_the_tool_centre_point(tool, expected):
 
 def test_robot_in_area_fails_without_robot_status():
     assert tick_robot_in_area(None) is Status.FAILURE
+
+
+@pytest.mark.parametrize(
+    ("mode", "expected"),
+    [
+        ("idle", Status.SUCCESS),
+        ("moving", Status.FAILURE),
+        ("stopping", Status.FAILURE),
+        ("stopped", Status.FAILURE),
+        ("planning", Status.FAILURE),
+    ],
+)
+def test_robot_at_rest_only_without_a_motion_under_way(mode, expected):
+    """A monitored stop (`stopped`) is a pause on the way, not rest."""
+    assert tick_condition("<RobotAtRest/>", robot_status(mode=mode)) is expected
+
+
+def test_robot_at_rest_fails_without_robot_status():
+    assert tick_condition("<RobotAtRest/>", None) is Status.FAILURE
