@@ -14,11 +14,12 @@ import time
 import numpy as np
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
 
 from hrc_drake.paths import add_model_package
-from hrc_drake.runner import make_simulator, run
+from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot
 from hrc_drake.systems.robot_controller import add_robot_controller
@@ -48,7 +49,7 @@ def bare_diagram(scenario, desired=None):
 
 
 def time_bare(scenario, duration: float, desired=None) -> float:
-    simulator = make_simulator(bare_diagram(scenario, desired), scenario)
+    simulator = Simulator(bare_diagram(scenario, desired))
     start = time.perf_counter()
     simulator.AdvanceTo(duration)
     return time.perf_counter() - start

@@ -19,6 +19,7 @@ import argparse
 import math
 import sys
 import time
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -32,7 +33,6 @@ from pydrake.trajectories import PiecewisePolynomial
 from hrc_drake.builder import build_diagram
 from hrc_drake.human.body import parse_human
 from hrc_drake.iisy import VARIANTS
-from hrc_drake.runner import make_simulator
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot, model_parser
@@ -85,6 +85,7 @@ def cell(with_monitor: bool, duration: float):
     if with_monitor:
         config = SafetyConfig(ssm=False)
         add_safety_monitor(builder, scene_graph, plant, human_plant, human, config, variant.name)
+    builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
     return builder.Build()
 
 
@@ -100,19 +101,15 @@ def _keep_person_out_of_contact(scene_graph, human_plant) -> None:
     )
 
 
-def cpu_time(with_monitor: bool, duration: float) -> float:
-    simulator = Simulator(cell(with_monitor, duration))
-    simulator.Initialize()
-    start = time.process_time()
-    simulator.AdvanceTo(duration)
-    return time.process_time() - start
+def scenario(name: str, with_monitor: bool):
+    """The bundled scenario, its monitor measuring (SSM off) or removed."""
+    overrides = [("safety.ssm", False), ("safety.enabled", with_monitor)]
+    return build_diagram(apply(load_scenario(name), overrides))
 
 
-def scenario_run(name: str, with_monitor: bool, duration: float) -> tuple[float, np.ndarray]:
-    """CPU time of the scenario and the robot's final state."""
-    scenario = apply(load_scenario(name), [("safety.ssm", False), ("safety.enabled", with_monitor)])
-    diagram = build_diagram(scenario)
-    simulator = make_simulator(diagram, scenario)
+def simulated(diagram, duration: float) -> tuple[float, np.ndarray]:
+    """CPU seconds to simulate `duration`, and the robot's final state."""
+    simulator = Simulator(diagram)
     simulator.Initialize()
     start = time.process_time()
     simulator.AdvanceTo(duration)
@@ -120,24 +117,17 @@ def scenario_run(name: str, with_monitor: bool, duration: float) -> tuple[float,
     return cpu, diagram.GetOutputPort("robot_state").Eval(simulator.get_context())
 
 
-def scenario_overhead(name: str, duration: float, repeats: int) -> None:
-    best = {False: math.inf, True: math.inf}
-    final = {}
+def overhead(name: str, make_diagram, duration: float, repeats: int) -> None:
+    """Best CPU time without and with the monitor, alternating; both runs must leave the
+    robot in the same state (the same work was done)."""
+    best, final = {False: math.inf, True: math.inf}, {}
     for _ in range(repeats):
         for with_monitor in best:
-            cpu, final[with_monitor] = scenario_run(name, with_monitor, duration)
+            cpu, final[with_monitor] = simulated(make_diagram(with_monitor), duration)
             best[with_monitor] = min(best[with_monitor], cpu)
     if not np.allclose(final[False], final[True], atol=1e-9):
         raise SystemExit(f"{name}: the robot moved differently with the monitor measuring")
     report(name, best, duration)
-
-
-def cell_overhead(duration: float, repeats: int) -> None:
-    best = {False: math.inf, True: math.inf}
-    for _ in range(repeats):
-        for with_monitor in best:
-            best[with_monitor] = min(best[with_monitor], cpu_time(with_monitor, duration))
-    report("bare arm (worst case)", best, duration)
 
 
 def report(name: str, best: dict, duration: float) -> None:
@@ -155,8 +145,11 @@ def main():
     parser.add_argument("--repeats", type=int, default=2)
     args = parser.parse_args()
     for name in args.scenarios:
-        scenario_overhead(name, args.duration, args.repeats)
-    cell_overhead(min(args.duration, 10.0), args.repeats)
+        overhead(name, partial(scenario, name), args.duration, args.repeats)
+    cell_duration = min(args.duration, 10.0)
+    overhead(
+        "bare arm (worst case)", partial(cell, duration=cell_duration), cell_duration, args.repeats
+    )
 
 
 if __name__ == "__main__":

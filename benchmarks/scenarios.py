@@ -13,12 +13,12 @@ import sys
 import time
 from pathlib import Path
 
+from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from hrc_drake.builder import build_diagram
-from hrc_drake.runner import make_simulator
 from hrc_drake.scenario import load_scenario
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -33,7 +33,7 @@ def full_run(scenario, duration: float):
     builder = DiagramBuilder()
     station = builder.AddSystem(build_diagram(scenario))
     log = LogVectorOutput(station.GetOutputPort("robot_desired_state"), builder, LOG_PERIOD)
-    simulator = make_simulator(builder.Build(), scenario)
+    simulator = Simulator(builder.Build())
     simulator.Initialize()
     start = time.perf_counter()
     simulator.AdvanceTo(duration)

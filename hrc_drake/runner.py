@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import Meshcat
-from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
+from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import LogVectorOutput
 from tqdm import tqdm
@@ -84,7 +84,7 @@ def run(
     diagram = builder.Build()
     tree_logs = _open_tree_logs(station, scenario, out_dir)
 
-    simulator = make_simulator(diagram, scenario)
+    simulator = Simulator(diagram)
     simulator.set_target_realtime_rate(realtime_rate)
     visualizer = _visualizer(station)
     if visualizer is not None:
@@ -237,22 +237,6 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
             tree.add_observer(log)
             logs.append(log)
     return logs
-
-
-def make_simulator(diagram, scenario: Scenario) -> Simulator:
-    """The scenario's simulator: one step per plant step. The station has no continuous
-    state (the discrete plant sets the pace); should a system add some, it is stepped with
-    the plant by explicit Euler, as a higher-order integrator would only cost time."""
-    simulator = Simulator(diagram)
-    ApplySimulatorConfig(
-        SimulatorConfig(
-            integration_scheme="explicit_euler",
-            max_step_size=scenario.time_step,
-            use_error_control=False,
-        ),
-        simulator,
-    )
-    return simulator
 
 
 def _optional_log(station, port: str, builder):

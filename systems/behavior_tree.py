@@ -23,6 +23,7 @@ from pydrake.systems.framework import LeafSystem
 from hrc_drake.bt import NodeCounters, Status, Tree
 from hrc_drake.messages import TaskEvent
 from hrc_drake.nodes.context import ACTORS, STATUS_INPUTS, AgentContext
+from hrc_drake.ports import value_or_none
 
 COMMAND_WINDOW = 16
 """Commands kept per actor port: far more than one tick sends to one actor."""
@@ -107,7 +108,7 @@ class BehaviorTreeSystem(LeafSystem):
     def _tick(self, context, state) -> None:
         agent = self.agent_context
         for source, port in self._inputs.items():
-            agent.statuses[source] = port.Eval(context) if port.HasValue(context) else None
+            agent.statuses[source] = value_or_none(port, context)
         agent.now = context.get_time()
         previous = context.get_abstract_state(self._state).get_value()
         root_status = self.tree.tick(agent.now)

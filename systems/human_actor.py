@@ -19,6 +19,7 @@ from hrc_drake.human.body import HumanBody, human_body
 from hrc_drake.human.clip import Clip, load_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
+from hrc_drake.ports import value_or_none
 
 UPDATE_PERIOD = 1.0 / 60.0
 REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
@@ -66,16 +67,11 @@ class HumanActor(LeafSystem):
 
     def _frames(self, positions: np.ndarray) -> tuple[tuple[float, ...], ...]:
         """The hands' and head's poses at the plant's `positions`: one forward kinematics."""
-        body = self._ctx.body
-        body.plant.SetPositions(body.context, positions)
-        return tuple(_pose_tuple(frame.CalcPoseInWorld(body.context)) for frame in self._reported)
+        return tuple(map(_pose_tuple, self._ctx.body.world_poses(self._reported, positions)))
 
     def _update(self, context, state) -> None:
         t = context.get_time()
-        commands = {
-            issuer: port.Eval(context) if port.HasValue(context) else None
-            for issuer, port in self._commands.items()
-        }
+        commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
         actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, commands)
         state.get_mutable_abstract_state(self._actor).set_value(actor)
         positions = self._ctx.body.plant_positions(actor.pose)

@@ -48,6 +48,7 @@ from hrc_drake.motion.messages import (
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
+from hrc_drake.ports import value_or_none
 from hrc_drake.scenario import Scenario
 from hrc_drake.workpieces.messages import ROBOT, Attach
 from hrc_drake.workpieces.messages import Release as WorkpiecesRelease
@@ -218,7 +219,7 @@ class RobotMotion(LeafSystem):
         x = self._robot_state.Eval(context)
         q, v = x[: self._n], x[self._n :]
         state = self._measured(self._state(context), q, v, self._safety_scale(context), t)
-        commands = self._command.Eval(context) if self._command.HasValue(context) else None
+        commands = value_or_none(self._command, context)
         for command in newer_commands(commands, state.seen_seq, cancels=(Stop,)):
             seen = max(state.seen_seq, command.seq)
             state = self._accept(state.replace(seen_seq=seen), command, context, t)
@@ -313,9 +314,9 @@ class RobotMotion(LeafSystem):
 
     def _workpieces_seen(self, state: MotionState, context, t: float) -> MotionState:
         """The held object, and the answer to a pending gripper command, from the workpieces."""
-        if not self._workpieces.HasValue(context):
+        status = value_or_none(self._workpieces, context)
+        if status is None:
             return state
-        status = self._workpieces.Eval(context)
         held = status.held_by(ROBOT)
         state = state.replace(held_object=held.id if held is not None else None)
         if not state.gripper_waiting:
@@ -332,9 +333,7 @@ class RobotMotion(LeafSystem):
 
     def _person_xy(self, context):
         """Where the person stands, when moves are to be planned around them."""
-        if not self._options.avoid_person or not self._human.HasValue(context):
-            return None
-        status = self._human.Eval(context)
+        status = value_or_none(self._human, context) if self._options.avoid_person else None
         return status.base_pose[:2] if status is not None else None
 
     def _planned_when_at_rest(self, state: MotionState, t: float, person_xy) -> MotionState:

@@ -27,6 +27,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import GeometryId, QueryObject
 from pydrake.systems.framework import EventStatus, LeafSystem
 
+from hrc_drake.ports import value_or_none
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import Part, body_parts, human_parts
 from hrc_drake.safety.judge import Judge
@@ -60,7 +61,7 @@ class SafetyMonitor(LeafSystem):
         super().__init__()
         carried_parts = [Part(g, CARRIED) for g in robot.carriable]
         self._meter = ProximityMeter(inspector, human, robot.parts + carried_parts)
-        self._active_parts = _active_parts(robot.parts, carried_parts)
+        self._active_parts = _active_parts(self._meter, robot.parts, carried_parts)
         self._judge = Judge(
             config,
             ssm_parameters(config, variant),
@@ -119,23 +120,22 @@ class SafetyMonitor(LeafSystem):
 
     def _person_time(self, context) -> float | None:
         """When the person's current pose was sampled (None: no HumanActor tells)."""
-        status = self._human.Eval(context) if self._human.HasValue(context) else None
+        status = value_or_none(self._human, context)
         return status.time if status is not None else None
 
     def _held_object(self, context):
         """The workpiece the robot's gripper holds (an ObjectStatus), if any."""
-        if not self._workpieces.HasValue(context):
-            return None
-        return self._workpieces.Eval(context).held_by(ROBOT)
+        status = value_or_none(self._workpieces, context)
+        return status.held_by(ROBOT) if status is not None else None
 
 
-def _active_parts(robot: list[Part], carried: list[Part]) -> dict:
-    """Indices of the watched robot parts for each held object's geometry (None: nothing
-    held): the arm and tool always, a carried object while it is held."""
+def _active_parts(meter: ProximityMeter, robot: list[Part], carried: list[Part]) -> dict:
+    """The watched robot parts for each held object's geometry (None: nothing held): the
+    arm and tool always, a carried object while it is held."""
     always = np.arange(len(robot))
-    held = {None: always}
+    held = {None: meter.active(always)}
     for k, part in enumerate(carried, start=len(robot)):
-        held[part.geometry] = np.append(always, k)
+        held[part.geometry] = meter.active(np.append(always, k))
     return held
 
 

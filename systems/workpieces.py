@@ -35,6 +35,7 @@ from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
 from hrc_drake.human.messages import HumanStatus
+from hrc_drake.ports import value_or_none
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
@@ -139,12 +140,8 @@ class Workpieces(LeafSystem):
         return context.get_abstract_state(self._state).get_value()
 
     def _update(self, context: Context, state) -> None:
-        commands = {
-            issuer: port.Eval(context) if port.HasValue(context) else None
-            for issuer, port in self._commands.items()
-        }
-        tool = self._tool.Eval(context) if self._tool.HasValue(context) else None
-        hands = self._hands.Eval(context) if self._hands.HasValue(context) else None
+        commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
+        tool, hands = value_or_none(self._tool, context), value_or_none(self._hands, context)
         world = self.cell.update(
             self.world(context), context.get_time(), commands, holder_frames(tool, hands)
         )

@@ -72,6 +72,11 @@ class HumanBody:
     def set(self, q: np.ndarray) -> None:
         self.plant.SetPositions(self.context, self.plant_positions(q))
 
+    def world_poses(self, frames, plant_q: np.ndarray) -> list[RigidTransform]:
+        """World poses of the plant's `frames` at its position vector `plant_q`."""
+        self.plant.SetPositions(self.context, plant_q)
+        return [frame.CalcPoseInWorld(self.context) for frame in frames]
+
     def frame_pose(self, frame: str, q: np.ndarray | None = None) -> RigidTransform:
         if q is not None:
             self.set(q)

@@ -173,16 +173,20 @@ class WalkSegment:
     speed: float
 
     @cached_property
+    def _legs(self) -> np.ndarray:
+        """Each leg's (dx, dy)."""
+        return np.diff(np.array(self.path), axis=0)
+
+    @cached_property
     def lengths(self) -> tuple[float, ...]:
         """Distance along the path to each waypoint."""
-        steps = np.diff(np.array(self.path), axis=0)
-        return (0.0, *np.cumsum(np.linalg.norm(steps, axis=1)).tolist())
+        return (0.0, *np.cumsum(np.linalg.norm(self._legs, axis=1)).tolist())
 
     @cached_property
     def directions(self) -> tuple[float, ...]:
         """Direction of each leg, unwrapped (no jumps of 2π between legs)."""
-        steps = np.diff(np.array(self.path), axis=0)
-        return tuple(np.unwrap(np.arctan2(steps[:, 1], steps[:, 0])).tolist())
+        legs = self._legs
+        return tuple(np.unwrap(np.arctan2(legs[:, 1], legs[:, 0])).tolist())
 
     def end(self, ctx: Context) -> float:
         return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
@@ -192,7 +196,10 @@ class WalkSegment:
 
     def clip_time(self, ctx: Context, t: float) -> float:
         """Time into the walk cycle (past its duration: later cycles)."""
-        return self.distance(t) / self.animation_distance * ctx.clips[self.clip].duration
+        return self._cycle_time(ctx.clips[self.clip], self.distance(t))
+
+    def _cycle_time(self, clip: Clip, covered: float) -> float:
+        return covered / self.animation_distance * clip.duration
 
     def point(self, along: float) -> tuple[float, float]:
         lengths, path = self.lengths, self.path
@@ -217,7 +224,7 @@ class WalkSegment:
     def pose(self, ctx: Context, t: float) -> np.ndarray:
         clip = ctx.clips[self.clip]
         covered = self.distance(t)
-        clip_time = covered / self.animation_distance * clip.duration
+        clip_time = self._cycle_time(clip, covered)
         q = clip.sample(clip_time)
         ix, iy, _ = ctx.root
         forward, sideways = float(q[ix]), float(q[iy])

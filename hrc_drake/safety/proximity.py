@@ -64,11 +64,26 @@ class Reading:
     memory: np.ndarray
 
 
+@dataclass(frozen=True, eq=False)
+class ActiveParts:
+    """The robot parts a reading watches, and what follows from them: made once per set by
+    `ProximityMeter.active`, not at every reading."""
+
+    robot: np.ndarray
+    """Indices into the meter's `robot`."""
+    rows: np.ndarray
+    """Their part numbers (after the person's parts)."""
+    parts: np.ndarray
+    """All watched part numbers: the person's, then `rows`."""
+    frames: np.ndarray
+    """The frames whose poses the reading looks up."""
+
+
 class ProximityMeter:
     """Measures person–robot proximity for fixed sets of human and robot geometries.
 
     Parts are numbered human first, then robot; `measure` takes the active robot parts as
-    indices into `robot`.
+    an `ActiveParts` (`active(indices into robot)`).
     """
 
     def __init__(self, inspector, human: list[Part], robot: list[Part]):
@@ -94,43 +109,52 @@ class ProximityMeter:
         self._memory_parts = [slice(a, b) for a, b in itertools.pairwise(bounds)]
         self.memory_size = int(bounds[-1])
 
+    def active(self, robot: np.ndarray) -> ActiveParts:
+        """The parts to watch while the robot parts `robot` (indices into `robot`) are."""
+        rows = self.n_human + np.asarray(robot)
+        parts = np.concatenate([np.arange(self.n_human), rows])
+        return ActiveParts(np.asarray(robot), rows, parts, np.unique(self.part_frame[parts]))
+
     def measure(
-        self, query_object, memory: np.ndarray | None, time: float, robot, person_time=None
+        self,
+        query_object,
+        memory: np.ndarray | None,
+        time: float,
+        active: ActiveParts,
+        person_time: float | None = None,
     ) -> Reading:
-        """`memory` is the last reading's (None at first); `robot` (indices into `robot`) are
-        the active parts: carried objects come and go. `person_time` is when the person's
-        pose was sampled (None: continuously, at `time`)."""
+        """`memory` is the last reading's (None at first); `active` the robot parts watched
+        now: carried objects come and go. `person_time` is when the person's pose was
+        sampled (None: continuously, at `time`)."""
         person_time = time if person_time is None else person_time
-        robot_rows = self.n_human + robot
-        poses = self._poses(query_object, robot_rows)
+        poses = self._poses(query_object, active.frames)
         if memory is None:
             rates, reference = np.zeros_like(poses), None
         else:
             rates, reference = self._recall(memory, poses, time, person_time)
         ends = self._ends(poses)
-        gaps, reference = self._gaps(ends, reference, robot)
-        bound = gaps - self.radii[:, robot]
+        gaps, reference = self._gaps(ends, reference, active)
+        bound = gaps - self.radii[:, active.robot]
         readings = [
-            self._pair_reading(i, robot_rows[j], result, rates)
-            for i, j, result in self._exact_pairs(query_object, bound, robot_rows)
+            self._pair_reading(i, active.rows[j], result, rates)
+            for i, j, result in self._exact_pairs(query_object, bound, active.rows)
         ]
         centre = poses[self.human_frames, :, 3].mean(axis=0)
         memory = [[time, person_time], poses, rates[self.human_frames], *reference]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=tuple(x for x in readings if x.distance <= 0.0),
-            robot_speed=self._robot_speed(rates, robot_rows),
+            robot_speed=self._robot_speed(rates, active.rows),
             human_speed=float(np.linalg.norm(rates[self.human_frames, :, 3].mean(axis=0))),
             person_xy=(float(centre[0]), float(centre[1])),
             memory=np.concatenate([np.ravel(m) for m in memory]),
         )
 
-    def _poses(self, query_object, robot_rows: np.ndarray) -> np.ndarray:
-        """World poses (frames × 3 × 4) of the person's and the active robot parts' frames;
-        NaN for the others (SceneGraph's pose lookups are most of the meter's cost)."""
+    def _poses(self, query_object, frames: np.ndarray) -> np.ndarray:
+        """World poses (frames × 3 × 4) of `frames`; NaN for the others (SceneGraph's pose
+        lookups are most of the meter's cost)."""
         poses = np.full((len(self.frames), 3, 4), np.nan)
-        active = np.unique(np.concatenate([self.human_frames, self.part_frame[robot_rows]]))
-        for f in active:
+        for f in frames:
             poses[f] = query_object.GetPoseInWorld(self.frames[f]).GetAsMatrix34()
         return poses
 
@@ -156,22 +180,21 @@ class ProximityMeter:
         whose frame was not measured)."""
         return poses[self.part_frame[parts]] @ self.ends_F[parts]
 
-    def _gaps(self, ends: np.ndarray, reference, robot: np.ndarray) -> tuple:
+    def _gaps(self, ends: np.ndarray, reference, active: ActiveParts) -> tuple:
         """Lower bounds (human × active robot parts) of the distances between the bounding
         segments, and their reference (part ends, gaps of all parts, NaN where not
         computed): the last one while no active part moved far (or became active)."""
-        rows = np.concatenate([np.arange(self.n_human), self.n_human + robot])
         if reference is not None:
-            moved = ends[rows] - reference[0][rows]
+            moved = ends[active.parts] - reference[0][active.parts]
             moved = np.sqrt((moved * moved).sum(axis=1).max(axis=1))
             if moved.max() <= REFRESH_DISTANCE:  # False when a part was not measured then
                 h, r = moved[: self.n_human, None], moved[None, self.n_human :]
-                return reference[1][:, robot] - h - r, reference
+                return reference[1][:, active.robot] - h - r, reference
         starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        h, r = slice(0, self.n_human), rows[self.n_human :]
+        h, r = slice(0, self.n_human), active.rows
         gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
         all_gaps = np.full((self.n_human, len(self.robot)), np.nan)
-        all_gaps[:, robot] = gaps
+        all_gaps[:, active.robot] = gaps
         return gaps, (ends, all_gaps)
 
     def _robot_speed(self, rates: np.ndarray, robot_rows: np.ndarray) -> float:

@@ -7,11 +7,11 @@ from pathlib import Path
 
 import numpy as np
 from pydrake.math import RigidTransform, RollPitchYaw
+from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
 from hrc_drake.messages import FAILED, SUCCEEDED
 from hrc_drake.motion.messages import MoveTo
-from hrc_drake.runner import make_simulator
 from hrc_drake.scenario import HumanConfig, load_scenario
 
 CELL = Path(__file__).resolve().parents[1] / "system" / "cell.yaml"
@@ -29,7 +29,7 @@ def move_next_to_the_person(avoid_person: bool):
         safety=dataclasses.replace(scenario.safety, enabled=False),
     )
     diagram = build_diagram(scenario)
-    simulator = make_simulator(diagram, scenario)
+    simulator = Simulator(diagram)
     context = simulator.get_context()
     diagram.GetInputPort("robot_motion.robot_command").FixValue(
         context, MoveTo(1, NEXT_TO_THE_PERSON)

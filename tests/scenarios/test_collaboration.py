@@ -10,11 +10,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from pydrake.systems.analysis import Simulator
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
 from hrc_drake.messages import TaskEvent
-from hrc_drake.runner import make_simulator
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ObjectStatus, WorkpiecesStatus
@@ -69,7 +69,7 @@ class Outcome:
 def simulate(seed: int, duration: float) -> Outcome:
     scenario = load_scenario(SCENARIO).with_overrides(seed=seed)
     diagram = build_diagram(scenario)
-    simulator = make_simulator(diagram, scenario)
+    simulator = Simulator(diagram)
     context = simulator.get_context()
     start = diagram.GetOutputPort("workpieces_status").Eval(context)
     simulator.AdvanceTo(duration)

@@ -11,11 +11,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from pydrake.systems.analysis import Simulator
 
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.builder import build_diagram
 from hrc_drake.messages import TaskEvent
-from hrc_drake.runner import make_simulator
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import Scenario, load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT, ObjectStatus
@@ -76,7 +76,7 @@ def in_reject_zone(objects, scenario: Scenario) -> int:
 def simulate(duration: float, seed: int) -> Outcome:
     scenario = load_scenario(SCENARIO).with_overrides(seed=seed)
     diagram = build_diagram(scenario)
-    simulator = make_simulator(diagram, scenario)
+    simulator = Simulator(diagram)
     context = simulator.get_context()
     outcome = Outcome()
     t = 0.0

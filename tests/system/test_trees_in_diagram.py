@@ -10,10 +10,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
 from hrc_drake.messages import CANCELLED
-from hrc_drake.runner import make_simulator, run
+from hrc_drake.runner import run
 from hrc_drake.scenario import AgentTree, load_scenario
 from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT
 
@@ -33,7 +34,7 @@ class Simulation:
 
     def __init__(self, scenario):
         self.diagram = build_diagram(scenario)
-        self.simulator = make_simulator(self.diagram, scenario)
+        self.simulator = Simulator(self.diagram)
         self.simulator.Initialize()
 
     def advance(self, t: float) -> "Simulation":
