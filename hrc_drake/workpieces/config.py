@@ -51,7 +51,10 @@ class GridLayout:
     `origin` is the centre of the grid's bottom face (e.g. the pallet's top frame). `spacing`
     [dx, dy] defaults to the type's footprint (objects touching). Each place holds an object
     with probability `occupancy`; each boolean attribute in `attribute_probabilities` is true
-    with its probability; both are drawn from the run's seed.
+    with its probability. Each attribute in `attribute_counts` is true for exactly that many
+    of the grid's objects, never two counted attributes on one object (the last by name get
+    fewer if too few places are occupied): every layout shows it, wherever it lands. All are
+    drawn from the run's seed.
     """
 
     type: str = field(default="", metadata=REQUIRED)
@@ -63,6 +66,7 @@ class GridLayout:
     occupancy: float = 1.0
     attributes: Attributes = field(default_factory=dict)
     attribute_probabilities: dict[str, float] = field(default_factory=dict)
+    attribute_counts: dict[str, int] = field(default_factory=dict)
 
 
 @dataclass
@@ -181,6 +185,21 @@ def _grid_problems(config: WorkpiecesConfig, grid: GridLayout) -> list[Problem]:
     for name, p in probabilities.items():
         if not 0 <= p <= 1:
             found.append(((*name.split("."),), f"a probability must lie in [0, 1], got {p}"))
+    return found + _count_problems(grid)
+
+
+def _count_problems(grid: GridLayout) -> list[Problem]:
+    found = []
+    for name, count in grid.attribute_counts.items():
+        where = ("attribute_counts", name)
+        if count < 0:
+            found.append((where, f"must not be negative, got {count}"))
+        if name in grid.attribute_probabilities:
+            found.append((where, "is also in attribute_probabilities; give it one or the other"))
+    places = grid.rows * grid.columns * grid.layers
+    if sum(grid.attribute_counts.values()) > places:
+        total = sum(grid.attribute_counts.values())
+        found.append((("attribute_counts",), f"{total} counted objects exceed the {places} places"))
     return found
 
 

@@ -2,10 +2,12 @@
 
 Random choices (which grid places are occupied, the boolean attributes) come from one numpy
 Generator derived from the run's seed, drawn in a fixed order (grid by grid, layer, row,
-column; attributes by name), so the same seed gives the same layout.
+column; attributes by name; then the objects that carry the counted attributes), so the same
+seed gives the same layout.
 """
 
 from dataclasses import dataclass
+from itertools import islice
 
 import numpy as np
 from pydrake.math import RigidTransform
@@ -40,27 +42,41 @@ def grid_placements(
     dx, dy = grid.spacing or _footprint_size(object_type)
     height = Solid.of(object_type).height
     X_WG = grid.origin.GetDeterministicValue()
-    placements = []
+    occupied = []
     for layer in range(grid.layers):
         for row in range(grid.rows):
             for column in range(grid.columns):
-                occupied = rng.random() < grid.occupancy
+                is_occupied = rng.random() < grid.occupancy
                 attributes = dict(grid.attributes) | _draw(grid.attribute_probabilities, rng)
-                if not occupied:
+                if not is_occupied:
                     continue
                 offset = [
                     (column - (grid.columns - 1) / 2) * dx,
                     (row - (grid.rows - 1) / 2) * dy,
                     (layer + 0.5) * height,
                 ]
-                placements.append(Placement(grid.type, X_WG @ RigidTransform(offset), attributes))
-    return placements
+                occupied.append((X_WG @ RigidTransform(offset), attributes))
+    counted = _deal(grid.attribute_counts, len(occupied), rng)
+    return [
+        Placement(grid.type, pose, attributes | extra)
+        for (pose, attributes), extra in zip(occupied, counted, strict=True)
+    ]
 
 
 def _footprint_size(object_type: ObjectType) -> tuple[float, float]:
     if object_type.shape == BOX:
         return object_type.size[0], object_type.size[1]
     return 2 * object_type.size[0], 2 * object_type.size[0]
+
+
+def _deal(counts: dict[str, int], n: int, rng: np.random.Generator) -> list[Attributes]:
+    """For each of `n` objects, the counted attributes: each true on its count of objects,
+    taken in turn (by name) from one shuffle, so that no object gets two of them."""
+    if not counts:
+        return [{}] * n
+    shuffled = iter(rng.permutation(n))
+    holders = {name: set(islice(shuffled, counts[name])) for name in sorted(counts)}
+    return [{name: i in chosen for name, chosen in holders.items()} for i in range(n)]
 
 
 def _draw(probabilities: dict[str, float], rng: np.random.Generator) -> Attributes:

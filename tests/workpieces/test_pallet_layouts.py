@@ -1,5 +1,6 @@
 """A loaded pallet from a grid layout: the same for the same seed, different for another,
-and every carton rests on the pallet or on the carton below it."""
+every carton rests on the pallet or on the carton below it, and counted attributes are on
+exactly their number of cartons."""
 
 import numpy as np
 import pytest
@@ -7,6 +8,8 @@ from pydrake.geometry import SceneGraph
 from workpieces_rig import load_example
 
 from hrc_drake.systems.workpieces import Workpieces
+from hrc_drake.workpieces.config import GridLayout
+from hrc_drake.workpieces.layouts import grid_placements
 
 PALLET_TOP = 0.144
 CARTON_HEIGHT = 0.2
@@ -53,3 +56,34 @@ def test_every_carton_rests_on_the_pallet_or_on_a_carton(seed):
             np.testing.assert_allclose(
                 carton.pose.translation()[:2], cartons[below].pose.translation()[:2]
             )
+
+
+COUNTED = GridLayout(
+    type="carton", rows=2, columns=2, occupancy=0.85, attribute_counts={"fragile": 1, "porous": 1}
+)
+
+
+def counted_layout(seed: int, grid: GridLayout = COUNTED) -> list:
+    carton = load_example().types["carton"]
+    return grid_placements(grid, carton, np.random.default_rng(seed))
+
+
+def test_counted_attributes_are_on_exactly_their_count_of_distinct_objects():
+    sizes = set()
+    for seed in range(40):
+        placements = counted_layout(seed)
+        sizes.add(len(placements))
+        flags = [(p.attributes["fragile"], p.attributes["porous"]) for p in placements]
+        assert [sum(f[0] for f in flags), sum(f[1] for f in flags)] == [1, 1]
+        assert (True, True) not in flags
+    assert {3, 4} <= sizes, "the seeds should cover pallets with an empty place"
+
+
+def test_counted_attributes_land_on_places_drawn_with_the_seed():
+    def fragile_place(seed: int) -> tuple:
+        return next(
+            tuple(p.pose.translation()) for p in counted_layout(seed) if p.attributes["fragile"]
+        )
+
+    assert fragile_place(3) == fragile_place(3)
+    assert len({fragile_place(seed) for seed in range(40)}) == 4

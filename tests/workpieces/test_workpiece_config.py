@@ -76,6 +76,31 @@ def config_with_problem(**changes) -> WorkpiecesConfig:
             "a probability must lie in [0, 1]",
         ),
         (
+            config_with_problem(grids=[GridLayout(type="box", attribute_counts={"heavy": -1})]),
+            ("grids", 0, "attribute_counts", "heavy"),
+            "must not be negative",
+        ),
+        (
+            config_with_problem(
+                grids=[
+                    GridLayout(
+                        type="box",
+                        attribute_counts={"heavy": 1},
+                        attribute_probabilities={"heavy": 0.5},
+                    )
+                ]
+            ),
+            ("grids", 0, "attribute_counts", "heavy"),
+            "is also in attribute_probabilities",
+        ),
+        (
+            config_with_problem(
+                grids=[GridLayout(type="box", rows=2, attribute_counts={"a": 1, "b": 2})]
+            ),
+            ("grids", 0, "attribute_counts"),
+            "3 counted objects exceed the 2 places",
+        ),
+        (
             config_with_problem(conveyors={"c": ConveyorConfig(start=[0, 0, 1], end=[1, 0, 0.9])}),
             ("conveyors", "c", "end"),
             "the belt must be horizontal",
