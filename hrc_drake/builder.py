@@ -72,8 +72,8 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
-    for reader in (motion, safety):
-        if human is not None and reader is not None:
+    if human is not None:
+        for reader in filter(None, (motion, safety)):
             builder.Connect(
                 human.GetOutputPort("human_status"), reader.GetInputPort("human_status")
             )

@@ -111,9 +111,10 @@ class ProximityMeter:
 
     def active(self, robot: np.ndarray) -> ActiveParts:
         """The parts to watch while the robot parts `robot` (indices into `robot`) are."""
-        rows = self.n_human + np.asarray(robot)
+        robot = np.asarray(robot)
+        rows = self.n_human + robot
         parts = np.concatenate([np.arange(self.n_human), rows])
-        return ActiveParts(np.asarray(robot), rows, parts, np.unique(self.part_frame[parts]))
+        return ActiveParts(robot, rows, parts, np.unique(self.part_frame[parts]))
 
     def measure(
         self,

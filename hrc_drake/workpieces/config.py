@@ -197,8 +197,8 @@ def _count_problems(grid: GridLayout) -> list[Problem]:
         if name in grid.attribute_probabilities:
             found.append((where, "is also in attribute_probabilities; give it one or the other"))
     places = grid.rows * grid.columns * grid.layers
-    if sum(grid.attribute_counts.values()) > places:
-        total = sum(grid.attribute_counts.values())
+    total = sum(grid.attribute_counts.values())
+    if total > places:
         found.append((("attribute_counts",), f"{total} counted objects exceed the {places} places"))
     return found
 

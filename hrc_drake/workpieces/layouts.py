@@ -7,7 +7,6 @@ seed gives the same layout.
 """
 
 from dataclasses import dataclass
-from itertools import islice
 
 import numpy as np
 from pydrake.math import RigidTransform
@@ -71,12 +70,13 @@ def _footprint_size(object_type: ObjectType) -> tuple[float, float]:
 
 def _deal(counts: dict[str, int], n: int, rng: np.random.Generator) -> list[Attributes]:
     """For each of `n` objects, the counted attributes: each true on its count of objects,
-    taken in turn (by name) from one shuffle, so that no object gets two of them."""
+    dealt in turn (by name) along one shuffle, so that no object gets two of them (with fewer
+    objects than counts, the last names run short)."""
     if not counts:
         return [{}] * n
-    shuffled = iter(rng.permutation(n))
-    holders = {name: set(islice(shuffled, counts[name])) for name in sorted(counts)}
-    return [{name: i in chosen for name, chosen in holders.items()} for i in range(n)]
+    names = [name for name in sorted(counts) for _ in range(counts[name])]
+    dealt = dict(zip(rng.permutation(n).tolist(), names, strict=False))
+    return [{name: dealt.get(i) == name for name in counts} for i in range(n)]
 
 
 def _draw(probabilities: dict[str, float], rng: np.random.Generator) -> Attributes:

@@ -63,9 +63,9 @@ COUNTED = GridLayout(
 )
 
 
-def counted_layout(seed: int, grid: GridLayout = COUNTED) -> list:
+def counted_layout(seed: int) -> list:
     carton = load_example().types["carton"]
-    return grid_placements(grid, carton, np.random.default_rng(seed))
+    return grid_placements(COUNTED, carton, np.random.default_rng(seed))
 
 
 def test_counted_attributes_are_on_exactly_their_count_of_distinct_objects():
