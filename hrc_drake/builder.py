@@ -16,7 +16,7 @@ Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
-`safety_status`, `safety_signals`, `<agent>_tree_status`, `<agent>_task_events`.
+`safety_status`, `safety_signals`, `realism` (the person's realism audit), `<agent>_tree_status`, `<agent>_task_events`.
 """
 
 import numpy as np
@@ -38,6 +38,7 @@ from hrc_drake.station_models import (
 )
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
 from hrc_drake.systems.robot_controller import add_robot_controller
+from hrc_drake.systems.realism_audit import add_realism_audit
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 from hrc_drake.systems.workpieces import HumanHands, add_workpieces
@@ -72,6 +73,7 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
+    audit = _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario)
     if human is not None:
         for reader in filter(None, (motion, safety)):
             builder.Connect(
@@ -83,6 +85,8 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
         _add_visualizer(builder, scene_graph, meshcat, scenario)
 
     _export_outputs(builder, plant, arm, scene_graph, actors, trees)
+    if audit is not None:
+        builder.ExportOutput(audit.GetOutputPort("realism"), "realism")
     _export_open_inputs(builder, [motion, human, workpieces])
     diagram = builder.Build()
     diagram.set_name(scenario.name)
@@ -174,6 +178,25 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
             safety.get_workpieces_status_input_port(),
         )
     return safety
+
+
+def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario):
+    """The realism audit of the person, sampled at the person's own rate."""
+    if human is None:
+        return None
+    solids = workpieces.cell.solids() if workpieces is not None else {}
+    return add_realism_audit(
+        builder,
+        scene_graph,
+        mirror,
+        human_plant,
+        human_plant.GetModelInstanceByName(HUMAN_NAME),
+        human,
+        workpieces,
+        solids,
+        period=human.period,
+        stride_time=human.stride_time,
+    )
 
 
 def _add_tree(builder, scenario, agent: str, actors: dict) -> BehaviorTreeSystem:

@@ -22,6 +22,7 @@ from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
 from hrc_drake.ports import value_or_none
 
 UPDATE_PERIOD = 1.0 / 60.0
+WALK_CLIP = "walk"
 REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
 """The frames whose world poses the status reports (hands, then head)."""
 
@@ -44,6 +45,9 @@ class HumanActor(LeafSystem):
     ):
         LeafSystem.__init__(self)
         self._ctx = Context(body or human_body(), clips or load_clips())
+        self.period = period
+        self.stride_time = self._ctx.clips[WALK_CLIP].duration
+        """One gait cycle of the walk clip (s)."""
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
         self._commands = {
             issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))

@@ -196,6 +196,10 @@ class Workcell:
         belts = [belt.surface for belt in self.belts.values()]
         self.supports = Supports([*surfaces, *belts], belts=set(self.belts))
 
+    def solids(self) -> dict[str, Solid]:
+        """Each object type's shape, by type name."""
+        return {name: kind.solid for name, kind in self.kinds.items()}
+
     def random(self, *key: int) -> np.random.Generator:
         """A Generator of its own for `key` below the workpieces' seed."""
         seed = np.random.SeedSequence(self.seed.entropy, spawn_key=(*self.seed.spawn_key, *key))

@@ -1,0 +1,200 @@
+"""RealismAudit: samples the person in the world scene and keeps the realism audit.
+
+Inputs: `query_object` (the world SceneGraph), `human_status` (HumanStatus) and
+`workpieces_status` (optional). Output `realism` (hrc_drake.evaluation.realism.AuditState),
+from state only. A periodic unrestricted update at the person's rate takes one sample:
+penetrations come from SceneGraph (the person against the cell's static geometry through
+the broad phase; against objects, which are filtered out of contact queries, through pair
+queries after a bounding-capsule test), sole points from the feet's collision boxes.
+"""
+
+import math
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.geometry import QueryObject
+from pydrake.multibody.tree import BodyIndex
+from pydrake.systems.framework import LeafSystem
+
+from hrc_drake.evaluation.realism import AuditState, Sample, audited
+from hrc_drake.human.skeleton import SIDES
+from hrc_drake.ports import value_or_none
+from hrc_drake.safety.geometry import bounding_segment, human_parts
+from hrc_drake.workpieces.geometry import Solid
+from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
+
+HOLDING_HANDS = {LEFT_HAND: ("left",), RIGHT_HAND: ("right",), BOTH_HANDS: SIDES}
+
+
+class RealismAudit(LeafSystem):
+    """Keeps the worst penetration, hand gap, tilt, foot slip and stride speed swing."""
+
+    def __init__(
+        self,
+        inspector,
+        human_plant,
+        human_instance,
+        static_geometry: dict,
+        solids: dict[str, Solid],
+        period: float,
+        stride_time: float,
+    ):
+        super().__init__()
+        parts = human_parts(human_plant, inspector, human_instance)
+        self._regions = {part.geometry: part.name for part in parts}
+        self._static = dict(static_geometry)
+        self._solids = dict(solids)
+        self._stride_time = stride_time
+        self._bounds = {
+            part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
+        }
+        self._soles = {}
+        for side in SIDES:
+            foot = human_plant.GetBodyByName(f"{side}_foot", human_instance)
+            (geometry,) = human_plant.GetCollisionGeometriesForBody(foot)
+            length, _, height = inspector.GetShape(geometry).size()
+            self._soles[side] = (geometry, length / 2, height / 2)
+        self._query = self.DeclareAbstractInputPort(
+            "query_object", AbstractValue.Make(QueryObject())
+        )
+        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
+        self._objects = self.DeclareAbstractInputPort("workpieces_status", AbstractValue.Make(None))
+        self._state = self.DeclareAbstractState(AbstractValue.Make(AuditState()))
+        self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
+        self.DeclareStateOutputPort("realism", self._state)
+
+    def _update(self, context, state) -> None:
+        status = value_or_none(self._human, context)
+        if status is None or not status.left_hand:
+            return
+        query = self._query.Eval(context)
+        objects = value_or_none(self._objects, context)
+        objects = objects.objects if objects is not None else ()
+        held = [o for o in objects if o.holder in PERSON_HOLDERS]
+        sample = Sample(
+            time=context.get_time(),
+            static_depths=self._static_depths(query),
+            object_depths=self._object_depths(
+                query, [o for o in objects if o.holder not in PERSON_HOLDERS]
+            ),
+            hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, status)),
+            tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
+            sole_points=self._sole_points(query),
+            pelvis=(status.time, *status.base_pose[:2]),
+            walking=status.state == "MOVEMENT",
+        )
+        audit = context.get_abstract_state(self._state).get_value()
+        state.get_mutable_abstract_state(self._state).set_value(
+            audited(audit, sample, self._stride_time)
+        )
+
+    def _static_depths(self, query) -> tuple:
+        depths = []
+        for pair in query.ComputePointPairPenetration():
+            for own, other in ((pair.id_A, pair.id_B), (pair.id_B, pair.id_A)):
+                if own in self._regions and other in self._static:
+                    depths.append((pair.depth, f"{self._regions[own]} in {self._static[other]}"))
+        return tuple(depths)
+
+    def _object_depths(self, query, objects) -> tuple:
+        """Exact distances only for the pairs whose bounding shapes overlap."""
+        depths = []
+        near = [o for o in objects if o.geometry_id is not None]
+        if not near:
+            return ()
+        for geometry, (start, end, radius) in self._bounds.items():
+            X = query.GetPoseInWorld(geometry)
+            a, b = X @ start, X @ end
+            for obj in near:
+                reach = radius + _bounding_radius(self._solids[obj.type])
+                if _point_segment_distance(obj.pose.translation(), a, b) > reach:
+                    continue
+                distance = query.ComputeSignedDistancePairClosestPoints(
+                    geometry, obj.geometry_id
+                ).distance
+                if distance < 0:
+                    depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
+        return tuple(depths)
+
+    def _hand_gaps(self, obj, status) -> list:
+        solid = self._solids[obj.type]
+        X_OW = obj.pose.inverse()
+        hands = {"left": status.left_hand, "right": status.right_hand}
+        return [
+            (
+                abs(solid.signed_distance_to(X_OW @ np.array(hands[side][:3]))),
+                f"{obj.type} {obj.id}",
+            )
+            for side in HOLDING_HANDS[obj.holder]
+        ]
+
+    def _sole_points(self, query) -> dict[str, np.ndarray]:
+        points = {}
+        for side, (geometry, half_length, half_height) in self._soles.items():
+            X = query.GetPoseInWorld(geometry)
+            points[f"{side}_heel"] = X @ np.array([-half_length, 0.0, -half_height])
+            points[f"{side}_toe"] = X @ np.array([half_length, 0.0, -half_height])
+        return points
+
+
+def _tilt(X_WO) -> float:
+    return math.acos(min(max(float(X_WO.rotation().matrix()[2, 2]), -1.0), 1.0))
+
+
+def _bounding_radius(solid: Solid) -> float:
+    return (
+        float(np.linalg.norm(solid.size)) / 2 if solid.shape == "box" else math.hypot(*solid.size)
+    )
+
+
+def _point_segment_distance(p, a, b) -> float:
+    d = b - a
+    s = float(np.clip((p - a) @ d / max(d @ d, 1e-12), 0.0, 1.0))
+    return float(np.linalg.norm(p - a - s * d))
+
+
+def static_geometry(plant, inspector) -> dict:
+    """Every collision geometry of the plant's anchored bodies, named after its model."""
+    found = {}
+    for body_index in range(plant.num_bodies()):
+        body = plant.get_body(BodyIndex(body_index))
+        if plant.IsAnchored(body):
+            for geometry in plant.GetCollisionGeometriesForBody(body):
+                found[geometry] = plant.GetModelInstanceName(body.model_instance())
+    return found
+
+
+def add_realism_audit(
+    builder,
+    scene_graph,
+    mirror,
+    human_plant,
+    human_instance,
+    human,
+    workpieces,
+    solids,
+    period,
+    stride_time,
+) -> RealismAudit:
+    """Adds the audit named `realism_audit`, wired to the world scene, the person and the
+    workpieces (when there are any)."""
+    inspector = scene_graph.model_inspector()
+    audit = builder.AddNamedSystem(
+        "realism_audit",
+        RealismAudit(
+            inspector,
+            human_plant,
+            human_instance,
+            static_geometry(mirror, inspector),
+            solids,
+            period,
+            stride_time,
+        ),
+    )
+    builder.Connect(scene_graph.get_query_output_port(), audit.GetInputPort("query_object"))
+    builder.Connect(human.GetOutputPort("human_status"), audit.GetInputPort("human_status"))
+    if workpieces is not None:
+        builder.Connect(
+            workpieces.GetOutputPort("workpieces_status"), audit.GetInputPort("workpieces_status")
+        )
+    return audit
