@@ -16,7 +16,8 @@ Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
-`safety_status`, `safety_signals`, `realism` (the person's realism audit), `<agent>_tree_status`, `<agent>_task_events`.
+`safety_status`, `safety_signals`, `realism` (the person's realism audit),
+`<agent>_tree_status`, `<agent>_task_events`.
 """
 
 import numpy as np
@@ -37,8 +38,8 @@ from hrc_drake.station_models import (
     model_parser,
 )
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
-from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.realism_audit import add_realism_audit
+from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 from hrc_drake.systems.workpieces import HumanHands, add_workpieces
