@@ -375,53 +375,12 @@ def gait_clip(body: HumanBody, spec: GaitSpec, oversample: int = 8) -> Clip:
     fine = np.arange(frames_per_cycle * oversample) / (frames_per_cycle * oversample)
     curves = _keep_feet_on_track(body, _gait_joint_curves(body, fine, spec))
     fitted, stride = _fit_root_to_floor(body, curves, fine)
-    pinned = _pin_trailing_toe(body, fitted, fine)
-    cycle, right_strike = _even_pace(body, pinned, stride, fine, frames_per_cycle)
+    cycle = _pin_trailing_toe(body, fitted, fine)[::oversample]
     last = cycle[0].copy()
     last[body.index("base_x")] += stride
     frames = np.vstack([cycle, last])
-    events = {"left_heel_strike": 0.0, "right_heel_strike": right_strike * GAIT_CYCLE}
+    events = {"left_heel_strike": 0.0, "right_heel_strike": GAIT_CYCLE / 2}
     return Clip(spec.name, body.joint_names, frames, FPS, True, events, stride, spec.description)
-
-
-PELVIS_SPEED_SWING = 0.10
-"""The pelvis's forward speed swings by this fraction of its mean, twice per gait cycle,
-slowest in single support and fastest about double support (docs/realism.md: ±10-15 %)."""
-SLOWEST_PHASE = 0.18
-"""Fraction of the cycle at which the pelvis is slowest: early in the left leg's single
-support (10-50 %), where the joint curves alone carry it slowest too, so that pacing it
-evenly speeds no joint up beyond what the curves do (the ankle's peak stays near 7 rad/s)."""
-
-
-def _paced(tau: np.ndarray, stride: float) -> np.ndarray:
-    """The pelvis's travel at cycle fractions `tau`: mean speed with the published swing."""
-
-    def swing(fraction):
-        return PELVIS_SPEED_SWING / (4 * pi) * np.sin(4 * pi * (fraction - SLOWEST_PHASE + 0.25))
-
-    return stride * (tau + swing(tau) - swing(0.0))
-
-
-def _even_pace(body: HumanBody, frames: np.ndarray, stride: float, phase: np.ndarray, count: int):
-    """Resample one cycle (at `phase`) to `count` frames in which the pelvis travels as in
-    real gait (`_paced`), rather than as the joint curves alone would carry it.
-
-    Every frame keeps its pose, only its time changes, so a sole that stays put over a span
-    of the cycle stays put after resampling. Returns the frames and the cycle fraction at
-    which the right heel strikes (phase 0.5 before resampling).
-    """
-    ix = body.index("base_x")
-    travel = np.append(frames[:, ix], stride)
-    if not np.all(np.diff(travel) > 0):
-        raise ValueError("the gait's pelvis must move forwards throughout the cycle")
-    looped = np.vstack([frames, frames[0] + np.eye(frames.shape[1])[ix] * stride])
-    tau = np.arange(count) / count
-    source = np.interp(_paced(tau, stride), travel, np.append(phase, 1.0))
-    fine = np.append(phase, 1.0)
-    resampled = np.array([np.interp(source, fine, looped[:, j]) for j in range(frames.shape[1])]).T
-    dense = np.linspace(0.0, 1.0, 1001)
-    strike = float(np.interp(np.interp(0.5, fine, travel), _paced(dense, stride), dense))
-    return resampled, strike
 
 
 def mirrored_clip(body: HumanBody, clip: Clip, name: str, description: str) -> Clip:

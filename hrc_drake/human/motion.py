@@ -18,7 +18,6 @@ import numpy as np
 from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
-from hrc_drake.human.footing import NO_FOOTING, Footing, planted
 from hrc_drake.human.messages import (
     NULL_QUATERNION,
     AnimateCommand,
@@ -332,8 +331,6 @@ class ActorState(NamedTuple):
     speed: float = 0.0
     pose: np.ndarray | None = None
     """Joint positions at the last update."""
-    footing: Footing = NO_FOOTING
-    """Where the feet stand (hrc_drake.human.footing)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -518,7 +515,7 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
             ctx, state, _idle(ctx, final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
         )
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
-    q, footing = planted(ctx.body, state.footing, pose_at(ctx, state, t), state.pose, t)
+    q = pose_at(ctx, state, t)
     base = _base_pose(ctx, q)
     speed = 0.0
     if t > previous_t:
@@ -531,7 +528,6 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
         base=base,
         speed=speed,
         pose=q,
-        footing=footing,
     )
 
 
