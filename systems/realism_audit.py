@@ -48,6 +48,8 @@ class RealismAudit(LeafSystem):
         self._bounds = {
             part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
         }
+        self._radii = np.array([radius for _, _, radius in self._bounds.values()])
+        self._object_radii = {name: _bounding_radius(solid) for name, solid in self._solids.items()}
         self._soles = {}
         for side in SIDES:
             foot = human_plant.GetBodyByName(f"{side}_foot", human_instance)
@@ -98,22 +100,30 @@ class RealismAudit(LeafSystem):
 
     def _object_depths(self, query, objects) -> tuple:
         """Exact distances only for the pairs whose bounding shapes overlap."""
-        depths = []
         near = [o for o in objects if o.geometry_id is not None]
         if not near:
             return ()
-        for geometry, (start, end, radius) in self._bounds.items():
-            X = query.GetPoseInWorld(geometry)
-            a, b = X @ start, X @ end
-            for obj in near:
-                reach = radius + _bounding_radius(self._solids[obj.type])
-                if _point_segment_distance(obj.pose.translation(), a, b) > reach:
-                    continue
-                distance = query.ComputeSignedDistancePairClosestPoints(
-                    geometry, obj.geometry_id
-                ).distance
-                if distance < 0:
-                    depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
+        geometries = list(self._bounds)
+        ends = np.array(
+            [
+                [X @ start, X @ end]
+                for X, (start, end, _) in (
+                    (query.GetPoseInWorld(g), self._bounds[g]) for g in geometries
+                )
+            ]
+        )
+        centers = np.array([o.pose.translation() for o in near])
+        reach = self._radii[:, None] + np.array([self._object_radii[o.type] for o in near])
+        close = _point_segment_distances(centers, ends[:, 0], ends[:, 1]) <= reach
+        depths = []
+        for i, k in zip(*np.nonzero(close), strict=True):
+            obj = near[k]
+            distance = query.ComputeSignedDistancePairClosestPoints(
+                geometries[i], obj.geometry_id
+            ).distance
+            if distance < 0:
+                where = f"{self._regions[geometries[i]]} in {obj.type} {obj.id}"
+                depths.append((-distance, where))
         return tuple(depths)
 
     def _hand_gaps(self, obj, status) -> list:
@@ -147,10 +157,13 @@ def _bounding_radius(solid: Solid) -> float:
     )
 
 
-def _point_segment_distance(p, a, b) -> float:
-    d = b - a
-    s = float(np.clip((p - a) @ d / max(d @ d, 1e-12), 0.0, 1.0))
-    return float(np.linalg.norm(p - a - s * d))
+def _point_segment_distances(points, starts, ends) -> np.ndarray:
+    """Distance from every point (k, 3) to every segment (n, 3 each): an (n, k) array."""
+    along = ends - starts
+    offsets = points[None, :, :] - starts[:, None, :]
+    lengths = np.maximum(np.einsum("nj,nj->n", along, along), 1e-12)
+    s = np.clip(np.einsum("nkj,nj->nk", offsets, along) / lengths[:, None], 0.0, 1.0)
+    return np.linalg.norm(offsets - s[:, :, None] * along[:, None, :], axis=2)
 
 
 def static_geometry(plant, inspector) -> dict:

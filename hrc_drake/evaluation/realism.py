@@ -31,6 +31,18 @@ WALKING_SPEED = 0.5
 """m/s: slower strides are not walking at a normal speed."""
 
 
+LIMITS = {
+    "penetration_static": 0.01,
+    "penetration_objects": 0.01,
+    "hand_object_gap": 0.02,
+    "carried_tilt_deg": 15.0,
+    "foot_slip": 0.01,
+}
+"""What a realistic run stays within (m, or degrees for the tilt); docs/realism.md."""
+PELVIS_SPEED_SWING = 0.15
+"""Largest believable swing of the pelvis speed within a stride (fraction of its mean)."""
+
+
 @dataclass(frozen=True)
 class Worst:
     """The largest value seen, when, and of what."""
@@ -166,3 +178,26 @@ def realism_metrics(state: AuditState | None) -> dict:
             "variation_max": rounded(variations.max()) if len(variations) else 0.0,
         },
     }
+
+
+def realism_rows(metrics: dict) -> list[list]:
+    """The report page's realism table: measure, worst value, limit, where and when, ok."""
+    rows = []
+    for name, limit in LIMITS.items():
+        worst = metrics[name]
+        where = next(v for k, v in worst.items() if k not in ("max", "time"))
+        rows.append(
+            [name, worst["max"], limit, f"{where} at {worst['time']:.1f} s", worst["max"] <= limit]
+        )
+    pelvis = metrics["pelvis_speed"]
+    swing = pelvis["variation_max"]
+    rows.append(
+        [
+            "pelvis_speed_swing",
+            swing,
+            PELVIS_SPEED_SWING,
+            f"{pelvis['strides']} strides",
+            swing <= PELVIS_SPEED_SWING,
+        ]
+    )
+    return rows

@@ -451,14 +451,15 @@ REACH = {
 """Right hand to a point in front at table height."""
 
 HAND_OVER = {
-    "right_shoulder_flexion": 58,
-    "right_shoulder_rotation": 12,
-    "right_elbow_flexion": 32,
-    "right_wrist_flexion": -10,
+    "shoulder_flexion": 58,
+    "shoulder_abduction": 12,
+    "shoulder_rotation": 12,
+    "elbow_flexion": 32,
+    "wrist_flexion": -10,
     "thorax_flexion": 4,
     "neck_flexion": 12,
 }
-"""Right hand offered in front of the chest."""
+"""Both hands offered in front of the chest (to take or give a box between the palms)."""
 
 WAVE = {
     "right_shoulder_abduction": 115,
@@ -558,7 +559,7 @@ KEYED_CLIPS = (
     ),
     KeyedSpec(
         "hand_over",
-        "Extend the right hand with an object, hold it out to be taken, retract.",
+        "Extend both hands to take or give an object, hold them out, retract.",
         (Key(0.0), Key(0.9, HAND_OVER), Key(2.1, HAND_OVER), Key(3.0), Key(3.3)),
         events={"extended": 0.9, "release": 2.1},
     ),

@@ -18,14 +18,23 @@ import numpy as np
 from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.grasp import (
+    CarryArms,
+    carry_arms,
+    hold_of,
+    palm_targets,
+    release_targets,
+)
 from hrc_drake.human.messages import (
     NULL_QUATERNION,
     AnimateCommand,
     CancelCommand,
+    Hold,
     HumanStatus,
     MoveCommand,
     SetCalledCommand,
 )
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
 from hrc_drake.messages import CommandResult, newer_commands, recorded
 
@@ -44,6 +53,8 @@ MIN_TURN = radians(3.0)
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
+RELEASING = ("place_floor", "place_table", "hand_over")
+"""Clips that, aimed while holding something, put it down (or hand it over)."""
 
 
 @dataclass(frozen=True)
@@ -112,6 +123,8 @@ class ClipSegment:
     speed: float = 1.0
     forever: bool = False
     aim: TargetedOffset | None = None
+    carry: CarryArms | None = None
+    """Arms held in the carry posture (not with `aim`, which blends them itself)."""
 
     def end(self, ctx: Context) -> float:
         return inf if self.forever else self.start + ctx.clips[self.clip].duration / self.speed
@@ -127,8 +140,8 @@ class ClipSegment:
         q = ctx.clips[self.clip].sample(clip_time)
         placed = place(ctx, q, *self.anchor)
         if self.aim is not None:
-            placed = placed + self.aim.weight(clip_time) * self.aim.delta
-        return placed
+            return self.aim.carried(placed + self.aim.weight(clip_time) * self.aim.delta, clip_time)
+        return _carried(placed, self.carry)
 
 
 @dataclass(frozen=True, eq=False)
@@ -139,6 +152,7 @@ class TurnSegment:
     position: tuple[float, float]
     yaw_from: float
     yaw_to: float
+    carry: CarryArms | None = None
 
     def angle(self, t: float) -> tuple[float, float]:
         change = self.yaw_to - self.yaw_from
@@ -155,7 +169,7 @@ class TurnSegment:
         clip_time = abs(turned) / TURN_PER_CYCLE * clip.duration
         q = clip.sample(clip_time)
         q[ctx.root[2]] = 0.0
-        return place(ctx, q, *self.position, self.yaw_from + turned)
+        return _carried(place(ctx, q, *self.position, self.yaw_from + turned), self.carry)
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,6 +185,7 @@ class WalkSegment:
     clip: str
     animation_distance: float
     speed: float
+    carry: CarryArms | None = None
 
     @cached_property
     def _legs(self) -> np.ndarray:
@@ -232,10 +247,15 @@ class WalkSegment:
         heading = self.heading(along)
         x, y = self.point(along)
         q[ix], q[iy] = 0.0, 0.0
-        return place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+        placed = place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+        return _carried(placed, self.carry)
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
+
+
+def _carried(q: np.ndarray, carry: CarryArms | None) -> np.ndarray:
+    return q if carry is None else carry.over(q)
 
 
 @dataclass(frozen=True, eq=False)
@@ -331,6 +351,8 @@ class ActorState(NamedTuple):
     speed: float = 0.0
     pose: np.ndarray | None = None
     """Joint positions at the last update."""
+    hold: Hold | None = None
+    """What the hands hold once the current activity is done (the last command said)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -350,8 +372,13 @@ def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
     return state.activity.pose(ctx, t)
 
 
-def _idle(ctx: Context, pose: tuple[float, float, float], t: float) -> Activity:
-    return Activity.plan(ctx, (ClipSegment(IDLE_CLIP, t, pose, forever=True),), pose)
+def _idle(ctx: Context, pose: tuple[float, float, float], t: float, hold=None) -> Activity:
+    segment = ClipSegment(IDLE_CLIP, t, pose, forever=True, carry=_carry(ctx, hold))
+    return Activity.plan(ctx, (segment,), pose)
+
+
+def _carry(ctx: Context, hold: Hold | None) -> CarryArms | None:
+    return None if hold is None else carry_arms(ctx.body, hold)
 
 
 def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
@@ -377,15 +404,16 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     segments: list[Segment] = []
     start = t
     heading = yaw
+    carry = _carry(ctx, command.hold)
     if len(path) > 1:
         first = atan2(path[1][1] - y, path[1][0] - x)
         heading = yaw + _wrap(first - yaw)
         if abs(heading - yaw) > MIN_TURN:
-            segments.append(TurnSegment(start, (x, y), yaw, heading))
+            segments.append(TurnSegment(start, (x, y), yaw, heading, carry))
             start = segments[-1].end(ctx)
         distance = command.animation_distance or clip.animation_distance
         speed = distance / clip.duration
-        walk = WalkSegment(start, tuple(path), clip.name, distance, speed)
+        walk = WalkSegment(start, tuple(path), clip.name, distance, speed, carry)
         segments.append(walk)
         start = walk.end(ctx)
         heading = walk.heading(walk.lengths[-1])
@@ -393,9 +421,9 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     if tuple(command.target_quaternion) != NULL_QUATERNION:
         final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
         if abs(final_yaw - heading) > MIN_TURN:
-            segments.append(TurnSegment(start, path[-1], heading, final_yaw))
+            segments.append(TurnSegment(start, path[-1], heading, final_yaw, carry))
     if not segments:
-        segments.append(TurnSegment(t, (x, y), yaw, yaw))
+        segments.append(TurnSegment(t, (x, y), yaw, yaw, carry))
     return Activity.plan(ctx, segments, (*path[-1], _wrap(final_yaw)))
 
 
@@ -405,13 +433,46 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
         raise Unreachable(f"no animation named '{command.animation_name}'")
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
-    aim = None
-    if command.target is not None:
+    aim, carry = None, _carry(ctx, command.hold)
+    if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
-        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), command.target)
-    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim)
+        hands, takes = _aimed_hands(ctx, clip, command, pose)
+        if takes:
+            carry = _carry(ctx, hold_of(command.grasp, pose[2]))
+        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), hands, carry, takes)
+    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
     return Activity.plan(ctx, (segment,), pose)
+
+
+def _aimed_hands(ctx: Context, clip: Clip, command: AnimateCommand, pose) -> tuple[dict, bool]:
+    """Each aiming hand's target (position, orientation or None), and whether the clip
+    takes an object: the palms on the faces of what it takes, on the faces of what they
+    put down at the target, or (holding nothing) the right hand of a reach at the target
+    and both hands of other clips either side of it, as far apart as the clip has them."""
+    if command.grasp is not None:
+        return palm_targets(command.grasp, pose[2]), True
+    if command.hold is not None:
+        return release_targets(command.hold, command.target, pose[2]), False
+    target = np.asarray(command.target, dtype=float)
+    if clip.name == "reach":
+        return {"right": (target, None)}, False
+    q = place(ctx, clip.sample(clip.events[TARGETED[clip.name]]), *pose)
+    hands = {s: ctx.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES}
+    middle = np.mean(list(hands.values()), axis=0)
+    return {s: (target + p - middle, None) for s, p in hands.items()}, False
+
+
+def hold_after(command, pose) -> Hold | None:
+    """What the hands hold once `command` is done: what it takes, nothing after it puts
+    something down (a place, or a hand-over giving what the hands hold), else what they
+    held."""
+    if isinstance(command, MoveCommand):
+        return command.hold
+    if command.grasp is not None:
+        return hold_of(command.grasp, pose[2])
+    releases = command.target is not None and command.animation_name in RELEASING
+    return None if releases else command.hold
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
@@ -437,7 +498,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         state = _switch(
             ctx,
             state,
-            _idle(ctx, state.base, t),
+            _idle(ctx, state.base, t, state.hold),
             t,
             state="IDLE",
             running=-1,
@@ -454,7 +515,14 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
     except Unreachable as error:
         return _record(state, command.seq, "failed", str(error))
     state = _switch(
-        ctx, state, activity, t, state=mode, running=command.seq, animation=command.animation_name
+        ctx,
+        state,
+        activity,
+        t,
+        state=mode,
+        running=command.seq,
+        animation=command.animation_name,
+        hold=hold_after(command, state.anchor),
     )
     return _record(state, command.seq, "running")
 
@@ -511,9 +579,8 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
     if state.running >= 0 and t >= state.activity.end:
         final = state.activity.final_pose
         state = _record(state, state.running, "succeeded")
-        state = _switch(
-            ctx, state, _idle(ctx, final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
-        )
+        idle = _idle(ctx, final, t, state.hold)
+        state = _switch(ctx, state, idle, t, state="IDLE", running=-1, animation=IDLE_CLIP)
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
     q = pose_at(ctx, state, t)
     base = _base_pose(ctx, q)

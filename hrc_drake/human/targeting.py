@@ -1,9 +1,11 @@
-"""Aim pick, place, reach and hand-over at a point: IK on the human body at the clip's key event.
+"""Aim pick, place, reach and hand-over: IK on the human body at the clip's key event.
 
-The clip's pose at its key event (grasp, release, reached, extended) is corrected by IK so the
-hand (or the midpoint of both hands) is at the target with the feet where they stand; arms,
-trunk bend and pelvis height (a squat) are free. The correction fades in before the event and
-out after the hold, so the whole clip stays smooth.
+The clip's pose at its key event (grasp, release, reached, extended) is corrected by IK so
+each aiming hand's grasp frame is at its target (hrc_drake.human.grasp: palms on an object's
+faces), with the feet where they stand; arms, trunk bend and pelvis height (a squat) are
+free. The correction fades in before the event and out after the hold, so the whole clip
+stays smooth. A clip that takes an object ends in the carry posture; one that puts an
+object down starts from it.
 """
 
 from dataclasses import dataclass
@@ -14,20 +16,21 @@ from pydrake.math import RigidTransform
 from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.grasp import CarryArms, hand_tasks
 from hrc_drake.human.skeleton import SIDES
 
 TARGETED = {
-    "pick_floor": ("grasp", SIDES),
-    "pick_table": ("grasp", SIDES),
-    "place_floor": ("release", SIDES),
-    "place_table": ("release", SIDES),
-    "reach": ("reached", ("right",)),
-    "hand_over": ("extended", ("right",)),
+    "pick_floor": "grasp",
+    "pick_table": "grasp",
+    "place_floor": "release",
+    "place_table": "release",
+    "reach": "reached",
+    "hand_over": "extended",
 }
-"""Clips that accept a target: the event at which the hands arrive, and which hands."""
+"""Clips that accept a target, and the event at which the hands arrive."""
 
 HAND_TOLERANCE = 0.02
-FOOT_TOLERANCE = 0.01
+FOOT_TOLERANCE = 0.005
 FEET_WEIGHT = (4.0, 4.0, 4.0)
 """Feet outrank hands in the IK: the person bends rather than sliding a foot."""
 HOLD_AFTER_EVENT = 0.3
@@ -48,12 +51,17 @@ class Unreachable(ValueError):
 
 @dataclass(frozen=True, eq=False)
 class TargetedOffset:
-    """Joint offset reaching the target, full from `event` to `hold_end`, zero at the ends."""
+    """Joint offset reaching the target, full from `event` to `hold_end`, zero at the ends.
+
+    With `carry`, the arms also blend with a carry posture: into it after the hold (the clip
+    takes an object, `takes`) or out of it before the event (it puts one down)."""
 
     delta: np.ndarray
     event: float
     hold_end: float
     duration: float
+    carry: CarryArms | None = None
+    takes: bool = False
 
     def weight(self, clip_time: float) -> float:
         if clip_time <= self.event:
@@ -62,6 +70,15 @@ class TargetedOffset:
             return 1.0
         span = max(self.duration - self.hold_end, 1e-6)
         return 1.0 - minimum_jerk((clip_time - self.hold_end) / span)
+
+    def carried(self, q: np.ndarray, clip_time: float) -> np.ndarray:
+        """`q` with the arms blended into (or out of) the carry posture."""
+        if self.carry is None:
+            return q
+        if self.takes:
+            span = max(self.duration - self.hold_end, 1e-6)
+            return self.carry.over(q, minimum_jerk((clip_time - self.hold_end) / span))
+        return self.carry.over(q, 1.0 - minimum_jerk(clip_time / self.event))
 
 
 def _hold_end(clip: Clip, event: str) -> float:
@@ -80,22 +97,22 @@ def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:
     return np.array([body.index(n) for n in names])
 
 
-def aim_clip(body: HumanBody, clip: Clip, placed_pose, target) -> TargetedOffset:
-    """The joint offset that makes `clip` (placed in the world by `placed_pose`) reach `target`.
+def aim_clip(
+    body: HumanBody, clip: Clip, placed_pose, hands: dict, carry=None, takes=False
+) -> TargetedOffset:
+    """The joint offset that makes `clip` (placed in the world by `placed_pose`) put each
+    hand's grasp frame at its target: `hands` maps a side to (position, orientation or None).
 
     `placed_pose(q)` maps a clip pose to the world. Raises Unreachable with a reason.
     """
-    event_name, sides = TARGETED[clip.name]
+    event_name = TARGETED[clip.name]
     event = clip.events[event_name]
     q_event = placed_pose(clip.sample(event))
-    target = np.asarray(target, dtype=float)
+    middle = np.mean([position for position, _ in hands.values()], axis=0)
     base = q_event[[body.index("base_x"), body.index("base_y")]]
-    distance = float(np.linalg.norm(target[:2] - base))
+    distance = float(np.linalg.norm(middle[:2] - base))
     if distance > MAX_HORIZONTAL_REACH:
         raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
-    hands = {s: body.frame_pose(f"{s}_hand_grasp", q_event).translation() for s in sides}
-    middle = np.mean(list(hands.values()), axis=0)
-    tasks = [FrameTask(f"{s}_hand_grasp", target + hands[s] - middle) for s in sides]
     feet = []
     for side in SIDES:
         X: RigidTransform = body.frame_pose(f"{side}_sole", q_event)
@@ -108,11 +125,12 @@ def aim_clip(body: HumanBody, clip: Clip, placed_pose, target) -> TargetedOffset
                 rotation_weights=(1.0, 1.0, 1.0),
             )
         )
-    for squat in (False, True):
+    for squat, oriented in ((False, True), (True, True), (True, False)):
+        tasks = hand_tasks(hands if oriented else {s: (p, None) for s, (p, _) in hands.items()})
         solved = body.solve(
             q_event,
             tasks + feet,
-            _free_joints(body, sides, squat),
+            _free_joints(body, tuple(hands), squat),
             iterations=150,
             posture_weight=1e-3,
         )
@@ -127,4 +145,6 @@ def aim_clip(body: HumanBody, clip: Clip, placed_pose, target) -> TargetedOffset
             else (f"hand stays {hand_error:.2f} m from the target")
         )
         raise Unreachable(reason)
-    return TargetedOffset(solved - q_event, event, _hold_end(clip, event_name), clip.duration)
+    return TargetedOffset(
+        solved - q_event, event, _hold_end(clip, event_name), clip.duration, carry, takes
+    )
