@@ -28,6 +28,7 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.human.builder import add_human
+from hrc_drake.human.navigation import NavigationMap, cell_obstacles
 from hrc_drake.iisy import TCP_FRAME
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
 from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
@@ -68,7 +69,7 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     controller = add_robot_controller(builder, scenario, plant, arm)
     scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
-    human, human_plant = _add_person(builder, scene_graph, scenario)
+    human, human_plant = _add_person(builder, scene_graph, mirror, scenario)
     workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
     motion = add_robot_motion(
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
@@ -119,7 +120,8 @@ def _add_world_scene(builder, plant, scenario):
     return scene_graph, mirror
 
 
-def _add_person(builder, scene_graph, scenario):
+def _add_person(builder, scene_graph, mirror, scenario):
+    """The person, walking round the cell's static geometry (the mirror's)."""
     if scenario.human is None:
         return None, None
     x, y, yaw_deg = scenario.human.start
@@ -131,6 +133,7 @@ def _add_person(builder, scene_graph, scenario):
         name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
         issuers=tuple(tree_issuer(agent) for agent in AGENTS),
+        navigation=NavigationMap(cell_obstacles(mirror, scene_graph.model_inspector())),
     )
     return human, human_plant
 

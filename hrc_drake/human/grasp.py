@@ -26,8 +26,7 @@ from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Grasp, Hold
 from hrc_drake.human.skeleton import SIDES
 
 ONE_HAND_WIDTH = 0.09
-"""m: the widest a part may be across to be held in one hand (the hand's breadth is about
-0.054 of body height, 9.5 cm for the default adult)."""
+"""m: the widest a part may be across to be held in one hand, fingers round it."""
 ONE_HAND_MASS = 1.0
 """kg: heavier parts are taken with both hands."""
 GRASP_ATTRIBUTE = "grasp"

@@ -8,14 +8,14 @@ SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 
 from bisect import bisect_right
 from dataclasses import dataclass, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 from itertools import pairwise
-from math import atan2, copysign, cos, hypot, inf, pi, radians, sin
+from math import atan2, ceil, copysign, cos, degrees, hypot, inf, pi, radians, sin
 from typing import NamedTuple
 
 import numpy as np
 
-from hrc_drake.human.authoring import minimum_jerk
+from hrc_drake.human.authoring import minimum_jerk, turn_clip
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import (
@@ -34,6 +34,7 @@ from hrc_drake.human.messages import (
     MoveCommand,
     SetCalledCommand,
 )
+from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
 from hrc_drake.messages import CommandResult, newer_commands, recorded
@@ -46,10 +47,16 @@ MINIMUM_JERK_PEAK = 1.875
 """Peak speed of a minimum-jerk fade relative to its average."""
 SEGMENT_BLEND = 0.3
 """Cross-fade between the turn and walk parts of one movement (s)."""
-TURN_PER_CYCLE = radians(60.0)
+MAX_TURN_PER_CYCLE = radians(90.0)
+"""A turn on the spot takes two steps of at most half this each per cycle."""
+TURN_ROUNDING = 3.0
+"""Degrees: turn clips are authored (once per angle) for multiples of this."""
 SPEED_RAMP = 0.6
 """Seconds to reach walking speed, and to stop."""
 MIN_TURN = radians(3.0)
+WALK_START_PHASE = 0.31
+"""Walks start this far into the gait cycle: the left foot planted where it stands, the
+right one swinging past it, so that setting off moves no foot along the floor."""
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
@@ -59,10 +66,12 @@ RELEASING = ("place_floor", "place_table", "hand_over")
 
 @dataclass(frozen=True)
 class Context:
-    """What every pose computation needs: the body's joint layout and the clips."""
+    """What every pose computation needs: the body's joint layout and the clips; and the
+    cell's navigation map, which walks go round (None: walk straight)."""
 
     body: HumanBody
     clips: dict[str, Clip]
+    navigation: NavigationMap | None = None
 
     def index(self, name: str) -> int:
         return self.body.index(name)
@@ -146,30 +155,44 @@ class ClipSegment:
 
 @dataclass(frozen=True, eq=False)
 class TurnSegment:
-    """Step round on the spot from one heading to another."""
+    """Step round on the spot from one heading to another: `cycles` cycles of a turn clip
+    authored for the angle (rounded to TURN_ROUNDING; the rest of the angle eases in)."""
 
     start: float
     position: tuple[float, float]
     yaw_from: float
     yaw_to: float
+    clip: Clip
+    cycles: int
     carry: CarryArms | None = None
 
-    def angle(self, t: float) -> tuple[float, float]:
-        change = self.yaw_to - self.yaw_from
-        rate = TURN_PER_CYCLE / 0.9
-        turned, total = travel(t - self.start, abs(change), rate, ramp=0.3)
-        return copysign(turned, change), total
+    @classmethod
+    def between(cls, ctx: Context, start, position, yaw_from, yaw_to, carry=None):
+        change = yaw_to - yaw_from
+        cycles = ceil(abs(change) / MAX_TURN_PER_CYCLE) if abs(change) >= MIN_TURN else 0
+        if cycles == 0:
+            return cls(start, position, yaw_from, yaw_to, ctx.clips[IDLE_CLIP], 0, carry)
+        step = round(degrees(change / cycles) / TURN_ROUNDING) * TURN_ROUNDING
+        clip = _turn_clip(ctx.body, step or copysign(TURN_ROUNDING, change))
+        return cls(start, position, yaw_from, yaw_to, clip, cycles, carry)
 
     def end(self, ctx: Context) -> float:
-        return self.start + self.angle(self.start)[1]
+        return self.start + self.cycles * self.clip.duration
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
-        turned, _ = self.angle(t)
-        clip = ctx.clips["turn_left" if self.yaw_to >= self.yaw_from else "turn_right"]
-        clip_time = abs(turned) / TURN_PER_CYCLE * clip.duration
-        q = clip.sample(clip_time)
-        q[ctx.root[2]] = 0.0
-        return _carried(place(ctx, q, *self.position, self.yaw_from + turned), self.carry)
+        total = self.cycles * self.clip.duration
+        clip_time = min(max(t - self.start, 0.0), total)
+        q = self.clip.sample(clip_time)
+        stepped = float(q[ctx.root[2]]) if self.cycles else 0.0
+        authored = self.cycles * float(self.clip.root_shift[ctx.root[2]])
+        rest = self.yaw_to - self.yaw_from - authored
+        q[ctx.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
+        return _carried(place(ctx, q, *self.position, self.yaw_from), self.carry)
+
+
+@lru_cache(maxsize=256)
+def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
+    return turn_clip(body, step_degrees)
 
 
 @dataclass(frozen=True, eq=False)
@@ -214,7 +237,7 @@ class WalkSegment:
         return self._cycle_time(ctx.clips[self.clip], self.distance(t))
 
     def _cycle_time(self, clip: Clip, covered: float) -> float:
-        return covered / self.animation_distance * clip.duration
+        return (covered / self.animation_distance + WALK_START_PHASE) * clip.duration
 
     def point(self, along: float) -> tuple[float, float]:
         lengths, path = self.lengths, self.path
@@ -392,12 +415,22 @@ def _yaw_of(quaternion) -> float:
 
 
 def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activity:
-    """Turn towards the path, walk it, then turn to the target orientation."""
+    """Turn towards the path, walk it, then turn to the target orientation. Without given
+    waypoints the path goes round the cell's geometry (the navigation map); a place to
+    stand (a target with an orientation) that is not clear moves to the nearest that is."""
     clip = ctx.clips.get(command.animation_name)
     if clip is None or not clip.loop or clip.animation_distance <= 0:
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
-    path = [(x, y), *[tuple(p) for p in command.waypoints], tuple(command.target_position[:2])]
+    goal = tuple(command.target_position[:2])
+    waypoints = command.waypoints
+    if ctx.navigation is not None:
+        facing = _yaw_of(command.target_quaternion)
+        if tuple(command.target_quaternion) != NULL_QUATERNION:
+            goal = ctx.navigation.clear_spot(*goal, facing)
+        if not waypoints:
+            waypoints = ctx.navigation.path((x, y), goal)
+    path = [(x, y), *[tuple(p) for p in waypoints], goal]
     path = [
         p for k, p in enumerate(path) if k == 0 or np.hypot(*np.subtract(p, path[k - 1])) > 1e-3
     ]
@@ -409,7 +442,7 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
         first = atan2(path[1][1] - y, path[1][0] - x)
         heading = yaw + _wrap(first - yaw)
         if abs(heading - yaw) > MIN_TURN:
-            segments.append(TurnSegment(start, (x, y), yaw, heading, carry))
+            segments.append(TurnSegment.between(ctx, start, (x, y), yaw, heading, carry))
             start = segments[-1].end(ctx)
         distance = command.animation_distance or clip.animation_distance
         speed = distance / clip.duration
@@ -421,9 +454,9 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     if tuple(command.target_quaternion) != NULL_QUATERNION:
         final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
         if abs(final_yaw - heading) > MIN_TURN:
-            segments.append(TurnSegment(start, path[-1], heading, final_yaw, carry))
+            segments.append(TurnSegment.between(ctx, start, path[-1], heading, final_yaw, carry))
     if not segments:
-        segments.append(TurnSegment(t, (x, y), yaw, yaw, carry))
+        segments.append(TurnSegment.between(ctx, t, (x, y), yaw, yaw, carry))
     return Activity.plan(ctx, segments, (*path[-1], _wrap(final_yaw)))
 
 

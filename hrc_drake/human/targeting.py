@@ -30,7 +30,7 @@ TARGETED = {
 """Clips that accept a target, and the event at which the hands arrive."""
 
 HAND_TOLERANCE = 0.02
-FOOT_TOLERANCE = 0.005
+FOOT_TOLERANCE = 0.01
 FEET_WEIGHT = (4.0, 4.0, 4.0)
 """Feet outrank hands in the IK: the person bends rather than sliding a foot."""
 HOLD_AFTER_EVENT = 0.3
