@@ -97,6 +97,19 @@ def release_targets(hold: Hold, center, heading: float) -> dict:
     return _on_sides(hold.hands, np.asarray(center, dtype=float), left, hold.size[1], R)
 
 
+def reach_target(body: HumanBody, point, heading: float) -> dict:
+    """The right hand reaching to `point` on a surface: the hand level, fingers forward,
+    its little-finger edge resting on the point rather than the fingers sinking in."""
+    position = np.asarray(point, dtype=float) + [0.0, 0.0, hand_half_breadth(body)]
+    return {"right": (position, _facing(heading, "sides_fingers_forward"))}
+
+
+def hand_half_breadth(body: HumanBody) -> float:
+    """Half the hand's breadth (its collision box across the palm), from the skeleton."""
+    (hand,) = body.skeleton.body("right_hand").collisions
+    return hand.shape.size[0] / 2
+
+
 def _on_sides(hands: str, center, left, width: float, R) -> dict:
     right = {"right": (center - left * width / 2, R)}
     return right if hands == ONE_HAND else {"left": (center + left * width / 2, R), **right}

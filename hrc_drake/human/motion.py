@@ -23,6 +23,7 @@ from hrc_drake.human.grasp import (
     carry_arms,
     hold_of,
     palm_targets,
+    reach_target,
     release_targets,
 )
 from hrc_drake.human.messages import (
@@ -57,6 +58,8 @@ MIN_TURN = radians(3.0)
 WALK_START_PHASE = 0.31
 """Walks start this far into the gait cycle: the left foot planted where it stands, the
 right one swinging past it, so that setting off moves no foot along the floor."""
+MIN_LEG = 0.3
+"""m: shorter legs between waypoints are dropped."""
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
@@ -247,16 +250,22 @@ class WalkSegment:
         (x0, y0), (x1, y1) = path[k], path[k + 1]
         return x0 + s * (x1 - x0), y0 + s * (y1 - y0)
 
+    @cached_property
+    def _corner_radii(self) -> tuple[float, ...]:
+        """Per waypoint, the distance before and after it over which the heading turns: at
+        most CORNER_RADIUS and half of either leg, so neighbouring turns never overlap."""
+        legs = np.diff(self.lengths)
+        return (0.0, *(min(CORNER_RADIUS, a / 2, b / 2) for a, b in pairwise(legs)))
+
     def heading(self, along: float) -> float:
         """Path direction, turning smoothly through each waypoint."""
-        directions, lengths = self.directions, self.lengths
-        k = min(max(bisect_right(lengths, along) - 1, 0), len(directions) - 1)
-        heading = directions[k]
+        directions, lengths, radii = self.directions, self.lengths, self._corner_radii
+        heading = directions[0]
         for corner in range(1, len(directions)):
-            offset = along - lengths[corner]
-            if abs(offset) < CORNER_RADIUS:
-                w = minimum_jerk((offset + CORNER_RADIUS) / (2 * CORNER_RADIUS))
-                heading = directions[corner - 1] + w * (directions[corner] - directions[corner - 1])
+            offset = along - lengths[corner] + radii[corner]
+            if offset > 0:
+                w = minimum_jerk(offset / (2 * radii[corner])) if radii[corner] > 0 else 1.0
+                heading += w * (directions[corner] - directions[corner - 1])
         return heading
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
@@ -414,6 +423,19 @@ def _yaw_of(quaternion) -> float:
     return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
 
 
+def _without_short_legs(path: list) -> list:
+    """The path without waypoints closer than MIN_LEG to the point before them (the goal
+    stays): a short leg would make the person swing round on the spot while walking."""
+    kept = [path[0]]
+    for point in path[1:-1]:
+        if hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) >= MIN_LEG:
+            kept.append(point)
+    goal = path[-1]
+    if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:
+        kept.append(goal)
+    return kept
+
+
 def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activity:
     """Turn towards the path, walk it, then turn to the target orientation. Without given
     waypoints the path goes round the cell's geometry (the navigation map); a place to
@@ -430,10 +452,7 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
             goal = ctx.navigation.clear_spot(*goal, facing)
         if not waypoints:
             waypoints = ctx.navigation.path((x, y), goal)
-    path = [(x, y), *[tuple(p) for p in waypoints], goal]
-    path = [
-        p for k, p in enumerate(path) if k == 0 or np.hypot(*np.subtract(p, path[k - 1])) > 1e-3
-    ]
+    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
     segments: list[Segment] = []
     start = t
     heading = yaw
@@ -481,15 +500,16 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
 def _aimed_hands(ctx: Context, clip: Clip, command: AnimateCommand, pose) -> tuple[dict, bool]:
     """Each aiming hand's target (position, orientation or None), and whether the clip
     takes an object: the palms on the faces of what it takes, on the faces of what they
-    put down at the target, or (holding nothing) the right hand of a reach at the target
-    and both hands of other clips either side of it, as far apart as the clip has them."""
+    put down at the target, or (holding nothing) the right hand's edge of a reach on the
+    target and both hands of other clips either side of it, as far apart as the clip has
+    them."""
     if command.grasp is not None:
         return palm_targets(command.grasp, pose[2]), True
     if command.hold is not None:
         return release_targets(command.hold, command.target, pose[2]), False
     target = np.asarray(command.target, dtype=float)
     if clip.name == "reach":
-        return {"right": (target, None)}, False
+        return reach_target(ctx.body, target, pose[2]), False
     q = place(ctx, clip.sample(clip.events[TARGETED[clip.name]]), *pose)
     hands = {s: ctx.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES}
     middle = np.mean(list(hands.values()), axis=0)
