@@ -18,7 +18,7 @@ from pydrake.systems.framework import LeafSystem
 
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.geometry import bounding_segment, human_parts
 from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
@@ -59,8 +59,8 @@ class RealismAudit(LeafSystem):
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
-        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
-        self._objects = self.DeclareAbstractInputPort("workpieces_status", AbstractValue.Make(None))
+        self._human = self.DeclareAbstractInputPort("human_status", message_value())
+        self._objects = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._state = self.DeclareAbstractState(AbstractValue.Make(AuditState()))
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
         self.DeclareStateOutputPort("realism", self._state)

@@ -147,14 +147,16 @@ class World:
         return self
 
 
-def holder_frames(tool: RigidTransform | None, hands: HandPoses | None) -> dict[str, Sampled]:
+def holder_frames(
+    tool: RigidTransform | None, hands: HandPoses | tuple | None
+) -> dict[str, Sampled]:
     """Grasp frame of every present holder. The person's frames are level (objects in the
     hands stay upright): one hand's at its grasp point facing the person's heading, both
     hands' at their midpoint, facing away from the body (x), y from the right hand to the
-    left, z up. The poses are copied: an input port's value may be overwritten in place when
-    it is evaluated again."""
+    left, z up. `hands` is empty or None while the person has none. The poses are copied:
+    an input port's value may be overwritten in place when it is evaluated again."""
     frames = {} if tool is None else {ROBOT: (RigidTransform(tool), None)}
-    if hands is not None:
+    if hands:
         facing = RotationMatrix.MakeZRotation(hands.heading)
         left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
         both = _between(left, right)
