@@ -8,7 +8,7 @@ stays smooth. A clip that takes an object ends in the carry posture; one that pu
 object down starts from it.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from pydrake.math import RigidTransform
@@ -16,7 +16,7 @@ from pydrake.math import RigidTransform
 from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.clip import Clip
-from hrc_drake.human.grasp import CarryArms, hand_tasks
+from hrc_drake.human.grasp import CarryArms, arm_indices, hand_tasks
 from hrc_drake.human.skeleton import SIDES
 
 TARGETED = {
@@ -62,6 +62,9 @@ class TargetedOffset:
     duration: float
     carry: CarryArms | None = None
     takes: bool = False
+    spacing: tuple = ()
+    """(clip times, arm joint corrections, arm indices) that keep two holding palms as far
+    apart as the held object is wide while the arms blend with the carry posture."""
 
     def weight(self, clip_time: float) -> float:
         if clip_time <= self.event:
@@ -77,8 +80,19 @@ class TargetedOffset:
             return q
         if self.takes:
             span = max(self.duration - self.hold_end, 1e-6)
-            return self.carry.over(q, minimum_jerk((clip_time - self.hold_end) / span))
-        return self.carry.over(q, 1.0 - minimum_jerk(clip_time / self.event))
+            q = self.carry.over(q, minimum_jerk((clip_time - self.hold_end) / span))
+        else:
+            q = self.carry.over(q, 1.0 - minimum_jerk(clip_time / self.event))
+        if self.spacing:
+            times, fixes, arms = self.spacing
+            if times[0] < clip_time < times[-1]:
+                q = q.copy()
+                q[arms] += [np.interp(clip_time, times, column) for column in fixes.T]
+        return q
+
+    def blend_window(self) -> tuple[float, float]:
+        """When the arms blend with the carry posture while holding the object."""
+        return (self.hold_end, self.duration) if self.takes else (0.0, self.event)
 
 
 def _hold_end(clip: Clip, event: str) -> float:
@@ -145,6 +159,34 @@ def aim_clip(
             else (f"hand stays {hand_error:.2f} m from the target")
         )
         raise Unreachable(reason)
-    return TargetedOffset(
+    offset = TargetedOffset(
         solved - q_event, event, _hold_end(clip, event_name), clip.duration, carry, takes
     )
+    if carry is None or len(hands) < 2:
+        return offset
+    width = float(np.linalg.norm(hands["left"][0] - hands["right"][0]))
+    return replace(offset, spacing=_keeping_width(body, clip, placed_pose, offset, width))
+
+
+SPACING_SAMPLES = 6
+"""Poses solved across a carry blend to keep the palms on the held object's faces."""
+
+
+def _keeping_width(body: HumanBody, clip: Clip, placed_pose, offset, width: float):
+    """Arm corrections at a few times of the carry blend that put the palms `width` apart
+    about their midpoint (zero at the blend's ends, where aim and carry posture are exact)."""
+    start, end = offset.blend_window()
+    times = np.linspace(start, end, SPACING_SAMPLES)
+    arms = arm_indices(body, SIDES)
+    fixes = np.zeros((len(times), len(arms)))
+    for k, t in enumerate(times[1:-1], start=1):
+        q = offset.carried(placed_pose(clip.sample(t)) + offset.weight(t) * offset.delta, t)
+        left, right = (body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES)
+        middle, across = (left + right) / 2, (left - right) / np.linalg.norm(left - right)
+        targets = {
+            "left": (middle + across * width / 2, None),
+            "right": (middle - across * width / 2, None),
+        }
+        solved = body.solve(q, hand_tasks(targets), arms, iterations=30, posture_weight=1e-4)
+        fixes[k] = solved[arms] - q[arms]
+    return times, fixes, arms
