@@ -28,8 +28,8 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.human.builder import add_human
-from hrc_drake.human.navigation import NavigationMap, cell_obstacles
-from hrc_drake.iisy import TCP_FRAME
+from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
+from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
 from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
 from hrc_drake.seeding import stream
@@ -125,6 +125,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
     if scenario.human is None:
         return None, None
     x, y, yaw_deg = scenario.human.start
+    robot_xy = scenario.robot.base_pose.GetDeterministicValue().translation()[:2]
     human, human_plant = add_human(
         builder,
         scene_graph,
@@ -133,7 +134,10 @@ def _add_person(builder, scene_graph, mirror, scenario):
         name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
         issuers=tuple(tree_issuer(agent) for agent in AGENTS),
-        navigation=NavigationMap(cell_obstacles(mirror, scene_graph.model_inspector())),
+        navigation=NavigationMap(
+            cell_obstacles(mirror, scene_graph.model_inspector()),
+            keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
+        ),
     )
     return human, human_plant
 

@@ -10,6 +10,8 @@ built once per map, plus the start and goal.
 
 A start or goal closer to furniture than the clearance (a place to stand at a table) is
 reached straight from the nearest free point; the last leg then approaches it head on.
+Walks also keep out of the robot's inner working space (`robot_keep_out`): its arm moves,
+so the static map cannot hold it, but nobody walks past under a robot's elbow.
 """
 
 from dataclasses import dataclass
@@ -41,6 +43,14 @@ FEET_HEIGHT = 0.1
 STANDING = {"feet": (-0.07, 0.21, 0.16), "body": (-0.15, 0.16, 0.23)}
 """m: a standing person's floor outline in their own frame, from the back to the front
 along their heading and half as wide: the feet (up to FEET_HEIGHT), the rest of the body."""
+
+
+ROBOT_KEEP_OUT = 0.5
+"""Fraction of the robot's reach round its base axis that walks keep out of."""
+
+
+def robot_keep_out(base_xy, reach: float) -> Polygon:
+    return Point(*base_xy).buffer(ROBOT_KEEP_OUT * reach)
 
 
 @dataclass(frozen=True)
@@ -90,10 +100,14 @@ def _corners(shape) -> np.ndarray | None:
 class NavigationMap:
     """The free floor of one cell and the shortest walks across it."""
 
-    def __init__(self, obstacles: list[Obstacle], clearance: float = CLEARANCE):
+    def __init__(self, obstacles: list[Obstacle], clearance: float = CLEARANCE, keep_out=()):
+        """`keep_out` are floor polygons walks stay out of besides the obstacles (e.g. where
+        the robot's arm swings), though places to stand may lie in them."""
         self.obstacles = obstacles
         self.clearance = clearance
+        self.keep_out = unary_union(list(keep_out)) if keep_out else Polygon()
         grown = [o.outline.buffer(clearance, join_style="mitre") for o in obstacles]
+        grown += [area.buffer(clearance) for area in keep_out]
         self.blocked = unary_union(grown) if grown else Polygon()
         self._blocked = prepared.prep(self.blocked)
         corners = self.blocked.buffer(CORNER_MARGIN, join_style="mitre")
@@ -146,12 +160,17 @@ class NavigationMap:
 
     def clear_spot(self, x: float, y: float, yaw: float) -> tuple[float, float]:
         """The place to stand nearest (x, y) where a person facing `yaw` stands clear of
-        the cell's geometry ((x, y) itself when it is clear; it too when none is near)."""
+        the cell's geometry ((x, y) itself when it is clear; it too when none is near),
+        not moving into the keep-out areas from outside them."""
         if self.stands_clear(x, y, yaw):
             return x, y
+        outside = not self.keep_out.contains(Point(x, y))
         for dx, dy in _rings():
-            if self.stands_clear(x + dx, y + dy, yaw):
-                return x + dx, y + dy
+            spot = (x + dx, y + dy)
+            if outside and self.keep_out.contains(Point(spot)):
+                continue
+            if self.stands_clear(*spot, yaw):
+                return spot
         return x, y
 
     def stands_clear(self, x: float, y: float, yaw: float) -> bool:
@@ -171,7 +190,7 @@ class NavigationMap:
                 if obstacle.high <= low or obstacle.low >= high:
                     continue
                 overlap = outline.intersection(obstacle.outline)
-                if overlap.is_empty:
+                if overlap.area <= 0.0:  # apart, or only touching
                     continue
                 depth = _depth(overlap, obstacle.outline)
                 if worst is None or depth > worst[0]:
@@ -217,9 +236,10 @@ def _depth(overlap, outline: Polygon) -> float:
 
 
 def _polygons(geometry) -> list[Polygon]:
+    """The polygons of a shapely geometry (an intersection may also hold lines, points)."""
     if geometry.is_empty:
         return []
-    return list(getattr(geometry, "geoms", [geometry]))
+    return [g for g in getattr(geometry, "geoms", [geometry]) if isinstance(g, Polygon)]
 
 
 def _length(a, b) -> float:
