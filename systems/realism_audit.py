@@ -20,7 +20,7 @@ from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.geometry import bounding_segment, human_parts
-from hrc_drake.workpieces.geometry import Solid
+from hrc_drake.workpieces.geometry import Solid, moved
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
 
 HOLDING_HANDS = {LEFT_HAND: ("left",), RIGHT_HAND: ("right",), BOTH_HANDS: SIDES}
@@ -79,7 +79,9 @@ class RealismAudit(LeafSystem):
             object_depths=self._object_depths(
                 query, [o for o in objects if o.holder not in PERSON_HOLDERS]
             ),
-            hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, status)),
+            hand_gaps=tuple(
+                gap for o in held for gap in self._hand_gaps(o, status, context.get_time())
+            ),
             tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
             sole_points=self._sole_points(query),
             pelvis=(status.time, *status.base_pose[:2]),
@@ -126,9 +128,11 @@ class RealismAudit(LeafSystem):
                 depths.append((-distance, where))
         return tuple(depths)
 
-    def _hand_gaps(self, obj, status) -> list:
+    def _hand_gaps(self, obj, status, now: float) -> list:
+        """Each holding hand's distance to the object's surface, both at the time of the
+        person's pose (the object's pose moved back to it along its velocity)."""
         solid = self._solids[obj.type]
-        X_OW = obj.pose.inverse()
+        X_OW = moved(obj.pose, obj.velocity, status.time - now).inverse()
         hands = {"left": status.left_hand, "right": status.right_hand}
         return [
             (
