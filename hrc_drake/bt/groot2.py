@@ -49,6 +49,8 @@ from .ports import value_to_text
 from .status import IDLE, SKIPPED, Status
 from .tree import Tree
 
+DEFAULT_PORT = 1667
+"""BehaviorTree.CPP's Groot2Publisher default, where Groot2 looks first."""
 PROTOCOL = 2
 HEADER = struct.Struct("<BBI")
 IDLE_FROM = 10
@@ -213,7 +215,7 @@ class Groot2Server:
             socket.close()
             self._context.destroy(linger=0)
             raise ServeError(
-                f"cannot serve Groot2 on {self.host}:{port}: {error.strerror}"
+                f"cannot serve Groot2 on {self.host}:{port}: {zmq.strerror(error.errno)}"
             ) from None
         return socket
 
