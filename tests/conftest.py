@@ -23,18 +23,19 @@ def _free(port: int) -> bool:
     return True
 
 
+def first_free_port(count: int = 2) -> int:
+    """The first of ``count`` consecutive free local ports."""
+    for _ in range(200):
+        first = random.randrange(20000, 60000, 2)
+        if all(_free(port) for port in range(first, first + count)):
+            return first
+    raise RuntimeError("no free ports")
+
+
 @pytest.fixture
 def free_ports():
     """``free_ports(count)``: the first of ``count`` consecutive free local ports."""
-
-    def find(count: int = 2) -> int:
-        for _ in range(200):
-            first = random.randrange(20000, 60000, 2)
-            if all(_free(port) for port in range(first, first + count)):
-                return first
-        raise RuntimeError("no free ports")
-
-    return find
+    return first_free_port
 
 
 class GrootClient:

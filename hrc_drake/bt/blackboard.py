@@ -98,6 +98,12 @@ class Blackboard:
     def set(self, key: str, value: Any) -> None:
         self.entry(key, create=True).assign(value)
 
+    def set_local(self, key: str, value: Any) -> None:
+        """Set an entry of this blackboard itself, even where ``key`` would otherwise
+        reach the parent by autoremapping (a SubTree's literal port)."""
+        found = self._entries.setdefault(key, Entry())
+        found.assign(value)
+
     def unset(self, key: str) -> None:
         found = self.entry(key)
         if found is not None:

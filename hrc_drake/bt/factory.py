@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -41,6 +42,20 @@ def blackboard_key(text: str) -> str | None:
     if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
         return text[1:-1].strip()
     return None
+
+
+_INTEGER = re.compile(r"-?\d+")
+_REAL = re.compile(r"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def literal_value(text: str) -> int | float | str:
+    """A SubTree's literal port value: a number if the whole text is one, else the text
+    (as BehaviorTree.CPP 4.9.1 and later, so that scripts can compute with it)."""
+    if _INTEGER.fullmatch(text):
+        return int(text)
+    if _REAL.fullmatch(text):
+        return float(text)
+    return text
 
 
 @dataclass
@@ -310,7 +325,7 @@ class _Builder:
         remap, literals, autoremap = self._subtree_ports(attributes, element, scope, path)
         blackboard = Blackboard(scope.blackboard, remap, autoremap)
         for key, text in literals.items():
-            blackboard.set(key, text)
+            blackboard.set_local(key, literal_value(text))
         config = NodeConfig(
             "SubTree",
             attributes.get("name") or subtree_id,
