@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -14,7 +13,7 @@ from .blackboard import Blackboard
 from .decorators import SubTreeNode
 from .errors import BTError, closest
 from .node import POSTCONDITIONS, PRECONDITIONS, EntryRef, Literal, NodeConfig, TreeNode
-from .ports import PortDirection, PortInfo, convert_from_string
+from .ports import PortDirection, PortInfo, convert_from_string, literal_value
 from .registry import NodeModel, NodeRegistry, default_registry
 from .script import ScriptCode, compile_script
 from .tree import SubtreeInstance, Tree
@@ -42,20 +41,6 @@ def blackboard_key(text: str) -> str | None:
     if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
         return text[1:-1].strip()
     return None
-
-
-_INTEGER = re.compile(r"-?\d+")
-_REAL = re.compile(r"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
-
-
-def literal_value(text: str) -> int | float | str:
-    """A SubTree's literal port value: a number if the whole text is one, else the text
-    (as BehaviorTree.CPP 4.9.1 and later, so that scripts can compute with it)."""
-    if _INTEGER.fullmatch(text):
-        return int(text)
-    if _REAL.fullmatch(text):
-        return float(text)
-    return text
 
 
 @dataclass
