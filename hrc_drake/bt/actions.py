@@ -63,23 +63,19 @@ class SetBlackboard(SyncActionNode):
         if isinstance(source, EntryRef):
             if destination.type is None:
                 destination.type = source.entry.type
-        elif destination.type is None and _is_number(destination.value):
+        elif destination.type is None and isinstance(destination.value, int | float):
             value = self._as_number(value, key)
         destination.assign(value)
         return SUCCESS
 
     def _as_number(self, text: str, key: str) -> int | float:
-        """A literal written into an untyped entry that holds a number (made by a script)
-        stays a number, as BT.CPP converts it for a typed entry (BT.CPP itself empties
-        such an entry: see docs/bt-conformance.md)."""
+        """A literal written into an untyped entry that holds a number or a truth value
+        (both numbers in BT.CPP's scripts) stays a number, as BT.CPP converts it for a
+        typed entry (BT.CPP itself empties such an entry: see docs/bt-conformance.md)."""
         number = literal_value(text)
         if isinstance(number, str):
             raise self.error(f"cannot write '{text}' into '{key}', which holds a number", "value")
         return number
-
-
-def _is_number(value) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
 
 
 class UnsetBlackboard(SyncActionNode):

@@ -56,8 +56,10 @@ class Cycle(ConditionNode):
 
     def tick(self):
         self.calls += 1
-        return Status.SUCCESS if self.pattern[(self.calls - 1) % len(self.pattern)] == "S" else (
-            Status.FAILURE
+        return (
+            Status.SUCCESS
+            if self.pattern[(self.calls - 1) % len(self.pattern)] == "S"
+            else (Status.FAILURE)
         )
 
 
@@ -76,7 +78,10 @@ def btcpp_factory():
     left: dict[int, int] = {}
     calls: dict[int, int] = {}
     for name in RUN_LEAVES:
-        ticks, result = int(name[4:]), getattr(btcpp.NodeStatus, "SUCCESS" if name[3] == "S" else "FAILURE")
+        ticks, result = (
+            int(name[4:]),
+            getattr(btcpp.NodeStatus, "SUCCESS" if name[3] == "S" else "FAILURE"),
+        )
 
         def running(node, result=result):
             if left[node.uid()] == 0:
@@ -113,8 +118,15 @@ class Vocabulary:
     decorators: list[str] = field(default_factory=list)
 
     def __post_init__(self):
-        self.controls = ["Sequence", "Fallback", "ReactiveSequence", "ReactiveFallback",
-                         "SequenceWithMemory", "IfThenElse", "WhileDoElse"]
+        self.controls = [
+            "Sequence",
+            "Fallback",
+            "ReactiveSequence",
+            "ReactiveFallback",
+            "SequenceWithMemory",
+            "IfThenElse",
+            "WhileDoElse",
+        ]
         self.decorators = ["Inverter", "ForceSuccess", "ForceFailure", "KeepRunningUntilFailure"]
         if self.full:
             self.controls += ["AsyncSequence", "AsyncFallback", "Parallel", "ParallelAll"]
@@ -124,12 +136,14 @@ class Vocabulary:
 def _script(rng: random.Random, vocabulary: Vocabulary) -> str:
     counter, other = rng.choice(COUNTERS), rng.choice(COUNTERS)
     left, right = ("", "") if vocabulary.precedence else ("(", ")")
-    return rng.choice([
-        f"{counter} += 1",
-        f"{counter} = {left}{other} - {rng.randint(0, 2)}{right} + {rng.randint(0, 2)}",
-        f"{counter} = {left}{other} > 1 || {counter} < 1{right} && {other} != 2",
-        f"{counter} = {rng.randint(0, 3)}",
-    ])
+    return rng.choice(
+        [
+            f"{counter} += 1",
+            f"{counter} = {left}{other} - {rng.randint(0, 2)}{right} + {rng.randint(0, 2)}",
+            f"{counter} = {left}{other} > 1 || {counter} < 1{right} && {other} != 2",
+            f"{counter} = {rng.randint(0, 3)}",
+        ]
+    )
 
 
 def _condition_code(rng: random.Random, vocabulary: Vocabulary) -> str:
@@ -145,9 +159,14 @@ def _condition_code(rng: random.Random, vocabulary: Vocabulary) -> str:
 def _attributes(rng: random.Random, vocabulary: Vocabulary) -> str:
     if not vocabulary.full or rng.random() > 0.15:
         return ""
-    kind = rng.choice(["_skipIf", "_successIf", "_failureIf", "_while", "_onSuccess",
-                       "_onFailure", "_post"])
-    code = _script(rng, vocabulary) if kind.startswith("_on") or kind == "_post" else _condition_code(rng, vocabulary)
+    kind = rng.choice(
+        ["_skipIf", "_successIf", "_failureIf", "_while", "_onSuccess", "_onFailure", "_post"]
+    )
+    code = (
+        _script(rng, vocabulary)
+        if kind.startswith("_on") or kind == "_post"
+        else _condition_code(rng, vocabulary)
+    )
     return f' {kind}="{_escape(code)}"'
 
 
@@ -171,7 +190,9 @@ def _leaf(rng: random.Random, vocabulary: Vocabulary) -> str:
         return f'<Script code="{_escape(_script(rng, vocabulary))}"{extra}/>'
     if kind == "script_condition":
         return f'<ScriptCondition code="{_escape(_condition_code(rng, vocabulary))}"{extra}/>'
-    return f'<SetBlackboard output_key="{rng.choice(COUNTERS)}" value="{rng.randint(0, 3)}"{extra}/>'
+    return (
+        f'<SetBlackboard output_key="{rng.choice(COUNTERS)}" value="{rng.randint(0, 3)}"{extra}/>'
+    )
 
 
 def _node(rng: random.Random, vocabulary: Vocabulary, depth: int) -> str:
@@ -183,7 +204,8 @@ def _node(rng: random.Random, vocabulary: Vocabulary, depth: int) -> str:
         ports = {
             "Repeat": f' num_cycles="{rng.randint(1, 3)}"',
             "RetryUntilSuccessful": f' num_attempts="{rng.randint(1, 3)}"',
-            "Precondition": f' if="{_escape(_condition_code(rng, vocabulary))}" else="{rng.choice(["FAILURE", "SUCCESS", "SKIPPED"])}"',
+            "Precondition": f' if="{_escape(_condition_code(rng, vocabulary))}" '
+            f'else="{rng.choice(["FAILURE", "SUCCESS", "SKIPPED"])}"',
         }.get(name, "")
         return f"<{name}{ports}{extra}>{_node(rng, vocabulary, depth - 1)}</{name}>"
     name = rng.choice(vocabulary.controls)
@@ -222,8 +244,14 @@ def _numbers(values) -> tuple[float, ...]:
     return tuple(float(v) for v in values)
 
 
+LOAD_ERROR = [Tick("LOAD ERROR", (), ())]
+
+
 def run_ours(xml: str, ticks: int) -> list[Tick]:
-    tree = load_tree(xml, our_registry())
+    try:
+        tree = load_tree(xml, our_registry())
+    except BTError:
+        return LOAD_ERROR
     for counter in COUNTERS:
         tree.root_blackboard.set(counter, 0)
     nodes = [node for _, nodes in tree.instance_nodes() for node in nodes]
@@ -233,11 +261,13 @@ def run_ours(xml: str, ticks: int) -> list[Tick]:
             root = tree.tick(0.1 * index).name
         except BTError:
             root = "ERROR"
-        result.append(Tick(
-            root,
-            tuple(int(node.status) for node in nodes),
-            _numbers(tree.root_blackboard.get(c) for c in COUNTERS),
-        ))
+        result.append(
+            Tick(
+                root,
+                tuple(int(node.status) for node in nodes),
+                _numbers(tree.root_blackboard.get(c) for c in COUNTERS),
+            )
+        )
         if root == "ERROR":
             break
     return result
@@ -259,11 +289,14 @@ class BtcppRunner:
     def run(self, xml: str, ticks: int) -> list[Tick]:
         for memory in self.memory:
             memory.clear()
-        self.factory.register_behavior_tree_from_text(xml)
         blackboard = btcpp.Blackboard.create()
         for counter in COUNTERS:
             blackboard.set_int(counter, 0)
-        tree = self.factory.create_tree("Main", blackboard)
+        try:
+            self.factory.register_behavior_tree_from_text(xml)
+            tree = self.factory.create_tree("Main", blackboard)
+        except RuntimeError:
+            return LOAD_ERROR
         publisher = btcpp.Groot2Publisher(tree, self.port)
         self.socket = self.context.socket(zmq.REQ)
         self.socket.setsockopt(zmq.LINGER, 0)
@@ -277,14 +310,14 @@ class BtcppRunner:
                 except RuntimeError:
                     root = "ERROR"
                 buffer = self._request("S")[1]
-                codes = tuple(
-                    code if code < 10 else 0 for code in buffer[2::3]
+                codes = tuple(code if code < 10 else 0 for code in buffer[2::3])
+                result.append(
+                    Tick(
+                        root,
+                        codes,
+                        _numbers(_btcpp_get(blackboard, c) for c in COUNTERS),
+                    )
                 )
-                result.append(Tick(
-                    root,
-                    codes,
-                    _numbers(_btcpp_get(blackboard, c) for c in COUNTERS),
-                ))
                 if root == "ERROR":
                     break
         finally:
@@ -308,7 +341,7 @@ def _btcpp_get(blackboard, key: str) -> float:
 def first_difference(ours: list[Tick], theirs: list[Tick]) -> int | None:
     """The first tick at which the engines disagree (both failing with an error counts as
     agreeing: statuses are then half-way through a tick), or None."""
-    for index, (mine, other) in enumerate(zip(ours, theirs)):
+    for index, (mine, other) in enumerate(zip(ours, theirs, strict=False)):
         if mine != other and not mine.root == other.root == "ERROR":
             return index
     return None if len(ours) == len(theirs) else min(len(ours), len(theirs))
