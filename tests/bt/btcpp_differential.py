@@ -247,7 +247,8 @@ def _numbers(values) -> tuple[float, ...]:
 LOAD_ERROR = [Tick("LOAD ERROR", (), ())]
 
 
-def run_ours(xml: str, ticks: int) -> list[Tick]:
+def run_ours(xml: str, ticks: int, changes: dict | None = None) -> list[Tick]:
+    """``changes``: counters set before a tick, by tick index."""
     try:
         tree = load_tree(xml, our_registry())
     except BTError:
@@ -257,6 +258,8 @@ def run_ours(xml: str, ticks: int) -> list[Tick]:
     nodes = [node for _, nodes in tree.instance_nodes() for node in nodes]
     result = []
     for index in range(ticks):
+        for key, value in (changes or {}).get(index, {}).items():
+            tree.root_blackboard.set(key, value)
         try:
             root = tree.tick(0.1 * index).name
         except BTError:
@@ -286,7 +289,7 @@ class BtcppRunner:
         self.socket.send_multipart([HEADER.pack(2, ord(kind), 1), *frames])
         return self.socket.recv_multipart()
 
-    def run(self, xml: str, ticks: int) -> list[Tick]:
+    def run(self, xml: str, ticks: int, changes: dict | None = None) -> list[Tick]:
         for memory in self.memory:
             memory.clear()
         blackboard = btcpp.Blackboard.create()
@@ -304,7 +307,9 @@ class BtcppRunner:
         self.socket.connect(f"tcp://127.0.0.1:{self.port}")
         result = []
         try:
-            for _ in range(ticks):
+            for index in range(ticks):
+                for key, value in (changes or {}).get(index, {}).items():
+                    blackboard.set_int(key, value)
                 try:
                     root = str(tree.tick_exactly_once()).rsplit(".", 1)[-1]
                 except RuntimeError:
