@@ -2,8 +2,9 @@
 
 Each scenario is simulated unpaced twice per repeat: plain, and with `serve_groot` serving
 both trees (the tick path updates the status buffer and hands over a snapshot per tick; the
-server threads poll their sockets). Variants alternate, best of the repeats. Times are the process's CPU time
-(the server threads included), so that other work on the machine does not blur them.
+server threads poll their sockets). Variants alternate, best of the repeats. Times are the
+process's CPU time (the server threads included), so that other work on the machine does not
+blur them.
 Target: ratio (served / plain) below 1.02.
 
     .venv/bin/python benchmarks/groot_cost.py [--duration 20] [--repeats 3] [scenario ...]

@@ -67,6 +67,13 @@ class GrootClient:
             assert len(reply[0]) == 22
         return reply
 
+    def insert_hook(
+        self, uid: int, mode: int = 0, once: bool = False, desired: str = "SKIPPED", position=0
+    ) -> list[bytes]:
+        """A breakpoint (mode 0) or a replacement (mode 1), as Groot2 sends it."""
+        hook = {"uid": uid, "position": position, "mode": mode, "once": once, "enabled": True}
+        return self.request("I", {**hook, "desired_status": desired})
+
     def statuses(self) -> list[tuple[int, int]]:
         buffer = self.request("S")[1]
         return [struct.unpack_from("<HB", buffer, i) for i in range(0, len(buffer), 3)]

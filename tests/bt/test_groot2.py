@@ -114,17 +114,7 @@ def test_replace_hooks_force_results_and_are_dumped_removed_and_cleared(served):
 def test_a_breakpoint_holds_the_tick_until_unlocked(served):
     tree, server, client = served
     busy = uid_of(tree, "busy")
-    client.request(
-        "I",
-        {
-            "uid": busy,
-            "position": 0,
-            "mode": 0,
-            "once": True,
-            "enabled": True,
-            "desired_status": "SKIPPED",
-        },
-    )
+    client.insert_hook(busy, once=True)
     thread = tick_in_thread(tree, 0.05)
     header, uid = client.notifications.recv_multipart()
     assert header[1:2] == b"N" and int(uid) == busy
@@ -145,17 +135,7 @@ def test_a_silent_client_cannot_hold_the_run(served, monkeypatch):
     tree, server, client = served
     monkeypatch.setattr(groot2, "HEARTBEAT", 0.3)
     busy = uid_of(tree, "busy")
-    client.request(
-        "I",
-        {
-            "uid": busy,
-            "position": 0,
-            "mode": 0,
-            "once": False,
-            "enabled": True,
-            "desired_status": "FAILURE",
-        },
-    )
+    client.insert_hook(busy, desired="FAILURE")
     thread = tick_in_thread(tree, 0.05)
     client.notifications.recv_multipart()
     thread.join(5)

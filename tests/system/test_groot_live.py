@@ -243,17 +243,7 @@ def test_a_breakpoint_holds_the_simulation_until_unlocked(groot, free_ports):
         robot = servers.servers["robot"]
         client = groot(robot.port)
         move = robot.tree.node("RobotMove").uid
-        client.request(
-            "I",
-            {
-                "uid": move,
-                "position": 0,
-                "mode": 0,
-                "once": True,
-                "enabled": True,
-                "desired_status": "SKIPPED",
-            },
-        )
+        client.insert_hook(move, once=True)
         thread = threading.Thread(target=simulator.AdvanceTo, args=(3.0,), daemon=True)
         thread.start()
         assert int(client.notifications.recv_multipart()[1]) == move
