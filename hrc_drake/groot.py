@@ -42,7 +42,8 @@ class GrootServers:
     def keep_pace(self, simulator: Simulator) -> None:
         """After a breakpoint held a paced simulation, pace it anew from where it stands
         (else Drake's real-time pacing would run flat out to make up the pause). Call it
-        after ``set_target_realtime_rate``; an unpaced simulator is left alone."""
+        after ``set_target_realtime_rate``; it takes the simulator's monitor. An unpaced
+        simulator is left alone."""
         if simulator.get_target_realtime_rate() <= 0:
             return
 

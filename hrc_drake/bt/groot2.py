@@ -222,8 +222,9 @@ class Groot2Server:
     # the tick thread ------------------------------------------------------------------
     def on_transition(self, time: float, node: TreeNode, previous: Status, new: Status) -> None:
         self._codes[self._offsets[node.uid]] = new if new is not IDLE else IDLE_FROM + previous
-        if self._recording:
-            self._transitions.append((round(time * 1e6) - self._record_start_us, node.uid, new))
+        if self._recording:  # (a simulation restarted from 0 counts from the start)
+            offset = max(round(time * 1e6) - self._record_start_us, 0)
+            self._transitions.append((offset, node.uid, new))
 
     def before_tick(self, tree: Tree) -> None:
         if self._hooks_changed:
@@ -266,7 +267,7 @@ class Groot2Server:
         if hook.mode is Mode.BREAKPOINT:
             self._pause_at(hook)
         with self._lock:
-            if not hook.enabled:
+            if not hook.enabled or self._closing:
                 return SKIPPED
             if hook.once:
                 hook.enabled = False
