@@ -61,7 +61,8 @@ MAX_MESSAGE = 1 << 16
 """Bytes; ZeroMQ drops a peer whose message is larger."""
 FRESH_WAIT = 0.5
 """Seconds a blackboard request waits for the next tick to bring a snapshot."""
-POLL_MS = 20
+POLL_MS = 100
+"""How long the server thread sleeps between looks at closing, heartbeat and notifications."""
 RECORDING_LIMIT = 1000
 """Transitions kept between two ``t`` requests (the newest, as BT.CPP)."""
 
