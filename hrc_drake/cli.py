@@ -13,13 +13,15 @@ from pathlib import Path
 from hrc_drake.yaml_check import InputError
 
 EXIT_USAGE = 2
+PROG = "hrc-drake"
 
 
 class _Parser(argparse.ArgumentParser):
     """argparse, but a usage error is one line (no usage dump) and exit status 2."""
 
     def error(self, message):
-        raise InputError(f"{self.prog}: {message}")
+        command = self.prog.removeprefix(PROG).strip()
+        raise InputError(f"{command}: {message}" if command else message)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -31,8 +33,7 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
         return args.command(args)
     except InputError as e:
-        for line in str(e).splitlines():
-            print(f"hrc-drake: error: {line}", file=sys.stderr)
+        print(f"{PROG}: error: {' '.join(str(e).split())}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         print("hrc-drake: interrupted", file=sys.stderr)
@@ -40,14 +41,19 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _make_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="hrc-drake", description=__doc__.splitlines()[0])
+    parser = _Parser(prog=PROG, description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(required=True, metavar="COMMAND", parser_class=_Parser)
 
     run = commands.add_parser("run", help="simulate a scenario and write its run directory")
     run.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
     run.add_argument("--seed", type=int, help="random seed (default: the scenario's)")
-    run.add_argument("--duration", type=_positive_float, help="simulated seconds")
-    run.add_argument("--out", type=Path, help="run directory (default: runs/<scenario>-seed<N>)")
+    run.add_argument("--duration", type=float, help="simulated seconds")
+    run.add_argument(
+        "--out",
+        type=Path,
+        help="run directory, new or empty (default: runs/<scenario>-seed<N>, or -2, -3... "
+        "if that holds an earlier run)",
+    )
     run.add_argument(
         "--meshcat", action="store_true", help="show the run live in Meshcat, at real time"
     )
@@ -118,61 +124,73 @@ def _positive_int(text: str) -> int:
     return value
 
 
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
-    return value
-
-
 def _load(name_or_path: str):
-    """The scenario, with its trees checked against the node library and its places."""
-    from hrc_drake.agent_trees import tree_errors
+    """The scenario, checked (its trees too) against everything `validate` knows."""
     from hrc_drake.scenario import load_scenario
 
-    scenario = load_scenario(name_or_path)
-    errors = tree_errors(scenario)
-    if errors:
-        raise InputError("\n".join(str(error) for error in errors))
-    return scenario
+    return load_scenario(name_or_path)
 
 
 def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
-    from hrc_drake.runner import run
-    from hrc_drake.scenario import Scenario
-    from hrc_drake.sweep.overrides import apply, parse_sets
+    from hrc_drake.runner import RunStopped, run
+    from hrc_drake.scenario import Scenario, load_scenario
+    from hrc_drake.sweep.overrides import parse_sets
 
     axes = parse_sets(args.set, Scenario)
     if any(len(values) > 1 for _, values in axes):
         raise InputError("run: --set takes one value per field (use sweep for grids)")
-    scenario = apply(_load(args.scenario), tuple((path, values[0]) for path, values in axes))
-    seed = scenario.seed if args.seed is None else args.seed
-    out = args.out or Path("runs") / f"{scenario.name}-seed{seed}"
+    overrides = [(path, values[0]) for path, values in axes]
+    options = {}
+    for name in ("seed", "duration"):  # checked like the scenario's own fields
+        if getattr(args, name) is not None:
+            overrides.append((name, getattr(args, name)))
+            options[name] = f"--{name} {getattr(args, name)}"
+    scenario = load_scenario(args.scenario, tuple(overrides), options)
+    out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
     meshcat = Meshcat() if args.meshcat else None
     if meshcat is not None:
         print(f"Meshcat: {meshcat.web_url()}")
-    report = run(
-        scenario,
-        seed=seed,
-        duration=args.duration,
-        out_dir=out,
-        meshcat=meshcat,
-        progress=True,
-        realtime_rate=1.0 if args.meshcat else 0.0,
-    )
+    try:
+        report = run(
+            scenario,
+            out_dir=out,
+            meshcat=meshcat,
+            progress=True,
+            realtime_rate=1.0 if args.meshcat else 0.0,
+        )
+    except RunStopped as stopped:
+        _print_node_failures(stopped.report.metrics)
+        raise
     print(
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
     )
     for line in key_metrics(report.metrics):
         print(f"  {line}")
+    _print_node_failures(report.metrics)
     _print_files(report.files)
     return 0
+
+
+def _fresh_directory(path: Path) -> Path:
+    """`path`, or `path-2`, `path-3`... : the first that is missing or empty."""
+    candidate, n = path, 1
+    while candidate.is_dir() and any(candidate.iterdir()) or candidate.is_file():
+        n += 1
+        candidate = path.with_name(f"{path.name}-{n}")
+    return candidate
+
+
+def _print_node_failures(metrics: dict) -> None:
+    from hrc_drake.evaluation.metrics import node_failures
+
+    failures = node_failures(metrics.get("bt", {}))
+    if failures:
+        print("  tree nodes that failed:")
+    for line in failures:
+        print(f"    {line}")
 
 
 def _sweep(args) -> int:
