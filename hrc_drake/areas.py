@@ -62,7 +62,9 @@ def _in_triangle(p: np.ndarray, tri: np.ndarray, eps: float = 1e-12) -> bool:
 def triangulate(polygon: np.ndarray) -> list[np.ndarray]:
     """Ear-clipping triangulation of a simple polygon (n >= 3 vertices, no self-crossing)."""
     if polygon.ndim != 2 or polygon.shape[1] != 2:
-        raise ValueError("every point needs exactly two coordinates [x, y] (areas lie on the floor)")
+        raise ValueError(
+            "every point needs exactly two coordinates [x, y] (areas lie on the floor)"
+        )
     if len(polygon) < 3:
         raise ValueError(f"a polygon needs at least 3 points, got {len(polygon)}")
     crossing = _crossing_edges(polygon)

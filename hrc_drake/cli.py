@@ -5,7 +5,6 @@ nothing the run already wrote is removed.
 """
 
 import argparse
-import logging
 import os
 import sys
 from pathlib import Path
@@ -25,9 +24,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
-    import pydrake.common  # noqa: F401  (it sets the "drake" logger's level on import)
+    from hrc_drake.sweep.execute import quiet_drake
 
-    logging.getLogger("drake").setLevel(logging.WARNING)  # keep the output to what we print
+    quiet_drake()  # keep the output to what we print
     parser = _make_parser()
     try:
         args = parser.parse_args(argv)
@@ -68,7 +67,12 @@ def _make_parser() -> argparse.ArgumentParser:
         "--workers", type=_positive_int, default=os.cpu_count(), help="local worker processes"
     )
     sweep.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
-    sweep.add_argument("--out", type=Path, help="sweep directory (default: sweeps/<scenario>)")
+    sweep.add_argument(
+        "--out", type=Path, help="sweep directory, new or an earlier sweep's (sweeps/<scenario>)"
+    )
+    sweep.add_argument(
+        "--retry-failed", action="store_true", help="run the failed runs of an earlier sweep again"
+    )
     sweep.set_defaults(command=_sweep)
 
     diagram = commands.add_parser("diagram", help="export the scenario's system diagram")
@@ -122,13 +126,6 @@ def _positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
     return value
-
-
-def _load(name_or_path: str):
-    """The scenario, checked (its trees too) against everything `validate` knows."""
-    from hrc_drake.scenario import load_scenario
-
-    return load_scenario(name_or_path)
 
 
 def _run(args) -> int:
@@ -194,13 +191,23 @@ def _print_node_failures(metrics: dict) -> None:
 
 
 def _sweep(args) -> int:
-    from hrc_drake.scenario import resolve_scenario_path
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
     from hrc_drake.sweep import parse_seeds, plan, sweep
 
-    scenario = _load(args.scenario)
+    scenario = load_scenario(args.scenario)
     specs = plan(resolve_scenario_path(args.scenario), parse_seeds(args.seeds), args.set)
     out = args.out or Path("sweeps") / scenario.name
-    result = sweep(specs, out, args.workers, args.dask, progress=True, scenario_name=scenario.name)
+    result = sweep(
+        specs,
+        out,
+        args.workers,
+        args.dask,
+        progress=True,
+        scenario_name=scenario.name,
+        retry_failed=args.retry_failed,
+    )
+    for warning in result.warnings:
+        print(f"{PROG}: warning: {warning}", file=sys.stderr)
     print(
         f"{scenario.name}: {len(result.rows)} runs ({result.skipped} already done, "
         f"{len(result.failed)} failed)"
@@ -236,19 +243,32 @@ def _print_files(files: dict[str, Path]) -> None:
 
 def _diagram(args) -> int:
     from hrc_drake.builder import build_diagram
-    from hrc_drake.diagram_export import FORMATS, write_diagram
+    from hrc_drake.diagram_export import write_diagram
+    from hrc_drake.scenario import load_scenario
 
-    if args.output.suffix.lstrip(".").lower() not in FORMATS:
-        raise InputError(f"{args.output}: use a .svg, .png or .dot file name")
-    write_diagram(build_diagram(_load(args.scenario)), args.output)
+    _check_output(args.output, "-o", (".svg", ".png", ".dot"))
+    write_diagram(build_diagram(load_scenario(args.scenario)), args.output)
     print(args.output)
     return 0
 
 
+def _check_output(path: Path, option: str, suffixes: tuple[str, ...]) -> None:
+    """An output file the command can write, checked before any work is done."""
+    if suffixes and path.suffix.lower() not in suffixes:
+        raise InputError(f"{option} {path}: use a {', '.join(suffixes)} file name")
+    if path.is_dir():
+        raise InputError(f"{option} {path}: is a directory; give a file name")
+    if not path.parent.is_dir():
+        raise InputError(f"{option} {path}: directory '{path.parent}' does not exist")
+    if not os.access(path.parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise InputError(f"{option} {path}: cannot write there: permission denied")
+
+
 def _validate(args) -> int:
     from hrc_drake.builder import build_diagram
+    from hrc_drake.scenario import load_scenario
 
-    scenario = _load(args.scenario)
+    scenario = load_scenario(args.scenario)
     build_diagram(scenario)
     trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
     print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
@@ -259,16 +279,16 @@ def _tree(args) -> int:
     from hrc_drake.agent_trees import load_agent_tree
     from hrc_drake.bt import BTError, load_tree, render_tree
     from hrc_drake.nodes import hrc_registry
+    from hrc_drake.scenario import load_scenario
 
-    if args.output.suffix.lstrip(".").lower() not in ("svg", "png", "dot"):
-        raise InputError(f"{args.output}: use a .svg, .png or .dot file name")
+    _check_output(args.output, "-o", (".svg", ".png", ".dot"))
     if args.source.endswith(".xml"):
         try:
             tree = load_tree(Path(args.source), hrc_registry(), tree_id=args.tree_id)
-        except (BTError, OSError) as error:
+        except BTError as error:
             raise InputError(str(error)) from None
     else:
-        scenario = _load(args.source)
+        scenario = load_scenario(args.source)
         if args.agent not in scenario.trees:
             known = ", ".join(scenario.trees) or "none"
             raise InputError(f"{args.source}: give --agent, one of: {known}")
@@ -308,6 +328,7 @@ def _list_nodes(xml_file: str | None) -> int:
     elif xml_file == "-":
         print(tree_nodes_model_xml(registry))
     else:
+        _check_output(Path(xml_file), "--xml", ())
         Path(xml_file).write_text(tree_nodes_model_xml(registry) + "\n")
         print(xml_file)
     return 0

@@ -215,7 +215,7 @@ def within(low: float, high: float, unit: str = "", why: str = "") -> Rule:
         if low <= value <= high:
             return ""
         reason = f" ({why})" if why else ""
-        return f"must lie within {low:g}..{high:g}{unit}, got {value}{reason}"
+        return f"must lie within {low}..{high}{unit}, got {value}{reason}"
 
     return rule
 

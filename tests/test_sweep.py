@@ -26,8 +26,8 @@ def metrics_as_stored(metrics: dict) -> dict:
 
 
 def test_seed_ranges_and_lists():
-    assert parse_seeds("0:4") == [0, 1, 2, 3]
-    assert parse_seeds("0:2,7,1") == [0, 1, 7]
+    assert list(parse_seeds("0:4")) == [0, 1, 2, 3]
+    assert list(parse_seeds("0:2,7,1")) == [0, 1, 7]
     with pytest.raises(InputError, match="--seeds x"):
         parse_seeds("x")
 
