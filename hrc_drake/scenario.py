@@ -277,7 +277,7 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
 
 
 def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:
-    return (((name, *names), message) for names, message in found)
+    return ((None if names is None else (name, *names), message) for names, message in found)
 
 
 def _values_at(obj, pattern: list[str], names: tuple = ()) -> Iterator[tuple[tuple, object]]:
