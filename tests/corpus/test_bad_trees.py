@@ -76,7 +76,8 @@ CASES = {
     "entry of two types": Case(
         T,
         '<SetRobotVelocity velocity="{speed}"/>',
-        '<SetRobotVelocity velocity="{speed}"/><OffsetPose input="door" offset="0;0;0" output="{speed}"/>',
+        '<SetRobotVelocity velocity="{speed}"/>'
+        '<OffsetPose input="door" offset="0;0;0" output="{speed}"/>',
         ("blackboard entry 'speed' has type",),
         'output="{speed}"',
     ),
