@@ -45,7 +45,7 @@ def field_type(schema, path: str):
     """The type of the scalar field at dotted `path`; InputError naming the bad part."""
     kind = schema
     for depth, name in enumerate(path.split(".")):
-        fields = schema_fields(kind)
+        fields = schema_fields(_options(kind)[0])
         if fields is None:
             done = ".".join(path.split(".")[:depth])
             raise InputError(f"--set {path}: '{done}' has no fields")
@@ -75,7 +75,7 @@ def convert(path: str, kind, text: str):
 def apply(scenario, overrides: Overrides):
     """A copy of the scenario dataclass with the dotted fields replaced."""
     for path, value in overrides:
-        scenario = _replace(scenario, path.split("."), value)
+        scenario = _replace(scenario, path.split("."), value, path)
     return scenario
 
 
@@ -84,9 +84,11 @@ def label(overrides: Overrides) -> str:
     return " ".join(f"{path}={value}" for path, value in overrides)
 
 
-def _replace(obj, names: list[str], value):
+def _replace(obj, names: list[str], value, path: str):
     head, rest = names[0], names[1:]
-    new = _replace(getattr(obj, head), rest, value) if rest else value
+    if rest and getattr(obj, head) is None:
+        raise InputError(f"--set {path}: the scenario has no '{head}' section to change")
+    new = _replace(getattr(obj, head), rest, value, path) if rest else value
     return dataclasses.replace(obj, **{head: new})
 
 
