@@ -72,15 +72,6 @@ def test_two_workers_equal_runs_one_by_one(tmp_path):
         assert result.files[name].is_file()
 
 
-def test_failed_run_is_a_row_and_the_sweep_goes_on(tmp_path):
-    specs = plan(BASE, [0, 1], [*SHORT, "robot.variant=lbr_iisy3_r760,no_such_robot"])
-    result = sweep(specs, tmp_path, workers=2)
-    assert [row["status"] for row in result.rows] == ["ok", "ok", "failed", "failed"]
-    assert "no_such_robot" in result.rows[2]["error"]
-    summary = json.loads(result.files["summary"].read_text())
-    assert len(summary["failed"]) == 2
-
-
 def test_dask_cluster_gives_the_same_rows(tmp_path):
     from distributed import LocalCluster
 
