@@ -8,6 +8,7 @@ one Diagram. Every problem in a file is reported as one line naming file, line a
 import dataclasses
 import difflib
 import math
+import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -192,7 +193,11 @@ class _Where:
 
 
 def _first_line(error: Exception) -> str:
-    return next((line.strip() for line in str(error).splitlines() if line.strip()), repr(error))
+    """What Drake says, on one line: its first line, and what it was called with when
+    that line only announces a list of signatures (pybind's "incompatible arguments")."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()] or [repr(error)]
+    invoked = next((line for line in lines if line.startswith("Invoked with")), "")
+    return f"{lines[0]} {invoked}" if lines[0].endswith(":") and invoked else lines[0]
 
 
 Problem = tuple[tuple | None, str]
@@ -260,7 +265,7 @@ mapping). A new field with a range gets its line here; YAML and `--set` both mee
 def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     """Everything the schema cannot say, first problem first: finite numbers, the field
     rules above, then the sections' own checks. Tree files are made absolute on the way."""
-    yield from _non_finite(scenario, ())
+    yield from _value_problems(scenario, ())
     for pattern, rule in FIELD_RULES.items():
         for names, value in _values_at(scenario, pattern.split(".")):
             if value is not None and (problem := rule(value)):
@@ -294,22 +299,25 @@ def _values_at(obj, pattern: list[str], names: tuple = ()) -> Iterator[tuple[tup
         yield from _values_at(getattr(obj, head), rest, (*names, head))
 
 
-def _non_finite(value, names: tuple) -> Iterator[Problem]:
-    """Every number in the scenario is finite: inf or nan would only fail deep in a run."""
+def _value_problems(value, names: tuple) -> Iterator[Problem]:
+    """Every number in the scenario is finite (inf or nan would only fail deep in a run)
+    and every pose fixed (Drake's random distributions are schema, not yet supported)."""
     if isinstance(value, float | np.floating):
         if not math.isfinite(value):
             yield names, f"must be a finite number, got {value}"
     elif isinstance(value, list | tuple | np.ndarray):
         for i, item in enumerate(value):
-            yield from _non_finite(item, (*names, i))
+            yield from _value_problems(item, (*names, i))
     elif isinstance(value, dict):
         for key, item in value.items():
-            yield from _non_finite(item, (*names, key))
+            yield from _value_problems(item, (*names, key))
+    elif isinstance(value, Transform) and not value.IsDeterministic():
+        yield names, "must be a fixed pose (random distributions are not supported here)"
     elif (fields := schema_fields(type(value))) is not None:
         for name in fields:
-            yield from _non_finite(getattr(value, name), (*names, name))
+            yield from _value_problems(getattr(value, name), (*names, name))
     elif isinstance(value, Rotation):
-        yield from _non_finite(value.value, names)
+        yield from _value_problems(value.value, names)
 
 
 def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
@@ -371,7 +379,17 @@ def _station_problems(scenario: Scenario) -> Iterator[Problem]:
         except Exception as e:  # Drake's parser: its first line says what is wrong
             _STATION_PROBLEMS[key] = _first_line(e)
     if _STATION_PROBLEMS[key]:
-        yield ("cell",), _STATION_PROBLEMS[key]
+        message = _STATION_PROBLEMS[key].split(" (valid names")[0]
+        yield _directive_naming(scenario.cell, message), message
+
+
+def _directive_naming(directives: list[ModelDirective], message: str) -> tuple:
+    """The first directive that holds a name Drake quotes in `message` (else the cell)."""
+    quoted = re.findall(r"'([^']+)'", message)
+    for i, directive in enumerate(directives):
+        if any(name in repr(directive) for name in quoted):
+            return ("cell", i)
+    return ("cell",)
 
 
 _STATION_PROBLEMS: dict[str, str] = {}

@@ -150,11 +150,16 @@ def _check_variant(filename, node, options, path):
         known = ", ".join(f"!{name}" for name in list(tagged)[1:] if not name.startswith("_"))
         raise located_error(filename, node, field_path(path), f"unknown tag '{tag}' ({known})")
     chosen = tagged[tag[1:]] if tag else options[0]
+    sizes = {int(m.group(1)) for t in options if (m := _VECTOR_SIZE.search(t.__name__))}
+    size = sizes.pop() if len(sizes) == 1 else None
     if chosen is np.ndarray:
-        sizes = {int(m.group(1)) for t in options if (m := _VECTOR_SIZE.search(t.__name__))}
-        _check_vector(filename, node, path, size=sizes.pop() if len(sizes) == 1 else None)
-    else:
-        check_node(filename, node, chosen, path)
+        _check_vector(filename, node, path, size)
+        return
+    check_node(filename, node, chosen, path)
+    fields = schema_fields(chosen) or {}
+    for key, value in node.value if size is not None else ():  # e.g. !UniformVector min, max
+        if fields[key.value] is np.ndarray:
+            _check_vector(filename, value, (*path, key.value), size)
 
 
 def _check_any_scalar(filename, node, options, path):
@@ -212,6 +217,8 @@ def _check_scalar(filename, node, schema, path):
     if not isinstance(node, yaml.ScalarNode):
         raise located_error(filename, node, name, f"expected a single {schema.__name__} value")
     value = node.value
+    if schema is str and not node.tag.endswith(":str"):
+        raise located_error(filename, node, name, f"'{value}' is not text: put it in quotes")
     try:
         if schema is bool and value.lower() not in _BOOL_WORDS:
             raise ValueError

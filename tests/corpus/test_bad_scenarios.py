@@ -205,6 +205,27 @@ CASES = {
         ("locations.door.rotation.yaw: unknown field",),
         "yaw: 1",
     ),
+    "random location": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: !UniformVector {min: [0, 0, 0], max: [0, 0, 90]}",
+        ("locations.door: must be a fixed pose",),
+        "  door:",
+    ),
+    "random vector of two": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: !UniformVector {min: [0, 0], max: [0, 0, 90]}",
+        ("locations.door.rotation.deg.min: needs 3 numbers, got 2",),
+        "UniformVector",
+    ),
+    "unknown vector tag": Case(
+        S,
+        "translation: [2.0, 3.0, 0.0]",
+        "translation: !Vector [2.0, 3.0, 0.0]",
+        ("locations.door.translation: unknown tag '!Vector' (!DeterministicVector, ",),
+        "!Vector",
+    ),
     # --- names the scenario refers to ---
     "unknown variant": Case(
         S,
@@ -254,6 +275,16 @@ CASES = {
         'speed: "fast"',
         ("parameters.speed: a tree cannot read it: cannot convert 'fast'",),
         "fast",
+    ),
+    "parameter not quoted": Case(
+        S,
+        'speed: "0.5"',
+        "speed: 0.5",
+        ("parameters.speed: '0.5' is not text: put it in quotes",),
+        "speed: 0.5",
+    ),
+    "name as a number": Case(
+        S, "name: corpus", "name: 42", ("name: '42' is not text: put it in quotes",), "name: 42"
     ),
     "parameter as mapping": Case(
         S,
@@ -348,8 +379,15 @@ CASES = {
         S,
         "child: floor::body",
         "child: floor::nobody",
-        ("cell: ", "no Frame named 'nobody'"),
-        "- add_model: {name: floor",
+        ("cell[1]: GetFrameByName(): There is no Frame named 'nobody' anywhere in the model",),
+        "floor::nobody",
+    ),
+    "random weld pose": Case(
+        S,
+        "X_PC: {translation: [0.0, 0.7, 0.0]}",
+        "X_PC: {translation: !UniformVector {min: [0, 0, 0], max: [1, 1, 0]}}",
+        ("cell[3].add_weld.X_PC: must be a fixed pose",),
+        "X_PC",
     ),
     "model name used twice": Case(
         S,
