@@ -13,6 +13,8 @@ from hrc_drake.yaml_check import InputError
 
 EXIT_USAGE = 2
 PROG = "hrc-drake"
+MAX_WORKERS = 4 * (os.cpu_count() or 1)
+"""More local workers than this only share the cores and exhaust the memory."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -64,7 +66,10 @@ def _make_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
     _add_set_option(sweep)
     sweep.add_argument(
-        "--workers", type=_positive_int, default=os.cpu_count(), help="local worker processes"
+        "--workers",
+        type=_worker_count,
+        default=os.cpu_count(),
+        help=f"local worker processes (at most {MAX_WORKERS}: each holds a whole simulation)",
     )
     sweep.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
     sweep.add_argument(
@@ -118,13 +123,13 @@ def _add_set_option(parser) -> None:
     )
 
 
-def _positive_int(text: str) -> int:
+def _worker_count(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
+    if not 1 <= value <= MAX_WORKERS:
+        raise argparse.ArgumentTypeError(f"must lie within 1..{MAX_WORKERS}, got {text}")
     return value
 
 

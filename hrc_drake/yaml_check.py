@@ -227,4 +227,9 @@ def _check_scalar(filename, node, schema, path):
         if schema is float and value.lower().lstrip("+-") not in (".inf", ".nan"):
             float(value)  # YAML's .inf and .nan are floats: the value checks refuse them
     except ValueError:
-        raise located_error(filename, node, name, f"'{value}' is not a {schema.__name__}") from None
+        raise located_error(filename, node, name, f"'{value}' is not {a_kind(schema)}") from None
+
+
+def a_kind(schema) -> str:
+    """`a float`, `an int`: how messages name a scalar type."""
+    return f"{'an' if schema.__name__[0] in 'aeiou' else 'a'} {schema.__name__}"

@@ -5,6 +5,7 @@ a typo is one clear line (InputError) before any run starts. Several values make
 axis; several `--set` options make the Cartesian product.
 """
 
+import contextlib
 import dataclasses
 import difflib
 import itertools
@@ -13,7 +14,7 @@ import typing
 
 import yaml
 
-from hrc_drake.yaml_check import InputError, schema_fields
+from hrc_drake.yaml_check import InputError, a_kind, schema_fields
 
 SCALARS = (bool, int, float, str)
 Overrides = tuple[tuple[str, typing.Any], ...]
@@ -65,10 +66,13 @@ def convert(path: str, kind, text: str):
         return None
     scalar = _scalar(kind)
     value = yaml.safe_load(text) if scalar is not str else text
+    if scalar is float and isinstance(value, str):
+        with contextlib.suppress(ValueError):  # 1e3 is text to YAML 1.1, a number to people
+            value = float(value)
     if scalar is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if not isinstance(value, scalar) or (scalar is int and isinstance(value, bool)):
-        raise InputError(f"--set {path}: '{text}' is not a {scalar.__name__}")
+        raise InputError(f"--set {path}: '{text}' is not {a_kind(scalar)}")
     return value
 
 

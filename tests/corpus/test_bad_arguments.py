@@ -81,6 +81,14 @@ CASES = {
         ("run", "{s}", "--set", "cell=1"),
         ("--set cell: only number, boolean and text fields can be set",),
     ),
+    "set a number in scientific notation": (
+        ("run", "{s}", "--set", "duration=-1e3"),
+        ("--set duration=-1000.0: must be positive",),
+    ),
+    "set text for a number": (
+        ("run", "{s}", "--set", "duration=1e3x"),
+        ("--set duration: '1e3x' is not a float",),
+    ),
     "set a grid in run": (
         ("run", "{s}", "--set", "duration=1,2"),
         ("run: --set takes one value per field",),
@@ -178,7 +186,23 @@ CASES = {
     ),
     "sweep zero workers": (
         ("sweep", "{s}", "--workers", "0"),
-        ("sweep: argument --workers: must be at least 1, got 0",),
+        ("sweep: argument --workers: must lie within 1..",),
+    ),
+    "sweep too many workers": (
+        ("sweep", "{s}", "--workers", "100000"),
+        ("sweep: argument --workers: must lie within 1..", "got 100000"),
+    ),
+    "sweep workers not a number": (
+        ("sweep", "{s}", "--workers", "two"),
+        ("sweep: argument --workers: 'two' is not a whole number",),
+    ),
+    "sweep seeds with an empty part": (
+        ("sweep", "{s}", "--seeds", "1,,2"),
+        ("--seeds 1,,2: expected START:STOP, N or a comma list",),
+    ),
+    "sweep seeds beyond the largest": (
+        ("sweep", "{s}", "--seeds", "0:99999999999999999999999"),
+        ("--seeds 0:99999999999999999999999: seeds lie within 0..",),
     ),
     "sweep sets the seed": (
         ("sweep", "{s}", "--set", "seed=1"),

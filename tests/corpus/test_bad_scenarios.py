@@ -103,7 +103,7 @@ CASES = {
     "seed too large": Case(
         S, "seed: 0", "seed: 99999999999999999999999", ("seed: must lie within",), "seed"
     ),
-    "seed fraction": Case(S, "seed: 0", "seed: 1.5", ("seed: '1.5' is not a int",), "seed"),
+    "seed fraction": Case(S, "seed: 0", "seed: 1.5", ("seed: '1.5' is not an int",), "seed"),
     "update_period zero": Case(
         S,
         "update_period: 0.01",
