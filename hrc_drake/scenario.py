@@ -158,12 +158,13 @@ def load_scenario(
     the user gave a field (e.g. {"seed": "--seed -1"}), default `--set field=value`.
     """
     path = resolve_scenario_path(str(name_or_path))
-    root = compose(path, read_text(path, "scenario file"))
+    text = read_text(path, "scenario file")
+    root = compose(path, text)
     if root is None:
         raise InputError(f"{path}: the file is empty")
     check_node(path, root, Scenario)
     try:
-        scenario = yaml_load_typed(schema=Scenario, data=path.read_text())
+        scenario = yaml_load_typed(schema=Scenario, data=text)
     except Exception as e:  # Drake's reader; check_node catches the common cases first.
         raise located_error(path, root, "<document>", _first_line(e)) from None
     scenario = apply(scenario, overrides)
