@@ -9,6 +9,7 @@ import os
 import sys
 from pathlib import Path
 
+from hrc_drake.drake_logging import quiet_drake_logging
 from hrc_drake.yaml_check import InputError
 
 EXIT_USAGE = 2
@@ -26,9 +27,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
-    from hrc_drake.sweep.execute import quiet_drake
-
-    quiet_drake()  # keep the output to what we print
+    quiet_drake_logging()
     parser = _make_parser()
     try:
         args = parser.parse_args(argv)

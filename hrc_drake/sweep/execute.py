@@ -10,7 +10,6 @@ main process (Linux: the kernel kills them; elsewhere they notice within a secon
 """
 
 import contextlib
-import logging
 import os
 import re
 import signal
@@ -39,17 +38,14 @@ DASK_IN_FLIGHT = 64
 PR_SET_PDEATHSIG = 1
 
 
-def quiet_drake() -> None:
-    """Drake logs at INFO once imported; a sweep shows only its own progress."""
-    import pydrake.common  # noqa: F401  (it sets the "drake" logger's level on import)
-
-    logging.getLogger("drake").setLevel(logging.WARNING)
-
-
-def limit_threads() -> None:
-    """One compute thread per worker process (set before Drake and numpy start theirs)."""
+def prepare_worker() -> None:
+    """One compute thread per worker process (set before Drake and numpy start theirs), and
+    Drake's logging as quiet as in the CLI."""
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
+    from hrc_drake.drake_logging import quiet_drake_logging
+
+    quiet_drake_logging()
 
 
 @lru_cache(maxsize=4)
@@ -152,8 +148,7 @@ class _Worker:
 def _serve(connection, parent: int) -> None:
     """A worker's life: runs until told to stop, its parent dies, or Ctrl-C."""
     _die_with(parent)
-    limit_threads()
-    quiet_drake()
+    prepare_worker()
     try:
         while (spec := connection.recv()) is not None:
             connection.send(run_spec(spec))
@@ -194,7 +189,7 @@ def connect_dask(address: str):
     except (OSError, TimeoutError, ValueError) as e:
         reason = " ".join(str(e).split()) or type(e).__name__
         raise InputError(f"--dask {address}: no Dask scheduler answered ({reason})") from None
-    client.run(limit_threads)
+    client.run(prepare_worker)
     return client
 
 
