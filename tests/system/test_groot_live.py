@@ -236,6 +236,16 @@ def test_a_port_in_use_stops_the_run_before_it_starts(tmp_path, free_ports):
     assert not any((tmp_path / "run").iterdir()), "nothing written"
 
 
+def test_a_port_out_of_range_is_one_line(tmp_path):
+    process = hrc_drake_run(tmp_path / "run", "--groot", 65535)
+    out, errors = process.communicate(timeout=120)
+    assert process.returncode == 2
+    assert errors.strip().splitlines() == [
+        "hrc-drake: error: run: argument --groot: port 65535 is out of range (1 to 65534: "
+        "it uses two)"
+    ]
+
+
 def test_a_breakpoint_holds_the_simulation_until_unlocked(groot, free_ports):
     diagram = build_diagram(load_scenario("getting_started"))
     simulator = Simulator(diagram)
