@@ -16,6 +16,7 @@ import os
 import subprocess
 import sys
 import threading
+import time
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
@@ -266,3 +267,27 @@ def test_a_breakpoint_holds_the_simulation_until_unlocked(groot, free_ports):
         )
         thread.join(120)
         assert not thread.is_alive() and simulator.get_context().get_time() == 3.0
+
+
+def test_a_paced_run_keeps_its_pace_after_a_breakpoint(groot, free_ports):
+    """Drake would run flat out to make up the pause; keep_pace paces on from the unlock."""
+    rate, end = 0.25, 0.5
+    diagram = build_diagram(load_scenario("getting_started"))
+    simulator = Simulator(diagram)
+    simulator.set_target_realtime_rate(rate)
+    with serve_groot(diagram, free_ports(4)) as servers:
+        servers.keep_pace(simulator)
+        robot = servers.servers["robot"]
+        client = groot(robot.port)
+        move = robot.tree.node("RobotMove").uid
+        client.insert_hook(move, once=True)
+        thread = threading.Thread(target=simulator.AdvanceTo, args=(end,), daemon=True)
+        thread.start()
+        client.notifications.recv_multipart()
+        held_at = simulator.get_context().get_time()
+        thread.join(1.5)  # the pause, in wall time
+        unlock = {"uid": move, "position": 0, "desired_status": "SKIPPED", "remove_when_done": True}
+        client.request("U", unlock)
+        start = time.monotonic()
+        thread.join(60)
+        assert time.monotonic() - start >= 0.9 * (end - held_at) / rate
