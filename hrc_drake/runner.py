@@ -38,6 +38,7 @@ from hrc_drake.evaluation.metrics import (
     task_metrics,
     utilisation_metrics,
 )
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
@@ -169,6 +170,7 @@ class _RunOutputs:
     events: list
     states: dict[str, list[tuple[float, str]]]
     bt_statistics: dict | None
+    realism: object | None
 
     @classmethod
     def collect(cls, station, scenario, context, signals_log, states_log) -> "_RunOutputs":
@@ -185,6 +187,7 @@ class _RunOutputs:
             status=_final(station, station_context, "safety_status"),
             events=sorted(events, key=lambda e: (e.time, e.agent)),
             states=states_log.changes(),
+            realism=_final(station, station_context, "realism"),
             bt_statistics={
                 agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
                 for agent in scenario.trees
@@ -204,6 +207,7 @@ class _RunOutputs:
             "person": person_metrics(self.times, self.signals) if measured else {},
             "tasks": task_metrics(self.events, scenario.duration),
             "bt": bt_metrics(self.bt_statistics),
+            "realism": realism_metrics(self.realism),
         }
 
     def write_figures(self, out: Path, files: dict[str, Path]) -> None:
