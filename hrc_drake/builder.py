@@ -28,6 +28,7 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.evaluation.replay import dress_scene
 from hrc_drake.human.builder import add_human
+from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.iisy import TCP_FRAME
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
 from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
@@ -130,6 +131,7 @@ def _add_person(builder, scene_graph, scenario):
         name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
         issuers=tuple(tree_issuer(agent) for agent in AGENTS),
+        clips=clip_catalog(scenario.human.clips),
     )
     return human, human_plant
 

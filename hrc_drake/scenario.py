@@ -18,6 +18,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import ModelDirective, PackageMap
 
 from hrc_drake.areas import Area
+from hrc_drake.human.clip_files import read_clip_file
 from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
@@ -82,6 +83,9 @@ class HumanConfig:
     height: float = 1.75
     mass: float = 75.0
     start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
+    clips: list[str] = field(default_factory=list)
+    """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
+    which trees play by their file names."""
 
 
 @dataclass
@@ -178,7 +182,7 @@ def _check_meaning(path: Path, root, scenario: Scenario) -> None:
     for names, message in problems(scenario.workpieces):
         fail(("workpieces", *names), message)
     if scenario.human is not None:
-        _check_human(scenario.human, lambda names, msg: fail(("human", *names), msg))
+        _check_human(scenario.human, path.parent, lambda names, msg: fail(("human", *names), msg))
     _resolve_tree_files(
         path.parent, scenario.trees, lambda names, msg: fail(("trees", *names), msg)
     )
@@ -218,7 +222,7 @@ def _check_robot(robot: RobotConfig, fail) -> None:
         )
 
 
-def _check_human(human: HumanConfig, fail) -> None:
+def _check_human(human: HumanConfig, directory: Path, fail) -> None:
     low, high = HEIGHT_RANGE
     if not low <= human.height <= high:
         fail(("height",), f"must lie within {low}..{high} m, got {human.height}")
@@ -226,6 +230,13 @@ def _check_human(human: HumanConfig, fail) -> None:
         fail(("mass",), f"must be positive, got {human.mass}")
     if len(human.start) != 3:
         fail(("start",), "needs [x, y, yaw_deg]")
+    for i, clip in enumerate(human.clips):
+        file = (directory / clip).resolve()
+        try:
+            read_clip_file(file)
+        except InputError as error:
+            fail(("clips", i), str(error))
+        human.clips[i] = str(file)
 
 
 def _check_model_files(directives: list[ModelDirective], fail) -> None:

@@ -47,6 +47,7 @@ def add_human(
     start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
     dynamic_plant: MultibodyPlant | None = None,
     issuers: tuple[str, ...] = ("human",),
+    clips: dict[str, Clip] | None = None,
 ) -> tuple[HumanActor, MultibodyPlant]:
     """Add a person: returns the HumanActor and the person's kinematic plant.
 
@@ -54,7 +55,7 @@ def add_human(
     diagram: it is never stepped. Its geometry is collision-filtered against itself and
     against every collision geometry `dynamic_plant` has at this point (add the person after
     the dynamic plant's models). Connect each issuer's commands to the actor's
-    `<issuer>_command` input (default: `human_command`).
+    `<issuer>_command` input (default: `human_command`). `clips` default to the built-in ones.
     """
     plant = MultibodyPlant(0.0)
     plant.set_name(f"{name}_plant")  # names its geometry source in SceneGraph
@@ -63,7 +64,7 @@ def add_human(
     plant.Finalize()
     body = human_body(height, mass)
     actor = builder.AddSystem(
-        HumanActor(body, scaled_clips(load_clips(), height), start_pose, issuers=issuers)
+        HumanActor(body, scaled_clips(clips or load_clips(), height), start_pose, issuers=issuers)
     )
     actor.set_name(f"{name}_actor")
     to_pose = builder.AddSystem(MultibodyPositionToGeometryPose(plant))
