@@ -1,9 +1,9 @@
 """Named floor areas: 2-D polygons kept as triangles, for containment tests and sampling.
 
-The original system described an area as a list of triangles and sampled it by picking a
-triangle with probability proportional to its area, then a uniform point inside it. We keep
-that representation and triangulate user polygons (ear clipping) into it.
-"""
+The thesis system this project re-creates (docs/thesis-system.md) described an area as a list of
+triangles and sampled it by picking a triangle with probability proportional to its area, then a
+uniform point inside it. We keep that representation and triangulate user polygons (ear clipping)
+into it."""
 
 from dataclasses import dataclass
 

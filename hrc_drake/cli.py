@@ -5,11 +5,11 @@ nothing the run already wrote is removed.
 """
 
 import argparse
-import logging
 import os
 import sys
 from pathlib import Path
 
+from hrc_drake.drake_logging import quiet_drake_logging
 from hrc_drake.yaml_check import InputError
 
 EXIT_USAGE = 2
@@ -23,9 +23,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def main(argv: list[str] | None = None) -> int:
-    import pydrake.common  # noqa: F401  (it sets the "drake" logger's level on import)
-
-    logging.getLogger("drake").setLevel(logging.WARNING)  # keep the output to what we print
+    quiet_drake_logging()
     parser = _make_parser()
     try:
         args = parser.parse_args(argv)

@@ -20,7 +20,6 @@ from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
-from pydrake.common.value import AbstractValue
 from pydrake.geometry import Meshcat
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
@@ -41,6 +40,7 @@ from hrc_drake.evaluation.metrics import (
 from hrc_drake.evaluation.replay import write_replay
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
+from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import Scenario
 
@@ -167,7 +167,7 @@ class _StateChanges(LeafSystem):
     def __init__(self, fields: dict[str, str], period: float):
         super().__init__()
         self._inputs = {
-            actor: (self.DeclareAbstractInputPort(actor, AbstractValue.Make(None)), attribute)
+            actor: (self.DeclareAbstractInputPort(actor, message_value()), attribute)
             for actor, attribute in fields.items()
         }
         self._changes: dict[str, list[tuple[float, str]]] = {}

@@ -211,7 +211,8 @@ def _check_robot(robot: RobotConfig, fail) -> None:
     for name, q in robot.configurations_deg.items():
         if len(q) != joints:
             fail(("configurations_deg", name), f"needs {joints} joint angles, got {len(q)}")
-    for name in ("update_period", "planning_time_budget", "tool_speed_limit", "person_radius"):
+    positive = ("update_period", "ik_attempts", "search_nodes", "tool_speed_limit", "person_radius")
+    for name in positive:
         if not getattr(robot.motion, name) > 0:
             fail(("motion", name), f"must be positive, got {getattr(robot.motion, name)}")
     known = {"home", *robot.configurations_deg}

@@ -19,7 +19,7 @@ from hrc_drake.human.body import HumanBody, human_body
 from hrc_drake.human.clip import Clip, load_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 
 UPDATE_PERIOD = 1.0 / 60.0
 REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
@@ -46,7 +46,7 @@ class HumanActor(LeafSystem):
         self._ctx = Context(body or human_body(), clips or load_clips())
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
         self._commands = {
-            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))
+            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", message_value())
             for issuer in issuers
         }
         self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))

@@ -27,7 +27,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import GeometryId, QueryObject
 from pydrake.systems.framework import EventStatus, LeafSystem
 
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import Part, body_parts, human_parts
 from hrc_drake.safety.judge import Judge
@@ -70,10 +70,8 @@ class SafetyMonitor(LeafSystem):
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
-        self._workpieces = self.DeclareAbstractInputPort(
-            "workpieces_status", AbstractValue.Make(object())
-        )
-        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(object()))
+        self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
+        self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self._scale = self.DeclareDiscreteState(np.ones(1))
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))

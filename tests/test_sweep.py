@@ -125,3 +125,11 @@ def test_cli_rejects_unknown_field_with_exit_2(capsys):
 
 def _lines(path) -> int:
     return len(path.read_text().splitlines()) if path.is_file() else 0
+
+
+def test_sweep_workers_print_none_of_drakes_info_messages(tmp_path):
+    command = [sys.executable, "-m", "hrc_drake.cli", "sweep", "base", "--seeds", "0:2"]
+    command += ["--set", "duration=0.2", "--workers", "2", "--out", str(tmp_path)]
+    done = subprocess.run(command, capture_output=True, text=True, check=True)
+    assert "2 runs" in done.stdout or "0 failed" in done.stdout, done.stdout
+    assert "drake" not in done.stderr.lower(), done.stderr

@@ -240,7 +240,7 @@ GAIT_KEYS = {
         (94, 1),
     ),
 }
-"""Sagittal angles (degrees) at % of the gait cycle from heel strike (facts/human.md)."""
+"""Sagittal angles (degrees) at % of the gait cycle from heel strike (docs/human-body.md)."""
 
 
 def periodic_curve(keys, phase: np.ndarray) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Person nodes: the original's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
+"""Person nodes: the thesis system's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
 the targeted actions the scenarios need (pick, place, reach, hand over, carry).
 
 Targeted actions play a clip aimed at a point; at the clip's contact event (`grasp`,

@@ -23,10 +23,14 @@ THREAD_VARIABLES = (
 )
 
 
-def limit_threads() -> None:
-    """One compute thread per worker process (set before Drake and numpy start theirs)."""
+def prepare_worker() -> None:
+    """One compute thread per worker process (set before Drake and numpy start theirs), and
+    Drake's logging as quiet as in the CLI."""
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
+    from hrc_drake.drake_logging import quiet_drake_logging
+
+    quiet_drake_logging()
 
 
 @lru_cache(maxsize=4)
@@ -52,7 +56,7 @@ def run_spec(spec: RunSpec) -> dict:
 
 def run_in_pool(specs: Iterable[RunSpec], workers: int, on_row: Callable[[dict], None]) -> None:
     """Runs on `workers` local processes (spawned, so each starts clean)."""
-    pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"), initializer=limit_threads)
+    pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"), initializer=prepare_worker)
     try:
         futures = [pool.submit(run_spec, spec) for spec in specs]
         for future in as_completed(futures):
@@ -67,7 +71,7 @@ def run_on_dask(specs: Iterable[RunSpec], address: str, on_row: Callable[[dict],
     from distributed import as_completed as dask_completed
 
     with Client(address) as client:
-        client.run(limit_threads)
+        client.run(prepare_worker)
         futures = {client.submit(run_spec, spec, pure=False): spec for spec in specs}
         for future in dask_completed(futures):
             on_row(_dask_row(future, futures[future]))

@@ -147,12 +147,15 @@ class World:
         return self
 
 
-def holder_frames(tool: RigidTransform | None, hands: HandPoses | None) -> dict[str, Sampled]:
+def holder_frames(
+    tool: RigidTransform | None, hands: HandPoses | tuple | None
+) -> dict[str, Sampled]:
     """Grasp frame of every present holder; both hands hold at their midpoint, facing away
-    from the body (x), y from the right hand to the left, z up. The poses are copied: an
-    input port's value may be overwritten in place when it is evaluated again."""
+    from the body (x), y from the right hand to the left, z up. `hands` is empty or None
+    while the person has none. The poses are copied: an input port's value may be
+    overwritten in place when it is evaluated again."""
     frames = {} if tool is None else {ROBOT: (RigidTransform(tool), None)}
-    if hands is not None:
+    if hands:
         left, right = RigidTransform(hands.left), RigidTransform(hands.right)
         both = _between(left, right)
         frames |= {
