@@ -18,7 +18,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import QueryObject, Role
 from pydrake.systems.framework import LeafSystem
 
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.workpieces.messages import WorkpiecesStatus
 
@@ -67,12 +67,8 @@ class ReplayRecorder(LeafSystem):
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
-        self._safety = self.DeclareAbstractInputPort(
-            "safety_status", AbstractValue.Make(SafetyStatus())
-        )
-        self._workpieces = self.DeclareAbstractInputPort(
-            "workpieces_status", AbstractValue.Make(WorkpiecesStatus(0.0, (), {}, {}))
-        )
+        self._safety = self.DeclareAbstractInputPort("safety_status", message_value())
+        self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self.DeclarePeriodicPublishEvent(period, 0.0, self._sample)
 
     def _frame_paths(self, inspector) -> list[tuple[object, str]]:
