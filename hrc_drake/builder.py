@@ -3,8 +3,9 @@
 The station holds the dynamic plant (robot + tool + static cell) under its inverse-dynamics
 controller and RobotMotion; the kinematic person (HumanActor); the Workpieces; the
 SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a Meshcat
-visualizer. Each part is present when the scenario asks for it: no `human:` section, no
-person and no monitor; no workpiece types, no Workpieces; no `trees:`, no behavior trees.
+visualizer with the ReplayRecorder that replay.html is made from. Each part is present when
+the scenario asks for it: no `human:` section, no person and no monitor; no workpiece types,
+no Workpieces; no `trees:`, no behavior trees.
 
 Two SceneGraphs: the dynamic plant keeps its own for contact (robot and cell only), and
 the world scene, named `scene_graph`, holds a kinematic mirror of the robot and cell

@@ -86,9 +86,10 @@ class Track:
     interpolation: int | None = None
 
     def message(self) -> dict:
-        flat = self.values if isinstance(self.values, list) else _float32(self.values)
+        """The track as three.js's KeyframeTrack.parse reads it."""
+        values = self.values if isinstance(self.values, list) else _float32(self.values)
         track = {"name": self.name, "type": self.kind, "times": _float32(self.times)}
-        track["values"] = flat
+        track["values"] = values
         if self.interpolation is not None:
             track["interpolation"] = self.interpolation
         return track
@@ -242,19 +243,20 @@ def ring_tracks(times: np.ndarray, states: list[str]) -> list[Track]:
 
 def held_spans(times, held: list[dict[str, str]], human_path: str) -> list[dict]:
     """Who held which workpiece from when to when, with the holding hands' Meshcat paths."""
-    spans, open_spans = [], {}
-    for t, now in zip([*times, None], [*held, {}], strict=True):
-        for key in [k for k in open_spans if k not in now.items()]:
-            spans.append({**open_spans.pop(key), "end": float(t if t is not None else times[-1])})
-        for object_path, holder in now.items():
-            if (object_path, holder) not in open_spans:
-                hands = [f"{human_path}/{body}" for body in HOLDING_HANDS.get(holder, ())]
-                open_spans[(object_path, holder)] = {
-                    "start": float(t),
-                    "object": object_path,
-                    "holder": holder,
-                    "hands": hands,
-                }
+    spans, holding = [], {}
+    for t, now in zip(times, held, strict=True):
+        now = set(now.items())
+        for key in [key for key in holding if key not in now]:
+            spans.append({**holding.pop(key), "end": float(t)})
+        for object_path, holder in now - holding.keys():
+            hands = [f"{human_path}/{body}" for body in HOLDING_HANDS.get(holder, ())]
+            holding[(object_path, holder)] = {
+                "start": float(t),
+                "object": object_path,
+                "holder": holder,
+                "hands": hands,
+            }
+    spans += [{**span, "end": float(times[-1])} for span in holding.values()]
     return sorted(spans, key=lambda span: span["start"])
 
 
