@@ -14,6 +14,7 @@ person's states for the timeline.
 """
 
 import json
+import tempfile
 import time
 from dataclasses import dataclass, field
 from importlib.metadata import version
@@ -27,7 +28,7 @@ from pydrake.systems.primitives import LogVectorOutput
 from tqdm import tqdm
 
 import hrc_drake
-from hrc_drake.bt import BtlogWriter, JsonLinesWriter
+from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import HUMAN_NAME, RECORDER, VISUAL_PREFIX, build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
@@ -43,9 +44,20 @@ from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import Scenario
+from hrc_drake.yaml_check import InputError
 
 LOG_PERIOD = 0.01
 PROGRESS_STEP = 0.1
+
+
+class RunStopped(InputError):
+    """A tree fault (e.g. a blackboard key no node wrote) stopped the run; what the run
+    recorded until then is in its report and run directory."""
+
+    def __init__(self, fault: BTError, time: float, out_dir: Path | None, report: "Report"):
+        where = f"; what it recorded is in {out_dir}" if out_dir is not None else ""
+        super().__init__(f"{fault} (the run stopped at {time:.2f} s{where})")
+        self.report = report
 
 
 @dataclass
@@ -71,9 +83,13 @@ def run(
     progress: bool = False,
     realtime_rate: float = 0.0,
 ) -> Report:
-    """Simulates `scenario` once; with `out_dir`, writes the run directory."""
+    """Simulates `scenario` once; with `out_dir` (a new or empty directory, so files of
+    two runs never mix), writes the run directory. A tree fault ends the run early: the
+    run directory is still written, then RunStopped says where the fault is."""
     scenario = scenario.with_overrides(seed=seed, duration=duration)
     out_dir = Path(out_dir) if out_dir is not None else None
+    if out_dir is not None:
+        prepare_run_directory(out_dir)
     if meshcat is None and out_dir is not None and scenario.visualization.record:
         meshcat = Meshcat()
     station = build_diagram(scenario, meshcat)
@@ -88,7 +104,11 @@ def run(
     simulator = Simulator(diagram)
     simulator.set_target_realtime_rate(realtime_rate)
     start = time.perf_counter()
-    _advance(simulator, scenario.duration, progress, scenario.name)
+    fault = None
+    try:
+        _advance(simulator, scenario.duration, progress, scenario.name)
+    except BTError as error:  # the tree's own message names file, line, node and port
+        fault = error
     wall_time = time.perf_counter() - start
     for log in tree_logs:
         log.close()
@@ -97,10 +117,34 @@ def run(
     outputs = _RunOutputs.collect(station, scenario, context, signals_log, states_log)
     metrics = _metrics(scenario, state_log.FindLog(context))
     metrics.update(outputs.metrics(scenario))
+    if fault is not None:
+        metrics["stopped"] = {"time": _rounded(context.get_time()), "error": str(fault)}
     report = Report(metrics, out_dir, wall_time)
     if out_dir is not None:
         _write_run_directory(report, station, meshcat, outputs)
+    if fault is not None:
+        raise RunStopped(fault, context.get_time(), out_dir, report)
     return report
+
+
+def prepare_run_directory(out_dir: Path) -> None:
+    """Creates the run directory; one that holds anything already is refused."""
+    if out_dir.is_dir() and any(out_dir.iterdir()):
+        raise InputError(
+            f"{out_dir}: the run directory is not empty (it may hold another run); "
+            "give a new or empty directory"
+        )
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise InputError(f"{out_dir}: is a file, not a directory") from None
+    except OSError as e:
+        raise InputError(f"{out_dir}: cannot create the run directory: {e.strerror}") from None
+    try:
+        with tempfile.TemporaryFile(dir=out_dir):
+            pass  # a file can be written there: the run's files will be
+    except OSError as e:
+        raise InputError(f"{out_dir}: cannot write in the run directory: {e.strerror}") from None
 
 
 @dataclass
@@ -214,6 +258,7 @@ def _node_statistics(tree_system) -> dict:
             "successes": counts[uid].successes,
             "failures": counts[uid].failures,
             "time_running": counts[uid].time_running,
+            **({"first_failure": counts[uid].first_failure} if counts[uid].first_failure else {}),
         }
         for uid, path, _ in tree_system.tree.nodes()
         if uid in counts
@@ -224,7 +269,6 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
     """Groot2 and JSON-lines transition logs of every tree, in the run directory."""
     if out_dir is None:
         return []
-    out_dir.mkdir(parents=True, exist_ok=True)
     logs = []
     for agent in scenario.trees:
         tree = station.GetSubsystemByName(f"bt_{agent}").tree
@@ -304,7 +348,6 @@ def _versions() -> dict:
 
 def _write_run_directory(report: Report, station, meshcat, outputs) -> None:
     out = report.out_dir
-    out.mkdir(parents=True, exist_ok=True)
     report.files["report"] = out / "report.json"
     report.files["report"].write_text(json.dumps(report.metrics, indent=2, sort_keys=True) + "\n")
     report.files["diagram"] = write_diagram(station, out / "diagram.svg")

@@ -87,6 +87,8 @@ class TreeNode(ABC):
         self.blackboard = config.blackboard
         self.status = IDLE
         self.tick_counts: list[int] | None = None  # results by status, once NodeCounters attach
+        self.failure_reason = ""
+        """Why the node last returned FAILURE, when it knows (e.g. the actor's answer)."""
         self._observers = config.tree.observers  # the tree's list, shared
         self._inputs = config.inputs
         self._outputs = config.outputs

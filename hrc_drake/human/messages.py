@@ -90,7 +90,10 @@ class HumanStatus:
         """Immutable: Drake's state copies can share it."""
         return self
 
+    def result_of(self, seq: int) -> CommandResult | None:
+        """The result of command `seq`, if it is still in the recent results."""
+        return result_of(self.results, seq)
+
     def outcome_of(self, seq: int) -> str | None:
-        """The outcome of command `seq`, if it is still in the recent results."""
-        result = result_of(self.results, seq)
+        result = self.result_of(seq)
         return result.outcome if result is not None else None
