@@ -82,10 +82,14 @@ def run(
     meshcat: Meshcat | None = None,
     progress: bool = False,
     realtime_rate: float = 0.0,
+    serve=None,
 ) -> Report:
     """Simulates `scenario` once; with `out_dir` (a new or empty directory, so files of
     two runs never mix), writes the run directory. A tree fault ends the run early: the
-    run directory is still written, then RunStopped says where the fault is."""
+    run directory is still written, then RunStopped says where the fault is.
+
+    `serve(station)`, if given, starts watchers of the station before the simulation
+    (e.g. `hrc_drake.groot.serve_groot`); they are closed when the simulation ends."""
     scenario = scenario.with_overrides(seed=seed, duration=duration)
     out_dir = Path(out_dir) if out_dir is not None else None
     if out_dir is not None:
@@ -99,16 +103,22 @@ def run(
     signals_log = _optional_log(station, "safety_signals", builder)
     states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
+    servers = serve(station) if serve is not None else None
     tree_logs = _open_tree_logs(station, scenario, out_dir)
 
     simulator = Simulator(diagram)
     simulator.set_target_realtime_rate(realtime_rate)
+    if servers is not None:
+        servers.keep_pace(simulator)
     start = time.perf_counter()
     fault = None
     try:
         _advance(simulator, scenario.duration, progress, scenario.name)
     except BTError as error:  # the tree's own message names file, line, node and port
         fault = error
+    finally:
+        if servers is not None:
+            servers.close()
     wall_time = time.perf_counter() - start
     for log in tree_logs:
         log.close()
