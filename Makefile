@@ -10,12 +10,12 @@ PYTHON_VERSION := $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_
 STAMP := $(VENV)/.installed-$(PYTHON_VERSION)
 DEMO_SCENARIO ?= coexistence
 
-.PHONY: demo test lint format graphviz clean
+.PHONY: demo test lint format graphviz chromium clean
 
 demo: $(STAMP) graphviz
 	$(BIN)/hrc-drake run $(DEMO_SCENARIO)
 
-test: $(STAMP) graphviz lint
+test: $(STAMP) graphviz chromium lint
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
 lint: $(STAMP)
@@ -36,16 +36,24 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[dev,dist]'
 	touch $(STAMP)
 
-# Graphviz's `dot` renders system diagrams and trees; it comes from apt, not PyPI.
-graphviz:
-	@command -v dot >/dev/null 2>&1 || { \
+# System tools come from apt, not PyPI: Graphviz's `dot` renders system diagrams and trees,
+# Chromium opens replay.html in the browser tests (driven by playwright, no browser download).
+define apt_install
+	@command -v $(1) >/dev/null 2>&1 || { \
 	  if command -v apt-get >/dev/null 2>&1 && [ "$$(id -u)" = 0 ]; then \
-	    apt-get update -qq && apt-get install -y -qq graphviz >/dev/null; \
+	    apt-get update -qq && apt-get install -y -qq $(2) >/dev/null; \
 	  elif command -v apt-get >/dev/null 2>&1 && sudo -n true 2>/dev/null; then \
-	    sudo apt-get update -qq && sudo apt-get install -y -qq graphviz >/dev/null; \
+	    sudo apt-get update -qq && sudo apt-get install -y -qq $(2) >/dev/null; \
 	  else \
-	    echo "Graphviz is missing: run 'sudo apt-get install graphviz'"; exit 1; \
+	    echo "$(2) is missing: run 'sudo apt-get install $(2)'"; exit 1; \
 	  fi; }
+endef
+
+graphviz:
+	$(call apt_install,dot,graphviz)
+
+chromium:
+	$(call apt_install,chromium,chromium)
 
 clean:
 	rm -rf $(VENV) build dist *.egg-info runs

@@ -3,8 +3,9 @@
 The station holds the dynamic plant (robot + tool + static cell) under its inverse-dynamics
 controller and RobotMotion; the kinematic person (HumanActor); the Workpieces; the
 SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a Meshcat
-visualizer. Each part is present when the scenario asks for it: no `human:` section, no
-person and no monitor; no workpiece types, no Workpieces; no `trees:`, no behavior trees.
+visualizer with the ReplayRecorder that replay.html is made from. Each part is present when
+the scenario asks for it: no `human:` section, no person and no monitor; no workpiece types,
+no Workpieces; no `trees:`, no behavior trees.
 
 Two SceneGraphs: the dynamic plant keeps its own for contact (robot and cell only), and
 the world scene, named `scene_graph`, holds a kinematic mirror of the robot and cell
@@ -27,7 +28,9 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
+from hrc_drake.evaluation.replay import dress_scene
 from hrc_drake.human.builder import add_human
+from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
@@ -40,12 +43,15 @@ from hrc_drake.station_models import (
 )
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
 from hrc_drake.systems.realism_audit import add_realism_audit
+from hrc_drake.systems.replay_recorder import ReplayRecorder
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 from hrc_drake.systems.workpieces import HumanHands, add_workpieces
 
 VISUALIZER = "meshcat_visualizer"
+RECORDER = "replay_recorder"
+VISUAL_PREFIX = "visual"
 HUMAN_NAME = "human"
 GRIPPER_ISSUER = "robot_gripper"
 
@@ -84,7 +90,7 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
     trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
     if meshcat is not None:
-        _add_visualizer(builder, scene_graph, meshcat, scenario)
+        _add_visualizer(builder, scene_graph, meshcat, scenario, actors)
 
     _export_outputs(builder, plant, arm, scene_graph, actors, trees)
     if audit is not None:
@@ -138,6 +144,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
             cell_obstacles(mirror, scene_graph.model_inspector()),
             keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
         ),
+        clips=clip_catalog(scenario.human.clips),
     )
     return human, human_plant
 
@@ -266,17 +273,32 @@ def _export_open_inputs(builder, systems) -> None:
                 builder.ExportInput(port, f"{system.get_name()}.{port.get_name()}")
 
 
-def _add_visualizer(builder, scene_graph, meshcat, scenario) -> None:
+def _add_visualizer(builder, scene_graph, meshcat, scenario, actors) -> None:
+    """Meshcat draws the world scene; with `record`, a ReplayRecorder samples it (and the
+    safety state and held workpieces) for replay.html at the visualizer's rate."""
     options = scenario.visualization
-    meshcat.SetCameraPose(options.camera_position, options.camera_target)
-    meshcat.SetProperty("/Grid", "visible", False)  # the cell has its own floor
-    roles = [Role.kIllustration] + ([Role.kProximity] if options.show_collision else [])
-    for role in roles:
+    dress_scene(
+        meshcat,
+        options.camera_position,
+        options.camera_target,
+        scenario.robot.base_pose.GetDeterministicValue(),
+    )
+    roles = {VISUAL_PREFIX: Role.kIllustration}
+    if options.show_collision:
+        roles["collision"] = Role.kProximity
+    for prefix, role in roles.items():
         params = MeshcatVisualizerParams(
-            publish_period=options.publish_period,
-            role=role,
-            prefix="visual" if role == Role.kIllustration else "collision",
+            publish_period=options.publish_period, role=role, prefix=prefix
         )
         visualizer = MeshcatVisualizer.AddToBuilder(builder, scene_graph, meshcat, params)
         if role == Role.kIllustration:
             visualizer.set_name(VISUALIZER)
+    if not options.record:
+        return
+    recorder = builder.AddNamedSystem(RECORDER, ReplayRecorder(options.publish_period, roles))
+    builder.Connect(scene_graph.get_query_output_port(), recorder.GetInputPort("query_object"))
+    for name in (SAFETY, WORKPIECES):
+        if actors[name] is not None:
+            builder.Connect(
+                _status_output(name, actors[name]), recorder.GetInputPort(status_port(name))
+            )

@@ -133,7 +133,33 @@ def _make_parser() -> argparse.ArgumentParser:
         help="with --nodes: write Groot2's TreeNodesModel XML (to FILE, default stdout)",
     )
     listing.set_defaults(command=_list)
+    _add_clip_commands(commands)
     return parser
+
+
+def _add_clip_commands(commands) -> None:
+    clip = commands.add_parser(
+        "clip", help="the person's motion clips: list them, export to BVH, import from BVH"
+    )
+    actions = clip.add_subparsers(required=True, metavar="ACTION", parser_class=_Parser)
+    listing = actions.add_parser("list", help="the built-in clips (and a scenario's own)")
+    listing.add_argument("scenario", nargs="?", help="also list this scenario's human.clips")
+    listing.set_defaults(command=_clip_list)
+    export = actions.add_parser("export", help="write a clip as BVH (our skeleton, cm, Y up)")
+    export.add_argument("name", help="a clip name (see `clip list`)")
+    export.add_argument("-o", "--output", type=Path, required=True, help="a .bvh file")
+    export.add_argument("--scenario", help="also look among this scenario's human.clips")
+    export.set_defaults(command=_clip_export)
+    imported = actions.add_parser(
+        "import", help="map a BVH take (Mixamo/CMU bone names) onto the person, as clip JSON"
+    )
+    imported.add_argument("bvh", type=Path, help="a .bvh file")
+    imported.add_argument(
+        "-o", "--output", type=Path, help="clip .json to write (default: NAME.json here)"
+    )
+    imported.add_argument("--name", help="the clip's name (default: the file's name)")
+    imported.add_argument("--loop", action="store_true", help="the take loops")
+    imported.set_defaults(command=_clip_import)
 
 
 def _add_set_option(parser) -> None:
@@ -426,6 +452,48 @@ def _list_nodes(xml_file: str | None) -> int:
         _check_output(Path(xml_file), "--xml", ())
         Path(xml_file).write_text(tree_nodes_model_xml(registry) + "\n")
         print(xml_file)
+    return 0
+
+
+def _scenario_clips(scenario: str | None) -> dict:
+    from hrc_drake.human.clip_files import clip_catalog
+    from hrc_drake.scenario import load_scenario
+
+    human = load_scenario(scenario).human if scenario else None
+    return clip_catalog(human.clips if human is not None else ())
+
+
+def _clip_list(args) -> int:
+    from hrc_drake.human.clip_files import describe
+
+    for name, clip in sorted(_scenario_clips(args.scenario).items()):
+        print(f"  {name:12s} {describe(clip)}")
+    return 0
+
+
+def _clip_export(args) -> int:
+    from hrc_drake.human.bvh import export_bvh
+
+    _check_output(args.output, "-o", (".bvh",))
+    clips = _scenario_clips(args.scenario)
+    if args.name not in clips:
+        raise InputError(f"clip export: no clip '{args.name}' (known: {', '.join(sorted(clips))})")
+    export_bvh(clips[args.name], args.output)
+    print(args.output)
+    return 0
+
+
+def _clip_import(args) -> int:
+    from hrc_drake.human.clip import clip_to_json
+    from hrc_drake.human.clip_files import describe, read_clip_file
+
+    if args.bvh.suffix.lower() != ".bvh":
+        raise InputError(f"{args.bvh}: use a .bvh file")
+    output = args.output or Path(f"{args.name or args.bvh.stem}.json")
+    _check_output(output, "-o", (".json",))
+    clip = read_clip_file(args.bvh, name=args.name, loop=args.loop)
+    output.write_text(clip_to_json(clip))
+    print(f"{output}: {clip.name}, {describe(clip)}")
     return 0
 
 

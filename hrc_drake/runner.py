@@ -29,7 +29,7 @@ from tqdm import tqdm
 
 import hrc_drake
 from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
-from hrc_drake.builder import VISUALIZER, build_diagram
+from hrc_drake.builder import HUMAN_NAME, RECORDER, VISUAL_PREFIX, build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
     bt_metrics,
@@ -39,6 +39,7 @@ from hrc_drake.evaluation.metrics import (
     utilisation_metrics,
 )
 from hrc_drake.evaluation.realism import realism_metrics
+from hrc_drake.evaluation.replay import write_replay
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
@@ -110,9 +111,6 @@ def run(
     simulator.set_target_realtime_rate(realtime_rate)
     if servers is not None:
         servers.keep_pace(simulator)
-    visualizer = _visualizer(station)
-    if visualizer is not None:
-        visualizer.StartRecording(set_transforms_while_recording=realtime_rate > 0)
     start = time.perf_counter()
     fault = None
     try:
@@ -134,7 +132,7 @@ def run(
         metrics["stopped"] = {"time": _rounded(context.get_time()), "error": str(fault)}
     report = Report(metrics, out_dir, wall_time)
     if out_dir is not None:
-        _write_run_directory(report, station, visualizer, meshcat, outputs)
+        _write_run_directory(report, station, meshcat, outputs)
     if fault is not None:
         raise RunStopped(fault, context.get_time(), out_dir, report)
     return report
@@ -310,8 +308,11 @@ def _final(station, station_context, port: str):
     return station.GetOutputPort(port).Eval(station_context)
 
 
-def _visualizer(station):
-    return station.GetSubsystemByName(VISUALIZER) if station.HasSubsystemNamed(VISUALIZER) else None
+def _recording(station):
+    """What the station's ReplayRecorder sampled, or None when it records no replay."""
+    if not station.HasSubsystemNamed(RECORDER):
+        return None
+    return station.GetSubsystemByName(RECORDER).recording
 
 
 def _advance(simulator: Simulator, duration: float, progress: bool, name: str) -> None:
@@ -359,15 +360,15 @@ def _versions() -> dict:
     return {"hrc_drake": hrc_drake.__version__, "drake": version("drake")}
 
 
-def _write_run_directory(report: Report, station, visualizer, meshcat, outputs) -> None:
+def _write_run_directory(report: Report, station, meshcat, outputs) -> None:
     out = report.out_dir
     report.files["report"] = out / "report.json"
     report.files["report"].write_text(json.dumps(report.metrics, indent=2, sort_keys=True) + "\n")
     report.files["diagram"] = write_diagram(station, out / "diagram.svg")
-    if visualizer is not None:
-        visualizer.StopRecording()
-        visualizer.PublishRecording()
-        report.files["replay"] = out / "replay.html"
-        report.files["replay"].write_text(meshcat.StaticHtml())
+    recording = _recording(station)
+    if recording is not None:
+        report.files["replay"] = write_replay(
+            out / "replay.html", meshcat, recording, f"/drake/{VISUAL_PREFIX}/{HUMAN_NAME}"
+        )
     outputs.write_figures(out, report.files)
     report.files["report_html"] = write_run_html(out / "report.html", report.metrics, report.files)

@@ -21,6 +21,7 @@ from pydrake.multibody.parsing import ModelDirective, PackageMap
 
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
+from hrc_drake.human.clip_files import read_clip_file
 from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
@@ -88,6 +89,9 @@ class HumanConfig:
     height: float = 1.75
     mass: float = 75.0
     start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
+    clips: list[str] = field(default_factory=list)
+    """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
+    which trees play by their file names."""
 
 
 @dataclass
@@ -279,6 +283,8 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     yield from _prefixed("workpieces", problems(scenario.workpieces))
     if scenario.human is not None and len(scenario.human.start) != 3:
         yield ("human", "start"), "needs [x, y, yaw_deg]"
+    if scenario.human is not None:
+        yield from _prefixed("human", _clip_problems(scenario.human.clips, directory))
     yield from _prefixed("trees", _resolve_tree_files(directory, scenario.trees))
     yield from tree_problems(scenario)
 
@@ -338,6 +344,23 @@ def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
             ("initial_configuration",),
             _unknown("configuration", robot.initial_configuration, known),
         )
+
+
+def _check_human(human: HumanConfig, directory: Path, fail) -> None:
+    low, high = HEIGHT_RANGE
+    if not low <= human.height <= high:
+        fail(("height",), f"must lie within {low}..{high} m, got {human.height}")
+    if not human.mass > 0:
+        fail(("mass",), f"must be positive, got {human.mass}")
+    if len(human.start) != 3:
+        fail(("start",), "needs [x, y, yaw_deg]")
+    for i, clip in enumerate(human.clips):
+        file = (directory / clip).resolve()
+        try:
+            read_clip_file(file)
+        except InputError as error:
+            fail(("clips", i), str(error))
+        human.clips[i] = str(file)
 
 
 def _place_problems(scenario: Scenario) -> Iterator[Problem]:
@@ -402,6 +425,18 @@ def _package_map() -> PackageMap:
     package_map = PackageMap()
     add_model_package(package_map)
     return package_map
+
+
+def _clip_problems(clips: list[str], directory: Path) -> Iterator[Problem]:
+    """The scenario's own clips, named relative to the scenario file: each must read as a
+    clip; they are kept as absolute paths, like the tree files."""
+    for i, clip in enumerate(clips):
+        file = (directory / clip).resolve()
+        clips[i] = str(file)
+        try:
+            read_clip_file(file)
+        except InputError as error:
+            yield ("clips", i), str(error)
 
 
 def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree]) -> Iterator[Problem]:

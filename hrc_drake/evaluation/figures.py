@@ -13,7 +13,8 @@ def save_figure(fig, path: Path) -> Path:
     """Writes the figure and frees it (figures are many in a sweep)."""
     import matplotlib.pyplot as plt
 
-    fig.tight_layout()
+    if fig.get_layout_engine() is None:
+        fig.tight_layout()
     fig.savefig(path, dpi=DPI, metadata={"Software": None})
     plt.close(fig)
     return path

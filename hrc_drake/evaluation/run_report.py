@@ -1,16 +1,26 @@
-"""report.html of a run: the figures, the metrics table and a link to replay.html."""
+"""report.html of a run: the figures, the metrics by section side by side, and each behavior
+tree summarised by its activities (the nodes at most two levels deep), with the statistics of
+every node folded away below."""
 
+from html import escape
 from pathlib import Path
 
 from hrc_drake.evaluation.realism import realism_rows
 from hrc_drake.evaluation.sweep_report import html_table, page
 from hrc_drake.sweep.rows import flatten
 
+SUMMARY_DEPTH = 2
+"""Tree nodes down to this depth (the tree's top loop and its activities) are summarised..."""
+SUMMARY_ROWS = 10
+"""... those that ran longest."""
+NODE_COLUMNS = ("ticks", "successes", "failures", "time_running")
+SECTIONS_STYLE = "display:flex;flex-wrap:wrap;gap:0 2.5em;align-items:flex-start"
+
 
 def write_run_html(path: Path, metrics: dict, files: dict[str, Path]) -> Path:
     """`files` are the run directory's other files (figures, replay) by role."""
     title = f"{metrics.get('scenario', '')} seed {metrics.get('seed', '')}"
-    parts = [f"<h1>Run: {title}</h1>"]
+    parts = [f"<h1>Run: {escape(title)}</h1>"]
     if "replay" in files:
         parts.append(f'<p><a href="{files["replay"].name}">Replay (Meshcat)</a></p>')
     for role in ("timeline", "heatmap"):
@@ -19,7 +29,43 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path]) -> Path:
     if metrics.get("realism"):
         header = ["measure", "worst", "limit", "where", "within"]
         parts.append("<h2>Realism</h2>" + html_table(header, realism_rows(metrics["realism"])))
-    rows = [[name, value] for name, value in flatten(metrics).items()]
-    parts.append("<h2>Metrics</h2>" + html_table(["metric", "value"], rows))
+    parts.append("<h2>Metrics</h2>" + _metric_sections(metrics))
+    trees = metrics.get("bt") or {}
+    if trees:
+        parts.append("<h2>Behavior trees</h2>")
+        parts += [_tree_summary(agent, nodes) for agent, nodes in trees.items()]
     path.write_text(page(title, "\n".join(parts)))
     return path
+
+
+def _metric_sections(metrics: dict) -> str:
+    """One table per section of the report (safety, tasks, ...); plain values under `run`."""
+    run = [[name, value] for name, value in metrics.items() if not isinstance(value, dict)]
+    sections = {"run": run} if run else {}
+    for name, value in metrics.items():
+        if isinstance(value, dict) and name not in ("bt", "realism") and value:
+            sections[name] = [[key, v] for key, v in flatten(value).items()]
+    tables = [
+        f"<div><h3>{escape(name)}</h3>{html_table(['metric', 'value'], rows)}</div>"
+        for name, rows in sections.items()
+    ]
+    return f'<div style="{SECTIONS_STYLE}">{"".join(tables)}</div>'
+
+
+def _node_name(path: str) -> str:
+    """`Help::6/CarryBoxToConveyor::54` -> `Help/CarryBoxToConveyor` (no node uids)."""
+    return "/".join(part.split("::")[0] for part in path.split("/"))
+
+
+def _tree_summary(agent: str, nodes: dict[str, dict]) -> str:
+    every = [[_node_name(path), *(stats[c] for c in NODE_COLUMNS)] for path, stats in nodes.items()]
+    top = [row for row, path in zip(every, nodes, strict=True) if path.count("/") < SUMMARY_DEPTH]
+    top = sorted(top, key=lambda row: -row[-1])[:SUMMARY_ROWS]
+    header = ["node", *(c.replace("_", " ") for c in NODE_COLUMNS)]
+    return (
+        f"<h3>{escape(agent)}: the {len(top)} activities that ran longest</h3>"
+        + html_table(header, top)
+        + f"<details><summary>all {len(nodes)} nodes of the {escape(agent)} tree</summary>"
+        + html_table(header, every)
+        + "</details>"
+    )

@@ -1,6 +1,7 @@
 """timeline.png (separation and S_p, speed scale, speeds, actor states and task events over
 time) and heatmap.png (top view: where the person was, where separation was smallest)."""
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,9 @@ from hrc_drake.safety.messages import SIGNALS
 
 HEAT_CELL = 0.1
 """m per heat-map cell."""
+LEGEND_COLUMNS = 4
+LEGEND_ROW = 0.22
+"""Height of a legend row, in the figure's height ratios."""
 
 
 def _signal(signals: np.ndarray, name: str) -> np.ndarray:
@@ -25,9 +29,18 @@ def plot_timeline(
     events: list[TaskEvent] | None = None,
 ) -> Path:
     """`states`: per actor, (time, state) changes; `events`: task events from the trees."""
+    return save_figure(timeline_figure(times, signals, states, events), path)
+
+
+def timeline_figure(times, signals, states=None, events=None):
+    """The figure of `plot_timeline`; its fourth axes holds the activity rows."""
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(4, 1, figsize=(10, 9), sharex=True)
+    fig, axes = plt.subplots(
+        5, 1, figsize=(11, 10), height_ratios=(3, 1.6, 2.4, 2.6, 1), layout="constrained"
+    )
+    for ax in axes[1:4]:
+        ax.sharex(axes[0])
     _separation_panel(axes[0], times, signals)
     axes[1].step(times, _signal(signals, "scale"), where="post", color="tab:green")
     axes[1].set_ylim(-0.05, 1.05)
@@ -38,10 +51,13 @@ def plot_timeline(
     axes[2].set_ylabel("m/s")
     axes[2].legend(fontsize=7, loc="upper right")
     end = float(times[-1]) if times.size else 0.0
-    _activity_panel(axes[3], states or {}, events or [], end)
-    axes[3].set_xlim(0.0, max(end, 1e-3))
+    axes[0].set_xlim(0.0, max(end, 1e-3))
+    for ax in axes[:3]:
+        ax.tick_params(labelbottom=False)
     axes[3].set_xlabel("time (s)")
-    return save_figure(fig, path)
+    fig.canvas.draw()  # lays the panels out, so label widths can be measured against bars
+    _activity_panel(axes[3], axes[4], states or {}, events or [], end)
+    return fig
 
 
 def _separation_panel(ax, times, signals) -> None:
@@ -53,30 +69,73 @@ def _separation_panel(ax, times, signals) -> None:
     ax.legend(fontsize=7, loc="upper right")
 
 
-def _activity_panel(ax, states, events, end: float) -> None:
-    """One row per actor with its states as labelled spans; task events as markers."""
-    names = list(states)
-    for row, actor in enumerate(names):
-        changes = states[actor]
-        for (start, state), (stop, _) in zip(changes, [*changes[1:], (None, None)], strict=True):
-            span_end = end if stop is None else stop
-            ax.barh(row, span_end - start, left=start, height=0.6, alpha=0.5)
-            ax.text(start, row, state, fontsize=6, va="center")
+def activity(actor: str, state: str) -> str:
+    """What a timeline row shows of a state: a tree's running path is named by its second
+    node (the activity under the tree's top loop, e.g. `CarryBoxToConveyor`), without the
+    `::uid` suffixes."""
+    if not actor.endswith("tree"):
+        return state
+    names = [part.split("::")[0] for part in state.split("/") if part]
+    return names[min(1, len(names) - 1)] if names else ""
+
+
+def spans(changes: list[tuple[float, str]], end: float, label) -> list[tuple[float, float, str]]:
+    """(start, stop, label) of each stretch with one label; empty labels are gaps."""
+    merged: list[list] = []
+    for start, state in changes:
+        text = label(state)
+        if merged and merged[-1][2] == text:
+            continue
+        if merged:
+            merged[-1][1] = start
+        merged.append([start, end, text])
+    return [(a, b, text) for a, b, text in merged if text and b > a]
+
+
+def _activity_panel(ax, legend_ax, states, events, end: float) -> None:
+    """One row per actor, its states as coloured spans, labelled where the label fits in
+    its span; the others, and the task events, are named in the legend below."""
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    palette = plt.get_cmap("tab20").colors
+    renderer = ax.figure.canvas.get_renderer()
+    unlabelled: dict[str, tuple] = {}
+    for row, (actor, changes) in enumerate(states.items()):
+        colours: dict[str, tuple] = {}
+        for start, stop, text in spans(changes, end, lambda state, a=actor: activity(a, state)):
+            colour = colours.setdefault(text, palette[len(colours) % len(palette)])
+            ax.barh(row, stop - start, left=start, height=0.7, color=colour, alpha=0.7)
+            label = ax.text((start + stop) / 2, row, text, fontsize=6, ha="center", va="center")
+            if not _fits(ax, label, stop - start, renderer):
+                label.remove()
+                unlabelled.setdefault(f"{actor}: {text}", colour)
+    names = sorted({event.name for event in events})
+    event_colours = {name: plt.get_cmap("Dark2").colors[i % 8] for i, name in enumerate(names)}
     for event in events:
-        ax.axvline(event.time, color="gray", lw=0.6)
-        ax.text(event.time, len(names), event.name, fontsize=6, rotation=90, va="bottom")
-    ax.set_yticks(range(len(names)), names)
-    if not names and not events:
-        ax.text(
-            0.5,
-            0.5,
-            "no actor states or task events logged",
-            transform=ax.transAxes,
-            ha="center",
-            va="center",
-            color="gray",
-        )
+        ax.axvline(event.time, color=event_colours[event.name], lw=0.9)
+    ax.set_yticks(range(len(states)), list(states))
+    ax.set_ylim(-0.6, max(len(states), 1) - 0.4)
     ax.set_ylabel("actors")
+    legend_ax.axis("off")
+    handles = [Patch(color=c, alpha=0.7, label=text) for text, c in unlabelled.items()]
+    handles += [Line2D([], [], color=c, label=f"event: {n}") for n, c in event_colours.items()]
+    if handles:
+        legend_ax.legend(
+            handles=handles, loc="upper center", ncol=LEGEND_COLUMNS, fontsize=6, frameon=False
+        )
+    ratios = list(legend_ax.get_gridspec().get_height_ratios())
+    ratios[-1] = 0.3 + LEGEND_ROW * math.ceil(len(handles) / LEGEND_COLUMNS)
+    legend_ax.get_gridspec().set_height_ratios(ratios)
+    if not handles:
+        legend_ax.text(0.5, 0.5, "no actor states or task events logged", ha="center", color="gray")
+
+
+def _fits(ax, label, width: float, renderer) -> bool:
+    """Whether `label` is narrower than `width` (data units along x) on the drawn axes."""
+    span = ax.transData.transform([(0.0, 0.0), (width, 0.0)])
+    return label.get_window_extent(renderer).width < 0.9 * (span[1, 0] - span[0, 0])
 
 
 def _shade(ax, times, mask, color, label) -> None:

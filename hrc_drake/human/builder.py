@@ -49,6 +49,7 @@ def add_human(
     dynamic_plant: MultibodyPlant | None = None,
     issuers: tuple[str, ...] = ("human",),
     navigation: NavigationMap | None = None,
+    clips: dict[str, Clip] | None = None,
 ) -> tuple[HumanActor, MultibodyPlant]:
     """Add a person: returns the HumanActor and the person's kinematic plant.
 
@@ -57,7 +58,7 @@ def add_human(
     against every collision geometry `dynamic_plant` has at this point (add the person after
     the dynamic plant's models). Connect each issuer's commands to the actor's
     `<issuer>_command` input (default: `human_command`). With a `navigation` map the person
-    walks round the cell's geometry.
+    walks round the cell's geometry. `clips` default to the built-in ones.
     """
     plant = MultibodyPlant(0.0)
     plant.set_name(f"{name}_plant")  # names its geometry source in SceneGraph
@@ -68,7 +69,7 @@ def add_human(
     actor = builder.AddSystem(
         HumanActor(
             body,
-            scaled_clips(load_clips(), height),
+            scaled_clips(clips or load_clips(), height),
             start_pose,
             issuers=issuers,
             navigation=navigation,

@@ -13,7 +13,7 @@ from hrc_drake.evaluation.metrics import (
     utilisation_metrics,
 )
 from hrc_drake.evaluation.run_report import write_run_html
-from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
+from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline, timeline_figure
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SIGNALS, SafetyStatus, SafetyTotals
 from hrc_drake.safety.pfl import assess_contact
@@ -121,3 +121,46 @@ def test_figures_and_report_html(tmp_path):
     text = html.read_text()
     assert 'href="replay.html"' in text and 'src="timeline.png"' in text
     assert "<td>seed</td><td>3</td>" in text
+
+
+def test_timeline_labels_only_where_they_fit_the_rest_in_the_legend():
+    import matplotlib.pyplot as plt
+
+    times = np.linspace(0.0, 60.0, 601)
+    data = signals(separation=np.full_like(times, 2.0), scale=np.ones_like(times))
+    tree = "Main::1/CarryBoxToConveyor::5/WalkTo::7/ActorMovement::9"
+    states = {
+        "robot": [(0.0, "idle"), (20.0, "moving"), (20.3, "idle")],
+        "human tree": [(0.0, tree), (10.0, tree.replace("WalkTo::7", "Pick::8")), (30.0, "")],
+    }
+    fig = timeline_figure(times, data, states, [TaskEvent(20.0, "part_finished")])
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    activity_axes, legend_axes = fig.axes[3], fig.axes[4]
+    labels = {text.get_text(): text for text in activity_axes.texts}
+    assert set(labels) == {"idle", "CarryBoxToConveyor"}  # one span per activity
+    for text in labels.values():
+        assert activity_axes.bbox.contains(*text.get_window_extent(renderer).p0)
+        assert activity_axes.bbox.contains(*text.get_window_extent(renderer).p1)
+    legend = [t.get_text() for t in legend_axes.get_legend().get_texts()]
+    assert legend == ["robot: moving", "event: part_finished"]
+    plt.close(fig)
+
+
+def test_report_html_summarises_the_trees_and_folds_their_nodes(tmp_path):
+    nodes = {
+        f"Main::1/Activity{i}::{i + 2}" + "/Leaf::9" * (i % 3): {
+            "ticks": 10 * i,
+            "successes": i,
+            "failures": 0,
+            "time_running": float(i),
+        }
+        for i in range(300)
+    }
+    metrics = {"scenario": "x", "seed": 1, "safety": {"stops": 2}, "bt": {"robot": nodes}}
+    text = write_run_html(tmp_path / "report.html", metrics, {}).read_text()
+    shown, folded = text.split("<details>")
+    assert shown.count("<tr>") <= 20  # the metrics and the 10 longest-running activities
+    assert "<td>Main/Activity297</td>" in shown and "<td>Main/Activity296</td>" not in shown
+    assert folded.count("<tr>") == len(nodes) + 1
+    assert "<td>stops</td><td>2</td>" in shown

@@ -1,0 +1,108 @@
+"""ReplayRecorder: what replay.html animates, sampled at the visualizer's rate.
+
+Drake's MeshcatVisualizer records every frame of the scene at every publish, hidden workpiece
+slots and the static cell included, as JSON-like keys of doubles. The recorder keeps the same
+samples as arrays instead, so that `hrc_drake.evaluation.replay` can keep only the keys that
+change what is seen. Besides the frames' world poses it samples, when the station has them,
+the robot's safety state (from the monitor's speed scale) and who holds which workpiece
+(from the workpieces' status), so the replay can show the one and tests can find the other.
+
+Frames are named as MeshcatVisualizer names them: `/drake/<prefix>/<frame name>` with `::`
+turned into `/`, for every frame with geometry of the visualizer's role.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.geometry import QueryObject, Role
+from pydrake.systems.framework import LeafSystem
+
+from hrc_drake.ports import message_value, value_or_none
+from hrc_drake.safety.messages import SafetyStatus
+from hrc_drake.workpieces.messages import WorkpiecesStatus
+
+MESHCAT_ROOT = "/drake"
+
+FULL_SPEED, REDUCED, STOPPED = "full speed", "reduced speed", "stopped"
+SAFETY_STATES = (FULL_SPEED, REDUCED, STOPPED)
+
+
+def safety_state(status: SafetyStatus) -> str:
+    """The robot's state as the monitor commands it: full speed, reduced or stopped."""
+    if status.scale >= 1.0:
+        return FULL_SPEED
+    return STOPPED if status.scale <= 0.0 else REDUCED
+
+
+def meshcat_path(prefix: str, frame_name: str) -> str:
+    """Where MeshcatVisualizer draws a SceneGraph frame (MultibodyPlant's `::` -> `/`)."""
+    return f"{MESHCAT_ROOT}/{prefix}/{frame_name.replace('::', '/')}"
+
+
+@dataclass
+class Recording:
+    """Samples at `times`: per Meshcat path its poses (rows x, y, z, qw, qx, qy, qz), the
+    safety state, and the held workpieces as {object path: holder}."""
+
+    times: list[float] = field(default_factory=list)
+    poses: dict[str, list[np.ndarray]] = field(default_factory=dict)
+    safety: list[str] = field(default_factory=list)
+    held: list[dict[str, str]] = field(default_factory=list)
+
+    def pose_array(self, path: str) -> np.ndarray:
+        return np.array(self.poses[path])
+
+
+class ReplayRecorder(LeafSystem):
+    """Inputs: `query_object` (the world scene), and optionally `safety_status` and
+    `workpieces_status` (an unconnected one is not sampled). `prefixes` maps each Meshcat
+    prefix a visualizer draws under to its geometry role."""
+
+    def __init__(self, period: float, prefixes: dict[str, Role]):
+        super().__init__()
+        self._prefixes = dict(prefixes)
+        self._frames = None
+        self.recording = Recording()
+        self._query = self.DeclareAbstractInputPort(
+            "query_object", AbstractValue.Make(QueryObject())
+        )
+        self._safety = self.DeclareAbstractInputPort("safety_status", message_value())
+        self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
+        self.DeclarePeriodicPublishEvent(period, 0.0, self._sample)
+
+    def _frame_paths(self, inspector) -> list[tuple[object, str]]:
+        """(frame id, Meshcat path) of every frame a visualizer draws, per prefix."""
+        return [
+            (frame, meshcat_path(prefix, inspector.GetName(frame)))
+            for prefix, role in self._prefixes.items()
+            for frame in inspector.GetAllFrameIds()
+            if frame != inspector.world_frame_id()
+            and inspector.NumGeometriesForFrameWithRole(frame, role) > 0
+        ]
+
+    def _sample(self, context) -> None:
+        query = self._query.Eval(context)
+        if self._frames is None:
+            self._frames = self._frame_paths(query.inspector())
+        recording = self.recording
+        recording.times.append(context.get_time())
+        for frame, path in self._frames:
+            pose = query.GetPoseInWorld(frame)
+            row = np.concatenate([pose.translation(), pose.rotation().ToQuaternion().wxyz()])
+            recording.poses.setdefault(path, []).append(row)
+        safety = value_or_none(self._safety, context)
+        if safety is not None:
+            recording.safety.append(safety_state(safety))
+        workpieces = value_or_none(self._workpieces, context)
+        if workpieces is not None:
+            recording.held.append(self._held(query.inspector(), workpieces))
+
+    def _held(self, inspector, status: WorkpiecesStatus) -> dict[str, str]:
+        """{Meshcat path of the held object (first prefix): holder}."""
+        prefix = next(iter(self._prefixes))
+        return {
+            meshcat_path(prefix, inspector.GetName(inspector.GetFrameId(o.geometry_id))): o.holder
+            for o in status.objects
+            if o.holder is not None and o.geometry_id is not None
+        }
