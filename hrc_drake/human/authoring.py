@@ -15,16 +15,21 @@ Right-handed variants and left/right step orders come from `mirror_pose`.
 
 import sys
 from dataclasses import dataclass, field
-from math import pi
+from math import pi, sqrt
 
 import numpy as np
 from pydrake.math import RotationMatrix
 
 from hrc_drake.human.body import FrameTask, HumanBody, human_body
 from hrc_drake.human.clip import LENGTH_JOINTS, Clip, save_clip
+from hrc_drake.human.legs import Legs
 from hrc_drake.human.skeleton import LATERAL_CENTRAL_JOINTS, SIDES
 
 FPS = 30.0
+GAIT_FPS = 120.0
+"""Walking clips keep four times the frames: between frames a clip is a spline through the
+joints, and at 30 (or 60) frames a second a rolling stance foot wanders by 6 mm between the
+frames where it stands exactly."""
 
 RELAXED = {
     "shoulder_abduction": 8,
@@ -309,8 +314,16 @@ def _keep_feet_on_track(body: HumanBody, frames: np.ndarray) -> np.ndarray:
 STANCE = 0.6
 """Fraction of the gait cycle a foot spends on the floor (heel strike to toe-off)."""
 
-PUSH_OFF = (0.5, STANCE, 0.7)
-"""Trailing-leg phases: its toe is pinned from 0.5 to toe-off, the correction fades by 0.7."""
+LIFT_OFF = 0.7
+"""Leg phase by which the stance leg's correction has faded into the published swing."""
+
+PACE_SWING = 0.08
+"""The pelvis's forward speed swings by this fraction of its mean within each step: fastest
+just after heel strike (double support), slowest at mid-stance, as the body vaults over the
+stance leg (Cavagna et al. 1977: about 10-15 % at normal speed; docs/realism.md)."""
+
+FASTEST = 0.05
+"""Phase after each heel strike at which the pelvis moves fastest."""
 
 
 def _leg_phase(side: str, phase):
@@ -340,47 +353,193 @@ def _fit_root_to_floor(body: HumanBody, frames: np.ndarray, phase: np.ndarray):
     return fitted, travel
 
 
-def _pin_trailing_toe(body: HumanBody, frames: np.ndarray, phase: np.ndarray) -> np.ndarray:
-    """Close the double-support loop: knee and ankle keep the trailing toe on its spot.
+def paced_travel(phase, stride: float):
+    """The pelvis's forward travel at each phase of the cycle: the mean speed with a swing of
+    PACE_SWING, twice per cycle (once per step)."""
+    wave = 4 * pi * (np.asarray(phase) - FASTEST)
+    return stride * (phase + PACE_SWING / (4 * pi) * np.sin(wave))
 
-    From the other heel strike to toe-off the trailing toe stays where it was; the knee and
-    ankle correction then fades out in early swing so the curves stay smooth.
+
+MIN_STANCE_KNEE = np.radians(4.0)
+"""The stance knee never straightens further than this: where the paced pelvis would need a
+longer leg, it rides lower instead."""
+
+
+@dataclass(frozen=True)
+class _Step:
+    """One foot's stance: where its heel and toe stand."""
+
+    heel: np.ndarray
+    toe: np.ndarray
+
+    def sole(self, pitch: float, half_foot: float) -> tuple[np.ndarray, np.ndarray]:
+        """The sole frame's origin and the foot's forward axis, rolled over the heel (toe
+        up, pitch > 0) or over the toe (heel up)."""
+        forward = np.array([sqrt(1.0 - pitch * pitch), 0.0, pitch])
+        if pitch > 0:
+            return self.heel + half_foot * forward, forward
+        return self.toe - half_foot * forward, forward
+
+
+PELVIS_HARMONICS = 4
+"""The pelvis rises and falls smoothly, twice per cycle (and its overtones): the published
+kinematics alone make it drop by 2 cm at each heel strike, where the support changes legs."""
+
+
+def _smooth_periodic(values: np.ndarray, harmonics: int) -> np.ndarray:
+    """A periodic signal (one cycle) without its harmonics above `harmonics`."""
+    spectrum = np.fft.rfft(values)
+    spectrum[harmonics + 1 :] = 0.0
+    return np.fft.irfft(spectrum, len(values))
+
+
+def _plant_stance(body: HumanBody, frames: np.ndarray, phase: np.ndarray, stride: float):
+    """Pace the pelvis and plant each stance foot under it (the legs solved in closed form).
+
+    The published joint curves put the pelvis where the stance foot's kinematics take it,
+    which surges and stalls within every step; here the pelvis travels at the paced speed
+    instead and the legs follow: each foot stands on its step from heel strike to toe-off,
+    pitched as the published ankle curve pitches it (rolling over the heel, flat, rolling
+    over the toe); steps lie where they keep the stance leg closest to its published angles;
+    the swing follows the published curves, its sole moved smoothly from where it left the
+    floor to where it lands. Where the stance leg would have to be longer, the pelvis rides
+    lower.
     """
-    pinned = frames.copy()
-    toe = (body.sizes["foot"] / 2, 0.0, 0.0)
-    start, toe_off, faded = PUSH_OFF
+    legs = Legs(body)
+    ix, iz = body.index("base_x"), body.index("pelvis_height")
+    paced = frames.copy()
+    paced[:, ix] = paced_travel(phase, stride)
+    paced[:, iz] = _smooth_periodic(frames[:, iz], PELVIS_HARMONICS)
+    ahead = paced[:, ix] - frames[:, ix]
+    free = {side: [legs.sole(q, side) for q in paced] for side in SIDES}
+    pitch = {side: _stance_pitch(legs, side, frames, phase) for side in SIDES}
+    steps, soles = {}, {}
     for side in SIDES:
-        free = np.array([body.index(f"{side}_knee_flexion"), body.index(f"{side}_ankle_flexion")])
         leg = _leg_phase(side, phase)
-        correction, spot = np.zeros(2), None
-        for k in np.argsort(np.where(leg >= start, leg, leg + 1.0)):
-            if leg[k] < start or leg[k] >= faded:
-                continue
-            if spot is None:
-                spot = body.frame_pose(f"{side}_sole", frames[k]) @ np.array(toe)
-                spot[2] = 0.0
-            if leg[k] < toe_off:
-                task = FrameTask(f"{side}_sole", spot, position_weights=(1, 0, 1), point=toe)
-                pinned[k] = body.solve(frames[k], [task], free, iterations=15, posture_weight=1e-6)
-                correction = pinned[k, free] - frames[k, free]
-            else:
-                fade = 1.0 - minimum_jerk((leg[k] - toe_off) / (faded - toe_off))
-                pinned[k, free] = frames[k, free] + fade * correction
-    return pinned
+        strike = int(np.argmin(leg))
+        stance = leg < STANCE
+        relative = ahead[stance] - ahead[strike]
+        heel = legs.sole(frames[strike], side).point(-legs.half_foot)
+        heel[0] += ahead[strike]
+        heel[2] = 0.0
+        steps[side] = _Step(heel, heel + [2 * legs.half_foot, 0.0, 0.0])
+        soles[side] = _sole_track(legs, side, leg, free[side], pitch[side], steps[side], stride)
+    paced[:, iz] = _pelvis_within_reach(legs, paced, phase, soles)
+    for k, q in enumerate(paced):
+        for side in SIDES:
+            paced[k] = _reach_sole(legs, paced[k], side, *soles[side][k])
+    return paced
 
 
-def gait_clip(body: HumanBody, spec: GaitSpec, oversample: int = 8) -> Clip:
+WALKING_DORSIFLEXION = np.radians(16.0)
+"""The stance ankle bends no further while walking (the heel rises instead): 10-15 degrees
+is what gait data show (Perry), and the joint's limit leaves the walk some room."""
+
+
+def _reach_sole(legs: Legs, q: np.ndarray, side: str, position, forward) -> np.ndarray:
+    """q with the leg putting the sole at `position` pointing along `forward`; where that
+    bends a standing foot's ankle further than WALKING_DORSIFLEXION, the foot rolls further
+    over its toe (which stays where it stands) with the ankle there."""
+    solved = legs.solve(q, side, position, forward)
+    ankle = legs.joints[side][4]
+    toe = np.asarray(position) + legs.half_foot * np.asarray(forward)
+    if solved[ankle] <= WALKING_DORSIFLEXION or toe[2] > 1e-3 or forward[2] > 0:
+        return solved
+    heading = np.array([forward[0], forward[1], 0.0])
+    return legs.solve_rolling(
+        solved, side, toe, legs.half_foot, heading, WALKING_DORSIFLEXION, forward[2]
+    )
+
+
+LIFTING = (STANCE, 0.68)
+"""Leg phases over which the foot leaving the floor picks up speed: it rises before it
+moves on."""
+
+SETTLING = (0.9, 1.0)
+"""Leg phases over which the swinging foot slows to a stop above its landing place: it comes
+down on it without sliding on."""
+
+HEEL_RISE = 0.35
+"""Leg phase at which the stance heel starts to rise (terminal stance, Perry); from the heel
+rocker until then the foot stands flat."""
+
+
+def _stance_pitch(legs, side, frames, phase) -> np.ndarray:
+    """The foot's pitch (sine of its forward axis' rise) per frame: the published pose's,
+    except that a stance foot stands flat between the heel rocker and heel rise."""
+    pitch = np.array([legs.sole(q, side).forward[2] for q in frames])
+    leg = _leg_phase(side, phase)
+    rocking = (leg < HEEL_RISE) & (pitch > 0.0) & (leg < 0.5 * HEEL_RISE)
+    rising = (leg >= HEEL_RISE) & (pitch < 0.0)
+    standing = leg < STANCE
+    return np.where(standing & ~rocking & ~rising, 0.0, pitch)
+
+
+def _sole_track(legs, side, leg, free, pitch, step, stride):
+    """Per frame, where the `side` sole goes (origin, forward axis): on its step in stance,
+    the published swing's sole in the air, shifted from where the foot leaves its step to
+    where it lands on the next one (a stride ahead)."""
+    strike = int(np.argmin(leg))
+    track = {}
+    for k in np.flatnonzero(leg < STANCE):
+        position, forward = step.sole(pitch[k], legs.half_foot)
+        before_strike = k < strike  # still on the step one stride behind (the loop's start)
+        track[k] = (position - [stride * before_strike, 0.0, 0.0], forward)
+    lift = max(track, key=lambda k: leg[k])
+    leaving = track[lift][0] - free[lift].position
+    arriving = track[strike][0] - free[strike].position
+    landing = track[strike][0] + [stride * (strike == 0), 0.0, 0.0]
+    for k in np.flatnonzero(leg >= STANCE):
+        w = minimum_jerk((leg[k] - STANCE) / (1.0 - STANCE))
+        position = free[k].position + (1 - w) * leaving + w * arriving
+        lifted = minimum_jerk((leg[k] - LIFTING[0]) / (LIFTING[1] - LIFTING[0]))
+        settle = minimum_jerk((leg[k] - SETTLING[0]) / (SETTLING[1] - SETTLING[0]))
+        position[:2] += (1 - lifted) * (track[lift][0][:2] - position[:2])
+        position[:2] += settle * (landing[:2] - position[:2])
+        forward = free[k].forward + (1 - lifted) * (track[lift][1] - free[k].forward)
+        forward += settle * (track[strike][1] - forward)
+        forward /= np.linalg.norm(forward)
+        lowest = min(position[2] + s * legs.half_foot * forward[2] for s in (-1, 1))
+        position[2] -= min(lowest, 0.0)
+        track[k] = (position, forward)
+    return [track[k] for k in range(len(leg))]
+
+
+def _pelvis_within_reach(legs, frames, phase, soles) -> np.ndarray:
+    """The pelvis height, lowered smoothly wherever a leg could not reach its sole's place
+    with the knee bent at least MIN_STANCE_KNEE."""
+    iz = legs.root[3]
+    lower = np.zeros(len(frames))
+    for k, q in enumerate(frames):
+        for side in SIDES:
+            highest = legs.highest_pelvis(q, side, *soles[side][k], MIN_STANCE_KNEE)
+            lower[k] = max(lower[k], q[iz] - highest)
+    return frames[:, iz] - _smooth_cover(lower)
+
+
+def _smooth_cover(values: np.ndarray, passes: int = 200) -> np.ndarray:
+    """A smooth periodic curve at or above `values` that hugs them (repeated averaging of
+    neighbours, never below the values)."""
+    cover = values.copy()
+    for _ in range(passes):
+        cover = np.maximum(values, (np.roll(cover, 1) + 2 * cover + np.roll(cover, -1)) / 4)
+    return cover
+
+
+def gait_clip(body: HumanBody, spec: GaitSpec, oversample: int = 2) -> Clip:
     """One loopable gait cycle whose stance sole does not slide (see module docstring)."""
-    frames_per_cycle = round(GAIT_CYCLE * FPS)
+    frames_per_cycle = round(GAIT_CYCLE * GAIT_FPS)
     fine = np.arange(frames_per_cycle * oversample) / (frames_per_cycle * oversample)
     curves = _keep_feet_on_track(body, _gait_joint_curves(body, fine, spec))
     fitted, stride = _fit_root_to_floor(body, curves, fine)
-    cycle = _pin_trailing_toe(body, fitted, fine)[::oversample]
+    cycle = _plant_stance(body, fitted, fine, stride)[::oversample]
     last = cycle[0].copy()
     last[body.index("base_x")] += stride
     frames = np.vstack([cycle, last])
     events = {"left_heel_strike": 0.0, "right_heel_strike": GAIT_CYCLE / 2}
-    return Clip(spec.name, body.joint_names, frames, FPS, True, events, stride, spec.description)
+    return Clip(
+        spec.name, body.joint_names, frames, GAIT_FPS, True, events, stride, spec.description
+    )
 
 
 def mirrored_clip(body: HumanBody, clip: Clip, name: str, description: str) -> Clip:
@@ -482,15 +641,20 @@ def _waving(start: float, swings: int, period: float) -> tuple[Key, ...]:
 
 
 def _turn_keys(step: float, degrees: float, lift: float) -> tuple[Key, ...]:
-    """Two steps turning left on the spot: left foot, then right foot, body between."""
+    """Two steps turning left on the spot: left foot, then right foot, body between. Each
+    foot rises before it turns and turns before it comes down, so that it never twists on
+    the floor."""
     half = degrees / 2
-    return (
-        Key(0.0, {"base_yaw": 0}, {"left": (0, 0), "right": (0, 0)}),
-        Key(step / 2, {"base_yaw": half / 2}, {"left": (half, lift)}),
-        Key(step, {"base_yaw": half}, {"left": (degrees, 0)}),
-        Key(1.5 * step, {"base_yaw": 1.5 * half}, {"right": (half, lift)}),
-        Key(2 * step, {"base_yaw": degrees}, {"right": (degrees, 0)}),
-    )
+    keys = [Key(0.0, {"base_yaw": 0}, {"left": (0, 0), "right": (0, 0)})]
+    for k, side in enumerate(("left", "right")):
+        start = k * step
+        for fraction, (turned, raised) in zip(
+            (0.25, 0.75, 1.0), ((0.0, lift), (1.0, lift), (1.0, 0.0)), strict=True
+        ):
+            body = (k + fraction) * half
+            feet = {side: (turned * degrees, raised)}
+            keys.append(Key(start + fraction * step, {"base_yaw": body}, feet))
+    return tuple(keys)
 
 
 TURN_STEP_TIME = 0.45

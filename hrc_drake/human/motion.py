@@ -7,7 +7,7 @@ SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 """
 
 from bisect import bisect_right
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 from itertools import pairwise
 from math import atan2, ceil, copysign, cos, degrees, hypot, inf, pi, radians, sin
@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from hrc_drake.human.authoring import minimum_jerk, turn_clip
+from hrc_drake.human.authoring import MIN_STANCE_KNEE, minimum_jerk, turn_clip
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import (
@@ -26,6 +26,7 @@ from hrc_drake.human.grasp import (
     reach_target,
     release_targets,
 )
+from hrc_drake.human.legs import Legs
 from hrc_drake.human.messages import (
     NULL_QUATERNION,
     AnimateCommand,
@@ -37,6 +38,15 @@ from hrc_drake.human.messages import (
 )
 from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.skeleton import SIDES
+from hrc_drake.human.stepping import (
+    START_PHASE,
+    GaitProfile,
+    Spot,
+    gait_profile,
+    plan_steps,
+    sole_target,
+    standing_spots,
+)
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
 from hrc_drake.messages import CommandResult, newer_commands, recorded
 
@@ -55,11 +65,10 @@ TURN_ROUNDING = 3.0
 SPEED_RAMP = 0.6
 """Seconds to reach walking speed, and to stop."""
 MIN_TURN = radians(3.0)
-WALK_START_PHASE = 0.31
-"""Walks start this far into the gait cycle: the left foot planted where it stands, the
-right one swinging past it, so that setting off moves no foot along the floor."""
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
+SHARP_CORNER = radians(45.0)
+"""Walks turn through corners up to this; at sharper ones the person stops and turns."""
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
@@ -83,6 +92,20 @@ class Context:
     def root(self) -> tuple[int, int, int]:
         """Indices of base_x, base_y and base_yaw, looked up once: every pose places the root."""
         return self.index("base_x"), self.index("base_y"), self.index("base_yaw")
+
+    @cached_property
+    def legs(self) -> Legs:
+        """The legs in closed form (walking places the feet on its steps)."""
+        return Legs(self.body)
+
+    @cached_property
+    def standing(self) -> np.ndarray:
+        """Standing at ease (the idle clip's first pose, at the origin): where walks set off
+        from and come to rest in."""
+        return self.clips[IDLE_CLIP].sample(0.0)
+
+    def gait(self, clip: Clip) -> GaitProfile:
+        return gait_profile(self.legs, clip)
 
 
 def _wrap(angle: float) -> float:
@@ -200,7 +223,9 @@ def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
 
 @dataclass(frozen=True, eq=False)
 class WalkSegment:
-    """Walk along a polyline; the walk cycle advances by distance / animation_distance.
+    """Walk along a polyline from a standstill to a standstill, on footsteps
+    (hrc_drake.human.stepping): the gait clip's phase runs with time, the pelvis along the
+    path (speeding up and slowing down smoothly), the legs onto the planned steps.
 
     The path's legs are kept as plain floats: a pose looks up one point and one heading, and
     scalar arithmetic is quicker than numpy's for that.
@@ -212,6 +237,58 @@ class WalkSegment:
     animation_distance: float
     speed: float
     carry: CarryArms | None = None
+    steps: dict = field(default_factory=dict)
+    """Per side, the foot's stances (stepping.Stance) and their strike times."""
+    over: float = 0.0
+    """When the last foot stands flat at the goal."""
+    halt: tuple[float, float, float, float] | None = None
+    """(time, distance, speed, ramp): from then on the walk slows to a stop as soon as it
+    can (cancelled), covering speed * ramp / 2 more."""
+
+    @classmethod
+    def planned(cls, ctx: Context, start, path, clip: Clip, distance, speed, carry=None):
+        """The walk with its footsteps planned: the feet leave their standing places at the
+        start and close side by side at the goal."""
+        return cls(start, path, clip.name, distance, speed, carry)._stepped(ctx)
+
+    def halted(self, ctx: Context, t: float) -> "WalkSegment":
+        """This walk coming to a stop from t as soon as it can: the feet keep the steps they
+        have taken and the one they are swinging to, and close in a step or two."""
+        speed = self.speed_at(t)
+        ramp = max(SPEED_RAMP * min(speed / self.speed, 1.0), 1e-3)
+        walk = replace(self, halt=(t, self.distance(t), speed, ramp))
+        kept = {}
+        for side, (stances, strikes) in self.steps.items():
+            k = bisect_right(strikes, t)
+            airborne = k < len(stances) and t >= stances[k - 1].toe_off
+            kept[side] = stances[: k + airborne]
+        return walk._stepped(ctx, kept)
+
+    def _stepped(self, ctx: Context, kept=None) -> "WalkSegment":
+        """This walk with its footsteps planned (after the `kept` ones)."""
+        clip = ctx.clips[self.clip]
+        arrive = self._arrival()
+        clip_speed = clip.animation_distance / clip.duration
+        stances, over = plan_steps(
+            ctx.gait(clip),
+            clip.duration,
+            self.start,
+            arrive,
+            self.distance,
+            lambda t: self.speed_at(t) / clip_speed,
+            self.spot,
+            standing_spots(ctx.legs, self.spot, 0.0),
+            standing_spots(ctx.legs, self.spot, self.distance(arrive)),
+            kept,
+        )
+        steps = {side: (plan, tuple(s.strike for s in plan)) for side, plan in stances.items()}
+        return replace(self, steps=steps, over=over)
+
+    def _arrival(self) -> float:
+        """When the pelvis comes to rest."""
+        if self.halt is not None:
+            return self.halt[0] + self.halt[3]
+        return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
 
     @cached_property
     def _legs(self) -> np.ndarray:
@@ -230,25 +307,33 @@ class WalkSegment:
         return tuple(np.unwrap(np.arctan2(legs[:, 1], legs[:, 0])).tolist())
 
     def end(self, ctx: Context) -> float:
-        return self.start + travel(0.0, self.lengths[-1], self.speed)[1]
+        return self.over
 
     def distance(self, t: float) -> float:
+        """How far along the path the pelvis is at t."""
+        if self.halt is not None and t > self.halt[0]:
+            since, covered, speed, ramp = self.halt
+            u = min((t - since) / ramp, 1.0)
+            return covered + speed * ramp * (u - u**3 + u**4 / 2)
         return travel(t - self.start, self.lengths[-1], self.speed)[0]
 
     def clip_time(self, ctx: Context, t: float) -> float:
         """Time into the walk cycle (past its duration: later cycles)."""
-        return self._cycle_time(ctx.clips[self.clip], self.distance(t))
-
-    def _cycle_time(self, clip: Clip, covered: float) -> float:
-        return (covered / self.animation_distance + WALK_START_PHASE) * clip.duration
+        return (START_PHASE * ctx.clips[self.clip].duration) + max(t - self.start, 0.0)
 
     def point(self, along: float) -> tuple[float, float]:
+        """The path's point `along` it (before its start and past its end, straight on)."""
         lengths, path = self.lengths, self.path
-        along = min(max(along, 0.0), lengths[-1])
-        k = min(bisect_right(lengths, along) - 1, len(path) - 2)
+        k = min(max(bisect_right(lengths, along) - 1, 0), len(path) - 2)
         s = (along - lengths[k]) / max(lengths[k + 1] - lengths[k], 1e-9)
         (x0, y0), (x1, y1) = path[k], path[k + 1]
         return x0 + s * (x1 - x0), y0 + s * (y1 - y0)
+
+    def spot(self, along: float, lateral: float) -> Spot:
+        """A foot's spot `lateral` to the left of the path at `along`, turned with it."""
+        x, y = self.point(along)
+        heading = self.heading(along)
+        return Spot(along, lateral, x - sin(heading) * lateral, y + cos(heading) * lateral, heading)
 
     @cached_property
     def _corner_radii(self) -> tuple[float, ...]:
@@ -268,19 +353,60 @@ class WalkSegment:
                 heading += w * (directions[corner] - directions[corner - 1])
         return heading
 
+    def speed_at(self, t: float) -> float:
+        """The pelvis's speed along the path at t (m/s)."""
+        dt = 1e-3
+        return (self.distance(t + dt) - self.distance(t - dt)) / (2 * dt)
+
+    def _pace(self, t: float) -> float:
+        """How far into walking the body is: its speed as a fraction of the cruising speed
+        (0 standing, 1 at full pace)."""
+        total = self.lengths[-1]
+        cruise = min(self.speed, total / SPEED_RAMP) if total > 0 else 1.0
+        return self.speed_at(t) / cruise
+
     def pose(self, ctx: Context, t: float) -> np.ndarray:
         clip = ctx.clips[self.clip]
-        covered = self.distance(t)
-        clip_time = self._cycle_time(clip, covered)
-        q = clip.sample(clip_time)
-        ix, iy, _ = ctx.root
-        forward, sideways = float(q[ix]), float(q[iy])
-        along = covered + forward - clip_time / clip.duration * clip.animation_distance
-        heading = self.heading(along)
+        clip_time = self.clip_time(ctx, t)
+        gait = clip.sample(clip_time)
+        standing = ctx.standing
+        pace = min(max(self._pace(t), 0.0), 1.0)
+        q = standing + pace * (gait - standing)
+        ix, iy, iyaw = ctx.root
+        surge = float(gait[ix]) - clip_time / clip.duration * clip.animation_distance
+        along = self.distance(t) + pace * surge
+        heading = self.heading(along) + pace * float(gait[iyaw])
+        sideways = pace * float(gait[iy])
         x, y = self.point(along)
-        q[ix], q[iy] = 0.0, 0.0
-        placed = place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
-        return _carried(placed, self.carry)
+        q[ix], q[iy], q[iyaw] = 0.0, 0.0, 0.0
+        q = place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+        phase = clip_time / clip.duration
+        gait_profile = ctx.gait(clip)
+        targets = {}
+        for side, (stances, strikes) in self.steps.items():
+            k = max(bisect_right(strikes, t) - 1, 0)
+            targets[side] = sole_target(
+                gait_profile,
+                stances,
+                k,
+                side,
+                t,
+                clip.duration,
+                ctx.legs.half_foot,
+                self.distance(t),
+                self.spot,
+            )
+        iz = ctx.index("pelvis_height")
+        reach = min(
+            ctx.legs.highest_pelvis(q, s, position, forward, MIN_STANCE_KNEE) + slack
+            for s, (position, forward, slack) in targets.items()
+        )
+        q[iz] = min(q[iz], reach)
+        for side, (position, forward, slack) in targets.items():
+            if slack > 0.0:  # in the air: short of its place rather than a locked knee
+                position = ctx.legs.within_reach(q, side, position, forward, MIN_STANCE_KNEE)
+            q = ctx.legs.place_foot(q, side, position, forward)
+        return _carried(q, self.carry)
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
@@ -436,6 +562,24 @@ def _without_short_legs(path: list) -> list:
     return kept
 
 
+def _stretches(path: list) -> list[list]:
+    """The path cut at its sharp corners (turns of more than SHARP_CORNER): walked through
+    round a corner, the stance foot would have to twist further than a hip turns, so the
+    person stops there and turns on the spot."""
+    stretches, current = [], [path[0]]
+    for before, corner, after in zip(path, path[1:], path[2:]):
+        current.append(corner)
+        turn = _wrap(
+            atan2(after[1] - corner[1], after[0] - corner[0])
+            - atan2(corner[1] - before[1], corner[0] - before[0])
+        )
+        if abs(turn) > SHARP_CORNER:
+            stretches.append(current)
+            current = [corner]
+    current.append(path[-1])
+    return [*stretches, current] if len(path) > 1 else []
+
+
 def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activity:
     """Turn towards the path, walk it, then turn to the target orientation. Without given
     waypoints the path goes round the cell's geometry (the navigation map); a place to
@@ -457,18 +601,18 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     start = t
     heading = yaw
     carry = _carry(ctx, command.hold)
-    if len(path) > 1:
-        first = atan2(path[1][1] - y, path[1][0] - x)
-        heading = yaw + _wrap(first - yaw)
-        if abs(heading - yaw) > MIN_TURN:
-            segments.append(TurnSegment.between(ctx, start, (x, y), yaw, heading, carry))
+    distance = command.animation_distance or clip.animation_distance
+    speed = distance / clip.duration
+    for stretch in _stretches(path):
+        first = atan2(stretch[1][1] - stretch[0][1], stretch[1][0] - stretch[0][0])
+        facing = heading + _wrap(first - heading)
+        if abs(facing - heading) > MIN_TURN:
+            segments.append(TurnSegment.between(ctx, start, stretch[0], heading, facing, carry))
             start = segments[-1].end(ctx)
-        distance = command.animation_distance or clip.animation_distance
-        speed = distance / clip.duration
-        walk = WalkSegment(start, tuple(path), clip.name, distance, speed, carry)
+        walk = WalkSegment.planned(ctx, start, tuple(stretch), clip, distance, speed, carry)
         segments.append(walk)
         start = walk.end(ctx)
-        heading = walk.heading(walk.lengths[-1])
+        heading = facing + _wrap(walk.heading(walk.lengths[-1]) - facing)
     final_yaw = heading
     if tuple(command.target_quaternion) != NULL_QUATERNION:
         final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
@@ -541,6 +685,35 @@ def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **cha
     return actor._replace(activity=activity, activity_events=(), **changes)
 
 
+def _walk_at(activity: Activity | None, t: float):
+    """The walk the activity is in at t (None: standing, turning or playing a clip)."""
+    if activity is None:
+        return None
+    current = [s for s in activity.segments if s.start <= t]
+    walk = current[-1] if current else None
+    return walk if isinstance(walk, WalkSegment) and t < walk.over else None
+
+
+def _stopping(ctx: Context, state: ActorState, t: float) -> Activity:
+    """Standing idle after a cancel: at once, or a walk under way first comes to a stop in
+    a step or two (stopping dead would slide the feet)."""
+    walk = _walk_at(state.activity, t)
+    if walk is None:
+        return _idle(ctx, state.base, t, state.hold)
+    stop = walk.halted(ctx, t)
+    along = stop.distance(stop.over)
+    pose = (*stop.point(along), _wrap(stop.heading(along)))
+    rest = ClipSegment(IDLE_CLIP, stop.over, pose, forever=True, carry=_carry(ctx, state.hold))
+    return Activity.plan(ctx, (stop, rest), pose)
+
+
+def _still_walking(activity: Activity | None, t: float):
+    """A walk coming to a stop (after a cancel) that what comes next must wait for: its
+    segment and when it is over (none and t when nothing is under way)."""
+    walk = _walk_at(activity, t)
+    return ((walk,), walk.over) if walk is not None else ((), t)
+
+
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
     if isinstance(command, SetCalledCommand):
         return _record(state._replace(called=command.called), command.seq, "succeeded")
@@ -551,7 +724,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         state = _switch(
             ctx,
             state,
-            _idle(ctx, state.base, t, state.hold),
+            _stopping(ctx, state, t),
             t,
             state="IDLE",
             running=-1,
@@ -560,13 +733,17 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         return _record(state, command.seq, "succeeded")
     if state.running >= 0:
         return _record(state, command.seq, "rejected", f"busy with command {state.running}")
+    walking, t0 = _still_walking(state.activity, t)
     try:
         if isinstance(command, MoveCommand):
-            activity, mode = plan_movement(ctx, command, state.anchor, t), "MOVEMENT"
+            activity, mode = plan_movement(ctx, command, state.anchor, t0), "MOVEMENT"
         else:
-            activity, mode = plan_animation(ctx, command, state.anchor, t), "ANIMATION"
+            activity, mode = plan_animation(ctx, command, state.anchor, t0), "ANIMATION"
     except Unreachable as error:
         return _record(state, command.seq, "failed", str(error))
+    if walking:
+        segments = (*walking, *activity.segments)
+        activity = Activity.plan(ctx, segments, activity.final_pose)
     state = _switch(
         ctx,
         state,

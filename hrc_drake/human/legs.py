@@ -1,0 +1,246 @@
+"""The legs in closed form: put a sole where it stands, whatever the pelvis does.
+
+A leg has five joints (hip flexion, abduction and rotation, knee, ankle): enough to put the
+sole frame at a point with the foot pointing along a given direction (its roll follows).
+`Legs.solve` does that without iterating: the knee angle from the hip-ankle distance, the
+hip's rotation from the plane that leg and foot span, the ankle from the foot's pitch in
+that plane. It is a few small matrix products, so the person can plant feet while walking
+round corners, stepping and blending at every update (a Jacobian IK costs ~50 times more).
+
+Conventions (hrc_drake.human.skeleton): the pelvis is posed by base_x, base_y, base_yaw,
+pelvis_height (the hip joints' midpoint above the floor), pelvis_tilt (about y) and
+pelvis_list (about x); each hip is half the hip width to the side; flexion turns about -y,
+abduction about x (-x on the right) and rotation about -z (+z on the right); the knee turns
+about y, the ankle about -y.
+"""
+
+from dataclasses import dataclass
+from math import acos, asin, atan2, cos, pi, sin, sqrt
+
+import numpy as np
+
+from hrc_drake.human.skeleton import SIDES
+
+LEG_JOINTS = ("hip_flexion", "hip_abduction", "hip_rotation", "knee_flexion", "ankle_flexion")
+FLOOR_CONTACT = 1e-3
+"""m: a sole point this close to the floor stands on it."""
+ROLL_TOLERANCE = 0.01
+"""Sine of the pitch by which a foot rolling over its toe may still point its toe up (and
+one rolling over its heel its toe down): it stands flat, give or take rounding."""
+STRAIGHTEST_KNEE = 0.02
+"""rad: the knee never quite locks (a straight knee is singular)."""
+
+
+def rotation_x(a: float) -> np.ndarray:
+    c, s = cos(a), sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rotation_y(a: float) -> np.ndarray:
+    c, s = cos(a), sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rotation_z(a: float) -> np.ndarray:
+    c, s = cos(a), sin(a)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _wrap(angle: float) -> float:
+    return (angle + pi) % (2 * pi) - pi
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / sqrt(float(v @ v))
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b of two 3-vectors (numpy's cross costs twenty times more for one pair)."""
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
+
+
+@dataclass(frozen=True)
+class SolePose:
+    """Where a sole frame is: its origin and the foot's forward and up axes (world)."""
+
+    position: np.ndarray
+    forward: np.ndarray
+    up: np.ndarray
+
+    def point(self, along: float) -> np.ndarray:
+        """The sole's point `along` metres ahead of its origin (heel < 0 < toe)."""
+        return self.position + along * self.forward
+
+
+class Legs:
+    """Forward and closed-form inverse kinematics of both legs of one body."""
+
+    def __init__(self, body):
+        sizes = body.sizes
+        self.thigh, self.shank = sizes["thigh"], sizes["shank"]
+        self.hip = {
+            side: np.array([0.0, sign * sizes["hip_half_width"], 0.0])
+            for side, sign in zip(SIDES, (1, -1), strict=True)
+        }
+        self.sole_offset = np.array(
+            [sizes["foot"] / 2 - sizes["heel_back"], 0.0, -sizes["ankle_height"]]
+        )
+        self.half_foot = sizes["foot"] / 2
+        index = body.index
+        self.root = tuple(index(n) for n in ("base_x", "base_y", "base_yaw", "pelvis_height"))
+        self.pelvis_angles = (index("pelvis_tilt"), index("pelvis_list"))
+        self.joints = {side: tuple(index(f"{side}_{j}") for j in LEG_JOINTS) for side in SIDES}
+        self.lower = {side: body.lower[list(self.joints[side])] for side in SIDES}
+        self.upper = {side: body.upper[list(self.joints[side])] for side in SIDES}
+
+    def pelvis(self, q) -> tuple[np.ndarray, np.ndarray]:
+        """World rotation and position of the pelvis frame (the hip joints' midpoint)."""
+        x, y, yaw, height = (float(q[i]) for i in self.root)
+        tilt, tilt_list = (float(q[i]) for i in self.pelvis_angles)
+        return rotation_z(yaw) @ rotation_y(tilt) @ rotation_x(tilt_list), np.array([x, y, height])
+
+    @staticmethod
+    def _hip_rotation(side: str, flexion: float, abduction: float, rotation: float):
+        sign = 1.0 if side == "left" else -1.0
+        return rotation_y(-flexion) @ rotation_x(sign * abduction) @ rotation_z(-sign * rotation)
+
+    def sole(self, q, side: str) -> SolePose:
+        """Where the `side` sole is at the joint positions q."""
+        R_p, p = self.pelvis(q)
+        flexion, abduction, rotation, knee, ankle = (float(q[i]) for i in self.joints[side])
+        R_thigh = R_p @ self._hip_rotation(side, flexion, abduction, rotation)
+        R_shank = R_thigh @ rotation_y(knee)
+        R_foot = R_shank @ rotation_y(-ankle)
+        ankle_at = p + R_p @ self.hip[side] + R_thigh @ [0.0, 0.0, -self.thigh]
+        ankle_at = ankle_at + R_shank @ [0.0, 0.0, -self.shank]
+        return SolePose(ankle_at + R_foot @ self.sole_offset, R_foot[:, 0], R_foot[:, 2])
+
+    def within_reach(self, q, side: str, position, forward, knee: float) -> np.ndarray:
+        """`position` for the `side` sole, or where it would be had the leg moved it only as
+        far from the hip as the knee bent `knee` allows (straight back towards the hip)."""
+        R_p, p = self.pelvis(q)
+        forward = np.asarray(forward, dtype=float)
+        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
+        offset = self.sole_offset[0] * forward + self.sole_offset[2] * up
+        hip = p + R_p @ self.hip[side]
+        leg = np.asarray(position) - offset - hip
+        L1, L2 = self.thigh, self.shank
+        longest = sqrt(L1 * L1 + L2 * L2 + 2 * L1 * L2 * cos(knee))
+        length = sqrt(float(leg @ leg))
+        return np.asarray(position) if length <= longest else hip + leg * longest / length + offset
+
+    def highest_pelvis(self, q, side: str, position, forward, knee: float) -> float:
+        """The highest the pelvis may stand (pelvis_height, the rest of q kept) for the
+        `side` leg to reach its sole's place with the knee bent at least `knee`."""
+        R_p, p = self.pelvis(q)
+        forward = np.asarray(forward, dtype=float)
+        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
+        ankle = np.asarray(position) - self.sole_offset[0] * forward - self.sole_offset[2] * up
+        hip = R_p @ self.hip[side]
+        L1, L2 = self.thigh, self.shank
+        longest_squared = L1 * L1 + L2 * L2 + 2 * L1 * L2 * cos(knee)
+        across_squared = (p[0] + hip[0] - ankle[0]) ** 2 + (p[1] + hip[1] - ankle[1]) ** 2
+        return float(ankle[2] - hip[2] + sqrt(max(longest_squared - across_squared, 0.0)))
+
+    def solve(self, q, side: str, position, forward, passes: int = 3) -> np.ndarray:
+        """q with the `side` leg's joints set so its sole frame is at `position` (world)
+        with the foot pointing along `forward` (a unit vector; its roll is what the leg
+        gives). A target out of reach leaves the leg straight towards it."""
+        q = np.array(q, dtype=float)
+        R_p, p = self.pelvis(q)
+        forward = _unit(np.asarray(forward, dtype=float))
+        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
+        hip = p + R_p @ self.hip[side]
+        f = R_p.T @ forward
+        along, down = self.sole_offset[0] * forward, self.sole_offset[2]
+        for _ in range(passes):
+            d = R_p.T @ (np.asarray(position, dtype=float) - along - down * up - hip)
+            joints, up_in_pelvis = self._leg(side, d, f)
+            up = R_p @ up_in_pelvis
+        q[list(self.joints[side])] = np.clip(joints, self.lower[side], self.upper[side])
+        return q
+
+    def place_foot(self, q, side: str, position, forward) -> np.ndarray:
+        """`solve`, and where that bends the ankle past its dorsiflexion limit with the sole
+        on the floor, the foot rolls further over its heel or toe (which stays where the
+        target has it) with the ankle at the limit: a heel rises earlier rather than the
+        foot sliding."""
+        solved = self.solve(q, side, position, forward)
+        ankle = self.joints[side][4]
+        if solved[ankle] < self.upper[side][4]:
+            return solved
+        along = -self.half_foot if forward[2] > 0 else self.half_foot
+        point = np.asarray(position) + along * np.asarray(forward)
+        if point[2] > FLOOR_CONTACT:
+            return solved
+        heading = np.array([forward[0], forward[1], 0.0])
+        limit = self.upper[side][4]
+        return self.solve_rolling(solved, side, point, along, heading, limit, forward[2])
+
+    def solve_rolling(self, q, side, point, along: float, heading, ankle: float, pitch: float):
+        """q with the `side` leg's joints set so that the sole's point `along` metres from
+        its origin (the heel < 0, the toe > 0) is at `point` (world), the foot heading along
+        the horizontal `heading`, and the ankle at `ankle`: the foot pitches round that point
+        as far as the leg needs (a heel rising off the floor while the toe stays put, or the
+        toe lowering onto it while the heel does). Of the two knee angles that reach, the
+        one that pitches the foot that way, nearer `pitch` (a sine)."""
+        q = np.array(q, dtype=float)
+        R_p, p = self.pelvis(q)
+        L1 = self.thigh
+        c = self.sole_offset + [along, 0.0, 0.0]
+        w = np.array([0.0, 0.0, -self.shank]) + rotation_y(-ankle) @ c
+        d = R_p.T @ (np.asarray(point, dtype=float) - p) - self.hip[side]
+        rho = sqrt(w[0] ** 2 + w[2] ** 2)
+        reach = (float(d @ d) - L1 * L1 - rho * rho) / (2 * L1)
+        bend = asin(min(max(reach / rho, -1.0), 1.0))
+        h = R_p.T @ _unit(np.asarray(heading, dtype=float))
+        up = R_p.T @ np.array([0.0, 0.0, 1.0])
+        best = None
+        for knee in (atan2(w[2], w[0]) + bend, atan2(w[2], w[0]) + pi - bend):
+            knee = min(max(_wrap(knee), STRAIGHTEST_KNEE), self.upper[side][3])
+            u = np.array([0.0, 0.0, -L1]) + rotation_y(knee) @ w
+            forward = h
+            for _ in range(4):
+                R_hip = self._hip_frame(d, u, forward)
+                rise = float(R_hip @ rotation_y(knee - ankle)[:, 0] @ up)
+                forward = sqrt(max(1.0 - rise * rise, 0.0)) * h + rise * up
+            wrong_way = rise * along > ROLL_TOLERANCE * abs(along)  # the heel up or the toe
+            score = (wrong_way, abs(rise - pitch))
+            if best is None or score < best[0]:
+                best = (score, [*self._hip_angles(side, R_hip), knee, ankle])
+        q[list(self.joints[side])] = np.clip(best[1], self.lower[side], self.upper[side])
+        return q
+
+    @staticmethod
+    def _hip_frame(d: np.ndarray, u: np.ndarray, forward: np.ndarray) -> np.ndarray:
+        """The hip's rotation taking the thigh-frame vector u (in its x-z plane) onto d, with
+        the leg's plane holding `forward` (all in the pelvis frame)."""
+        u_hat, d_hat = _unit(u), _unit(d)
+        n = _unit(_cross(forward, d_hat))
+        into = np.array([u_hat, [0.0, 1.0, 0.0], [u_hat[2], 0.0, -u_hat[0]]])
+        return np.column_stack((d_hat, n, _cross(n, d_hat))) @ into
+
+    @staticmethod
+    def _hip_angles(side: str, R_hip: np.ndarray) -> tuple[float, float, float]:
+        """Hip flexion, abduction and rotation of a hip rotation matrix."""
+        sign = 1.0 if side == "left" else -1.0
+        a = atan2(R_hip[0, 2], R_hip[2, 2])
+        b = asin(min(max(-R_hip[1, 2], -1.0), 1.0))
+        c = atan2(R_hip[1, 0], R_hip[1, 1])
+        return -a, sign * b, -sign * c
+
+    def _leg(self, side: str, d: np.ndarray, f: np.ndarray):
+        """Joint angles putting the ankle at d from the hip with the foot along f (both in
+        the pelvis frame), and the foot's up axis they give (pelvis frame)."""
+        L1, L2 = self.thigh, self.shank
+        reach = sqrt(float(d @ d))
+        c = (reach * reach - L1 * L1 - L2 * L2) / (2 * L1 * L2)
+        knee = max(acos(min(max(c, -1.0), 1.0)), STRAIGHTEST_KNEE)
+        u = np.array([-L2 * sin(knee), 0.0, -L1 - L2 * cos(knee)])
+        R_hip = self._hip_frame(d, u, f)
+        g = R_hip.T @ f
+        pitch = atan2(-g[2], g[0])
+        joints = np.array([*self._hip_angles(side, R_hip), knee, knee - pitch])
+        return joints, R_hip @ np.array([sin(pitch), 0.0, cos(pitch)])

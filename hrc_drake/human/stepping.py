@@ -1,0 +1,305 @@
+"""Walking on footsteps: the feet stand where they land, on any path, from a standstill to
+a standstill.
+
+A gait clip (walk, carry) is authored on a straight line at its own speed. Played along a
+path that bends, speeds up and slows down, its stance feet would slide. Instead the legs
+are placed: at plan time every step gets its place (`plan_steps`): along the path under
+where the pelvis passes during that stance, turned with the path; the first steps leave
+the feet's standing places and the last ones close the feet side by side at the goal. At
+every pose the clip gives the body, the trunk and the arms, the rhythm (its phase runs with
+time at the clip's cadence) and how each foot pitches, lifts and travels through a swing
+(`GaitProfile`); hrc_drake.human.legs then solves each leg onto its sole's place.
+"""
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from itertools import pairwise
+from math import cos, inf, pi, sin, sqrt
+
+import numpy as np
+
+from hrc_drake.human.authoring import LIFTING, SETTLING, minimum_jerk
+from hrc_drake.human.clip import Clip
+from hrc_drake.human.legs import Legs
+from hrc_drake.human.skeleton import SIDES
+
+PROFILE_SAMPLES = 240
+"""Samples of one gait cycle in a GaitProfile."""
+STANCE = 0.6
+"""Fraction of the gait cycle a foot stands (heel strike to toe-off; docs/human-body.md)."""
+LAG = {"left": 0.0, "right": 0.5}
+"""Phase of each foot's heel strike in the gait cycle (the clips' `<side>_heel_strike`)."""
+START_PHASE = 0.0
+"""A walk starts at the phase of the left heel strike: the left foot stands flat where it
+stood while the right heel rises and the right foot leaves its standing place first."""
+CLOSING = 0.15
+"""m: a step that would land less than this short of the goal (or past it) closes the feet
+at the goal instead."""
+SETTLE = 0.1
+"""Fraction of a gait cycle after the last heel strike until the foot stands flat."""
+SWING_SLACK = 0.03
+"""m: a swinging foot may fall this far short of its place rather than the pelvis dropping
+for it (on the floor a foot must be exactly where it stands)."""
+UNROLLING = 0.8
+"""Leg phase by which a foot that left the floor pitched as far as a full step's has come
+to the pitch of its own, shorter, step."""
+FIRST_RISE = 0.1
+"""Fraction of a gait cycle over which the first heel of a walk rises to the clip's pitch."""
+LOWEST_LIFT = 0.35
+
+"""A short step lifts the foot this fraction of a full stride's lift at least."""
+
+
+def _wrap(angle: float) -> float:
+    return (angle + pi) % (2 * pi) - pi
+
+
+@dataclass(frozen=True, eq=False)
+class GaitProfile:
+    """What a gait clip does with each foot, per phase of its own leg (0 = heel strike).
+
+    A foot is followed by its *spot*: where its sole's origin would be if it were set down
+    flat (on a standing foot: where it stands). Per leg phase: the foot's pitch (sine); in
+    swing how high its spot is, how far it swings out sideways, how far it has come from one
+    step to the next (`progress`, 0..1) and how far relative to the pelvis (`following`,
+    0..1: from where it left the pelvis behind to where it lands ahead of it); and where a
+    foot lands relative to the pelvis (`offset`: ahead of it at heel strike; `track`: to
+    the side of the path).
+    """
+
+    pitch: np.ndarray
+    progress: np.ndarray
+    following: np.ndarray
+    height: np.ndarray
+    sideways: np.ndarray
+    offset: dict
+    track: dict
+    stride: float
+
+    def at(self, values: np.ndarray, leg_phase: float) -> float:
+        u = (leg_phase % 1.0) * PROFILE_SAMPLES
+        k = int(u)
+        s = u - k
+        return float(values[k] * (1 - s) + values[(k + 1) % PROFILE_SAMPLES] * s)
+
+
+def _pivot(pitch: float, half_foot: float) -> float:
+    """Where along the foot it rolls: over the heel when the toe is up, else over the toe."""
+    return -half_foot if pitch > 0 else half_foot
+
+
+@lru_cache(maxsize=16)
+def gait_profile(legs: Legs, clip: Clip) -> GaitProfile:
+    """The profile of a gait clip whose left heel strikes at phase 0 (see GaitProfile); the
+    right foot does the same half a cycle later."""
+    ix = clip.joint_names.index("base_x")
+    phases = np.arange(PROFILE_SAMPLES) / PROFILE_SAMPLES
+    poses = [clip.sample(p * clip.duration) for p in phases]
+    root = np.array([q[ix] for q in poses])
+    stride = clip.animation_distance
+    offset, track = {}, {}
+    for side in SIDES:
+        spots = np.array([_spot_of(legs.sole(q, side), legs.half_foot) for q in poses])
+        flat = spots[int(round((LAG[side] + 0.25) * PROFILE_SAMPLES)) % PROFILE_SAMPLES]
+        step = flat[0] - (LAG[side] + 0.25 >= 1.0) * stride
+        offset[side] = float(step - _root_at(root, stride, LAG[side]))
+        track[side] = float(flat[1])
+        if side == "left":
+            left, pitch = spots, np.array([legs.sole(q, side).forward[2] for q in poses])
+            swinging = phases >= STANCE
+            ahead = left[:, 0] - root
+            left_behind = ahead[int(STANCE * PROFILE_SAMPLES)]
+            following = (ahead - left_behind) / (offset[side] - left_behind)
+            progress = np.where(swinging, (left[:, 0] - step) / stride, 0.0)
+            height = np.where(swinging, left[:, 2], 0.0)
+            sideways = np.where(swinging, left[:, 1] - flat[1], 0.0)
+    return GaitProfile(
+        pitch,
+        np.clip(progress, 0.0, 1.0),
+        np.where(phases >= STANCE, np.clip(following, 0.0, 1.0), 0.0),
+        height,
+        sideways,
+        offset,
+        track,
+        stride,
+    )
+
+
+def _spot_of(sole, half_foot: float) -> np.ndarray:
+    """The spot of a sole (see GaitProfile): its origin as if set down flat round its pivot."""
+    heading = sole.forward.copy()
+    heading[2] = 0.0
+    heading /= np.linalg.norm(heading)
+    pivot = _pivot(float(sole.forward[2]), half_foot)
+    return sole.position - pivot * heading + pivot * sole.forward
+
+
+def _root_at(root: np.ndarray, stride: float, phase: float) -> float:
+    """The clip's pelvis travel at `phase` (cycles past the first add a stride each)."""
+    cycles, rest = divmod(phase, 1.0)
+    return float(
+        np.interp(rest * PROFILE_SAMPLES, np.arange(PROFILE_SAMPLES), root) + cycles * stride
+    )
+
+
+@dataclass(frozen=True)
+class Spot:
+    """Where a foot stands: `along` the path and `lateral` to its left, and in the world its
+    flat sole's origin on the floor and its heading."""
+
+    along: float
+    lateral: float
+    x: float
+    y: float
+    yaw: float
+
+    def distance(self, other: "Spot") -> float:
+        return sqrt((self.x - other.x) ** 2 + (self.y - other.y) ** 2)
+
+
+@dataclass(frozen=True)
+class Stance:
+    """One foot standing on `spot` from `strike` to `toe_off` (seconds; inf: it stays), the
+    pelvis `pelvis_in` along the path at strike and `pelvis_out` at toe-off. `first`: it
+    stood there before the walk (flat, its heel rising from the start of the walk only as
+    far as its first step needs); `last`: it closes the feet at the goal (it stays flat). `arriving`
+    and `leaving` scale how far the foot rolls landing here and how high it lifts leaving
+    (a step's length over a full step's, at least LOWEST_LIFT: a short step lands flatter
+    and lifts the foot less)."""
+
+    spot: Spot
+    strike: float
+    toe_off: float
+    pelvis_in: float
+    pelvis_out: float
+    entered: float = 0.0
+    """The foot's own gait phase at `strike` (0, a heel strike, except for the first)."""
+    first: bool = False
+    last: bool = False
+    arriving: float = 1.0
+    leaving: float = 1.0
+
+
+def standing_spots(legs: Legs, place, along: float) -> dict[str, Spot]:
+    """Where the feet stand when the pelvis stands `along` the path (`place` as in
+    plan_steps)."""
+    return {side: place(along + legs.sole_offset[0], legs.hip[side][1]) for side in SIDES}
+
+
+def plan_steps(profile, cycle, start, arrive, travel, pace, place, begin, end, kept=None):
+    """Every stance of both feet of a walk that sets off at `start`: `travel(t)` is the
+    pelvis's distance along the path at t (it arrives at `arrive`), `pace(t)` its speed as a
+    fraction of the clip's, `place(along, lateral)` the Spot that far along the path and to
+    its left; the feet stand on `begin` at the start and close on `end` at the goal. With
+    `kept` (stances per side), the feet have already taken those steps.
+
+    A foot lands as far ahead of the pelvis as in the clip, in proportion to the pace: the
+    slower the body moves, the closer under it the foot lands (as a balancing walker puts
+    it, near where the body's momentum carries it). Returns the stances per side and when
+    the last foot stands flat at the goal."""
+    total = travel(arrive)
+    stances = {}
+    for side in SIDES:
+        plan = list(kept[side]) if kept else [_first_stance(side, start, cycle, travel, begin)]
+        if not plan[-1].last:
+            plan[-1] = replace(plan[-1], pelvis_out=travel(plan[-1].toe_off))
+        strike = plan[-1].strike + (1.0 - plan[-1].entered) * cycle
+        while not plan[-1].last:
+            along = travel(strike) + profile.offset[side] * pace(strike)
+            toe_off = strike + STANCE * cycle
+            if along >= total - CLOSING or strike >= arrive:
+                plan.append(Stance(end[side], strike, inf, travel(strike), total, last=True))
+            else:
+                spot = place(along, profile.track[side])
+                plan.append(Stance(spot, strike, toe_off, travel(strike), travel(toe_off)))
+            strike += cycle
+        stances[side] = _scaled(plan, profile.stride)
+    over = max(stances[side][-1].strike for side in SIDES) + SETTLE * cycle
+    return stances, over
+
+
+def _first_stance(side: str, start: float, cycle: float, travel, begin) -> Stance:
+    """Where a foot stands when the walk sets off, and until its first toe-off."""
+    toe_off = start + ((LAG[side] + STANCE - START_PHASE) % 1.0) * cycle
+    entered = (START_PHASE - LAG[side]) % 1.0
+    return Stance(begin[side], start, toe_off, 0.0, travel(toe_off), entered, first=True)
+
+
+def _scaled(plan: list[Stance], stride: float) -> tuple[Stance, ...]:
+    """The stances with the scale of the steps between them."""
+    scales = [
+        min(max(a.spot.distance(b.spot) / stride, LOWEST_LIFT), 1.0) for a, b in pairwise(plan)
+    ]
+    arriving, leaving = [scales[0], *scales], [*scales, scales[-1]]
+    return tuple(
+        replace(stance, arriving=a, leaving=b)
+        for stance, a, b in zip(plan, arriving, leaving, strict=True)
+    )
+
+
+def sole_target(
+    profile: GaitProfile,
+    stances,
+    k: int,
+    side: str,
+    t: float,
+    cycle: float,
+    half_foot: float,
+    pelvis: float,
+    place,
+):
+    """Where the `side` sole goes at t (origin, forward axis), and how far short of it the
+    leg may fall for the pelvis's sake (a foot in the air until it settles): it last struck
+    stances[k];
+    the feet keep the rhythm of a gait cycle of `cycle` seconds; the pelvis is `pelvis`
+    along the path (`place` as in plan_steps).
+
+    A swinging foot moves with the pelvis as the clip's does (from where it left the pelvis
+    behind to where it lands ahead of it), so that a pelvis still speeding up does not fall
+    behind its feet; it leaves its step and settles on the next one without sliding."""
+    stance = stances[k]
+    if t < stance.toe_off:
+        u = stance.entered + (t - stance.strike) / cycle
+        pitch = profile.at(profile.pitch, u)
+        pitch *= stance.arriving if pitch > 0 else 1.0
+        if stance.first:
+            rising = (t - stance.strike) / (FIRST_RISE * cycle)
+            pitch = min(pitch, 0.0) * min(rising, 1.0) * stance.leaving
+        if stance.last:
+            pitch = max(pitch, 0.0) if u < STANCE / 2 else 0.0
+        return (
+            *_sole_on(stance.spot.x, stance.spot.y, 0.0, stance.spot.yaw, pitch, half_foot),
+            0.0,
+        )
+    landing = stances[k + 1]
+    lift, land = stance.spot, landing.spot
+    u = min(STANCE + (t - stance.toe_off) / cycle, 1.0)
+    behind, ahead = lift.along - stance.pelvis_out, land.along - landing.pelvis_in
+    along = pelvis + behind + profile.at(profile.following, u) * (ahead - behind)
+    lifted = minimum_jerk((u - LIFTING[0]) / (LIFTING[1] - LIFTING[0]))
+    settled = minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0]))
+    along = lift.along + lifted * (along - lift.along)
+    along += settled * (land.along - along)
+    p = profile.at(profile.progress, u)
+    scale = stance.leaving
+    lateral = lift.lateral + p * (land.lateral - lift.lateral)
+    lateral += scale * profile.at(profile.sideways, u) * (1 if side == "left" else -1)
+    spot = place(along, lateral)
+    yaw = lift.yaw + p * _wrap(land.yaw - lift.yaw)
+    rolled = stance.leaving if stance.first else 1.0  # how far it rolled leaving the floor
+    unrolling = minimum_jerk((u - STANCE) / (UNROLLING - STANCE))
+    pitch = (scale + (rolled - scale) * (1.0 - unrolling)) * profile.at(profile.pitch, u)
+    height = scale * profile.at(profile.height, u)
+    slack = SWING_SLACK * (1.0 - minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0])))
+    return (*_sole_on(spot.x, spot.y, height, yaw, pitch, half_foot), slack)
+
+
+def _sole_on(x: float, y: float, z: float, yaw: float, pitch: float, half_foot: float):
+    """The sole (origin, forward axis) of a foot whose spot is (x, y, z), heading yaw and
+    pitched round its heel (pitch > 0) or toe (pitch < 0)."""
+    c, s = cos(yaw), sin(yaw)
+    level = sqrt(1.0 - pitch * pitch)
+    forward = np.array([level * c, level * s, pitch])
+    pivot = _pivot(pitch, half_foot)
+    origin = np.array([x + pivot * c, y + pivot * s, z]) - pivot * forward
+    return origin, forward
