@@ -160,44 +160,20 @@ def _sole_target(body: HumanBody, side: str, yaw: float, lift: float):
     return rotation @ standing + np.array([0.0, 0.0, lift]), rotation
 
 
-def leg_indices(body: HumanBody, side: str) -> np.ndarray:
-    return np.array(
-        [
-            i
-            for i, n in enumerate(body.joint_names)
-            if n.startswith(f"{side}_") and any(j in n for j in ("hip", "knee", "ankle"))
-        ]
-    )
-
-
 SOFT_KNEES = 0.006
-"""Stand 6 mm lower than with locked knees: a straight knee is singular, so leg IK on locked
-knees would snap them between straight and bent as the weight shifts."""
-
-KNEE_SEED = np.radians(25.0)
-"""A straight knee is a singular start for leg IK: begin the first frame slightly bent."""
+"""Stand 6 mm lower than with locked knees: a straight knee is singular, and a person at ease
+does not lock their knees."""
 
 
 def plant_feet(body: HumanBody, frames: np.ndarray, placements: dict) -> np.ndarray:
-    """Solve both legs in every frame so each sole sits flat at its placement."""
+    """Solve both legs in every frame (in closed form) so each sole sits flat at its
+    placement."""
+    legs = Legs(body)
     planted = frames.copy()
-    free = np.concatenate([leg_indices(body, side) for side in SIDES])
-    previous = None
-    for k, q in enumerate(frames):
-        tasks = []
+    for k in range(len(frames)):
         for side in SIDES:
             position, rotation = _sole_target(body, side, *placements[side][k])
-            tasks.append(
-                FrameTask(f"{side}_sole", position, rotation, rotation_weights=(0.3, 0.3, 0.3))
-            )
-        start = q.copy()
-        if previous is None:
-            knees = [body.index(f"{side}_knee_flexion") for side in SIDES]
-            start[knees] = np.maximum(start[knees], KNEE_SEED)
-        else:
-            start[free] = previous[free]
-        planted[k] = body.solve(start, tasks, free, iterations=40, posture_weight=1e-5)
-        previous = planted[k]
+            planted[k] = legs.solve(planted[k], side, position, rotation.matrix()[:, 0])
     return planted
 
 
@@ -438,17 +414,24 @@ is what gait data show (Perry), and the joint's limit leaves the walk some room.
 
 def _reach_sole(legs: Legs, q: np.ndarray, side: str, position, forward) -> np.ndarray:
     """q with the leg putting the sole at `position` pointing along `forward`; where that
-    bends a standing foot's ankle further than WALKING_DORSIFLEXION, the foot rolls further
-    over its toe (which stays where it stands) with the ankle there."""
+    bends a standing foot's ankle further than WALKING_DORSIFLEXION, or the leg is too short
+    for a foot on its toe, the foot rolls further over its toe (which stays where it stands)
+    with the ankle there, or the knee at MIN_STANCE_KNEE."""
     solved = legs.solve(q, side, position, forward)
     ankle = legs.joints[side][4]
     toe = np.asarray(position) + legs.half_foot * np.asarray(forward)
-    if solved[ankle] <= WALKING_DORSIFLEXION or toe[2] > 1e-3 or forward[2] > 0:
+    if toe[2] > 1e-3 or forward[2] > 0:
+        return solved
+    if solved[ankle] > WALKING_DORSIFLEXION:
+        angle = WALKING_DORSIFLEXION
+    elif np.linalg.norm(legs.sole(solved, side).position - position) > 1e-4:
+        angle = legs.ankle_for_knee(solved, side, toe, legs.half_foot, MIN_STANCE_KNEE)
+        if angle is None:
+            return solved
+    else:
         return solved
     heading = np.array([forward[0], forward[1], 0.0])
-    return legs.solve_rolling(
-        solved, side, toe, legs.half_foot, heading, WALKING_DORSIFLEXION, forward[2]
-    )
+    return legs.solve_rolling(solved, side, toe, legs.half_foot, heading, angle, forward[2])
 
 
 LIFTING = (STANCE, 0.68)
@@ -512,6 +495,8 @@ def _pelvis_within_reach(legs, frames, phase, soles) -> np.ndarray:
     lower = np.zeros(len(frames))
     for k, q in enumerate(frames):
         for side in SIDES:
+            if HEEL_RISE <= _leg_phase(side, phase[k]) < STANCE:
+                continue  # on its toe: it rolls further rather than the pelvis dropping
             highest = legs.highest_pelvis(q, side, *soles[side][k], MIN_STANCE_KNEE)
             lower[k] = max(lower[k], q[iz] - highest)
     return frames[:, iz] - _smooth_cover(lower)
@@ -649,7 +634,7 @@ def _turn_keys(step: float, degrees: float, lift: float) -> tuple[Key, ...]:
     for k, side in enumerate(("left", "right")):
         start = k * step
         for fraction, (turned, raised) in zip(
-            (0.25, 0.75, 1.0), ((0.0, lift), (1.0, lift), (1.0, 0.0)), strict=True
+            (0.2, 0.85, 1.0), ((0.0, lift), (1.0, lift), (1.0, 0.0)), strict=True
         ):
             body = (k + fraction) * half
             feet = {side: (turned * degrees, raised)}
@@ -657,8 +642,8 @@ def _turn_keys(step: float, degrees: float, lift: float) -> tuple[Key, ...]:
     return tuple(keys)
 
 
-TURN_STEP_TIME = 0.45
-TURN_LIFT = 0.05
+TURN_STEP_TIME = 0.5
+TURN_LIFT = 0.04
 
 
 def _turn_spec(name: str, degrees: float) -> KeyedSpec:

@@ -163,21 +163,48 @@ class Legs:
         return q
 
     def place_foot(self, q, side: str, position, forward) -> np.ndarray:
-        """`solve`, and where that bends the ankle past its dorsiflexion limit with the sole
-        on the floor, the foot rolls further over its heel or toe (which stays where the
-        target has it) with the ankle at the limit: a heel rises earlier rather than the
+        """`solve`, and where that bends the ankle past its dorsiflexion limit, or a foot on
+        its toe is out of reach of the straight leg, the foot rolls further over its heel or
+        toe (which stays where the target has it): a heel rises earlier rather than the
         foot sliding."""
         solved = self.solve(q, side, position, forward)
-        ankle = self.joints[side][4]
-        if solved[ankle] < self.upper[side][4]:
+        ankle, knee = self.joints[side][4], self.joints[side][3]
+        overbent = solved[ankle] >= self.upper[side][4]
+        short = solved[knee] <= STRAIGHTEST_KNEE and forward[2] <= 0
+        if not (overbent or short):
             return solved
         along = -self.half_foot if forward[2] > 0 else self.half_foot
         point = np.asarray(position) + along * np.asarray(forward)
         if point[2] > FLOOR_CONTACT:
             return solved
         heading = np.array([forward[0], forward[1], 0.0])
-        limit = self.upper[side][4]
-        return self.solve_rolling(solved, side, point, along, heading, limit, forward[2])
+        angle = self.upper[side][4]
+        if short:
+            angle = self.ankle_for_knee(solved, side, point, along, STRAIGHTEST_KNEE)
+            if angle is None:
+                return solved
+        return self.solve_rolling(solved, side, point, along, heading, angle, forward[2])
+
+    def ankle_for_knee(self, q, side: str, point, along: float, knee: float) -> float | None:
+        """The ankle angle with which the `side` leg, its knee at `knee`, puts the sole's
+        point `along` metres from its origin at `point` (None: no ankle angle does); of
+        two, the one nearer q's."""
+        R_p, p = self.pelvis(q)
+        d = R_p.T @ (np.asarray(point, dtype=float) - p) - self.hip[side]
+        ankle_at = np.array([0.0, 0.0, -self.thigh]) + rotation_y(knee) @ [0.0, 0.0, -self.shank]
+        c = self.sole_offset + [along, 0.0, 0.0]
+        wanted = (float(d @ d) - float(ankle_at @ ankle_at) - float(c @ c)) / 2
+        a_x, a_z, c_x, c_z = ankle_at[0], ankle_at[2], c[0], c[2]
+        amplitude = sqrt((a_x * c_x + a_z * c_z) ** 2 + (a_x * c_z - a_z * c_x) ** 2)
+        if abs(wanted) > amplitude:
+            return None
+        beta = atan2(a_x * c_z - a_z * c_x, a_x * c_x + a_z * c_z)
+        spread = acos(wanted / amplitude)
+        current = float(q[self.joints[side][4]])
+        return min(
+            (_wrap(knee - beta - spread), _wrap(knee - beta + spread)),
+            key=lambda a: abs(a - current),
+        )
 
     def solve_rolling(self, q, side, point, along: float, heading, ankle: float, pitch: float):
         """q with the `side` leg's joints set so that the sole's point `along` metres from

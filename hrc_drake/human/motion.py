@@ -394,6 +394,7 @@ class WalkSegment:
                 clip.duration,
                 ctx.legs.half_foot,
                 self.distance(t),
+                min(self.speed_at(t) / (clip.animation_distance / clip.duration), 1.0),
                 self.spot,
             )
         iz = ctx.index("pelvis_height")

@@ -37,6 +37,8 @@ CLOSING = 0.15
 at the goal instead."""
 SETTLE = 0.1
 """Fraction of a gait cycle after the last heel strike until the foot stands flat."""
+LAST_OF_CYCLE = 1.0 - 1e-9
+"""A swing's last phase (1.0 would wrap round to the cycle's start)."""
 SWING_SLACK = 0.03
 """m: a swinging foot may fall this far short of its place rather than the pelvis dropping
 for it (on the floor a foot must be exactly where it stands)."""
@@ -80,7 +82,7 @@ class GaitProfile:
         u = (leg_phase % 1.0) * PROFILE_SAMPLES
         k = int(u)
         s = u - k
-        return float(values[k] * (1 - s) + values[(k + 1) % PROFILE_SAMPLES] * s)
+        return float(values[k] * (1 - s) + values[min(k + 1, PROFILE_SAMPLES - 1)] * s)
 
 
 def _pivot(pitch: float, half_foot: float) -> float:
@@ -95,8 +97,8 @@ def gait_profile(legs: Legs, clip: Clip) -> GaitProfile:
     ix = clip.joint_names.index("base_x")
     phases = np.arange(PROFILE_SAMPLES) / PROFILE_SAMPLES
     poses = [clip.sample(p * clip.duration) for p in phases]
-    root = np.array([q[ix] for q in poses])
     stride = clip.animation_distance
+    root = poses[0][ix] + phases * stride  # where the pelvis would be at an even pace
     offset, track = {}, {}
     for side in SIDES:
         spots = np.array([_spot_of(legs.sole(q, side), legs.half_foot) for q in poses])
@@ -246,17 +248,19 @@ def sole_target(
     cycle: float,
     half_foot: float,
     pelvis: float,
+    pace: float,
     place,
 ):
     """Where the `side` sole goes at t (origin, forward axis), and how far short of it the
     leg may fall for the pelvis's sake (a foot in the air until it settles): it last struck
     stances[k];
     the feet keep the rhythm of a gait cycle of `cycle` seconds; the pelvis is `pelvis`
-    along the path (`place` as in plan_steps).
+    along the path at `pace` (its speed over the clip's; `place` as in plan_steps).
 
     A swinging foot moves with the pelvis as the clip's does (from where it left the pelvis
     behind to where it lands ahead of it), so that a pelvis still speeding up does not fall
-    behind its feet; it leaves its step and settles on the next one without sliding."""
+    behind its feet; it leaves its step and, slower than the clip, is brought to rest on
+    the next one (at the clip's pace it comes to rest there as the clip's does)."""
     stance = stances[k]
     if t < stance.toe_off:
         u = stance.entered + (t - stance.strike) / cycle
@@ -273,11 +277,11 @@ def sole_target(
         )
     landing = stances[k + 1]
     lift, land = stance.spot, landing.spot
-    u = min(STANCE + (t - stance.toe_off) / cycle, 1.0)
+    u = min(STANCE + (t - stance.toe_off) / cycle, LAST_OF_CYCLE)
     behind, ahead = lift.along - stance.pelvis_out, land.along - landing.pelvis_in
     along = pelvis + behind + profile.at(profile.following, u) * (ahead - behind)
     lifted = minimum_jerk((u - LIFTING[0]) / (LIFTING[1] - LIFTING[0]))
-    settled = minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0]))
+    settled = minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0])) * (1.0 - pace)
     along = lift.along + lifted * (along - lift.along)
     along += settled * (land.along - along)
     p = profile.at(profile.progress, u)

@@ -66,8 +66,11 @@ class Run:
         return self.status()
 
     def record(self, until):
-        """Statuses and canonical joint positions at every update until `until`."""
-        times = np.arange(self.simulator.get_context().get_time(), until, SAMPLE) + SAMPLE
+        """Statuses and canonical joint positions after every update until `until` (read
+        halfway between updates: read at an update's own time, rounding decides whether it
+        has run yet, and a pose held over one reading doubles the next step)."""
+        start = self.simulator.get_context().get_time()
+        times = np.arange(start, until, SAMPLE) + 1.5 * SAMPLE
         statuses, poses = [], []
         for t in times:
             self.simulator.AdvanceTo(t)
