@@ -393,15 +393,13 @@ def _plant_stance(body: HumanBody, frames: np.ndarray, phase: np.ndarray, stride
     for side in SIDES:
         leg = _leg_phase(side, phase)
         strike = int(np.argmin(leg))
-        stance = leg < STANCE
-        relative = ahead[stance] - ahead[strike]
         heel = legs.sole(frames[strike], side).point(-legs.half_foot)
         heel[0] += ahead[strike]
         heel[2] = 0.0
         steps[side] = _Step(heel, heel + [2 * legs.half_foot, 0.0, 0.0])
         soles[side] = _sole_track(legs, side, leg, free[side], pitch[side], steps[side], stride)
     paced[:, iz] = _pelvis_within_reach(legs, paced, phase, soles)
-    for k, q in enumerate(paced):
+    for k in range(len(paced)):
         for side in SIDES:
             paced[k] = _reach_sole(legs, paced[k], side, *soles[side][k])
     return paced

@@ -39,6 +39,9 @@ class FrameTask:
     rotation_weights: tuple[float, float, float] = (0.0, 0.0, 0.0)
     point: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """The point of the frame that should reach `position` (frame coordinates)."""
+    rotation_axes: RotationMatrix | None = None
+    """The axes `rotation_weights` weigh the orientation error about (default: the
+    world's), e.g. the target's own, to leave a hand free to turn about its palm's normal."""
 
 
 class HumanBody:
@@ -154,8 +157,12 @@ class HumanBody:
             if task.rotation is not None:
                 wr = np.array(task.rotation_weights)
                 delta = (task.rotation @ X.rotation().transpose()).ToAngleAxis()
-                errors.append(wr * delta.axis() * delta.angle())
-                rows.append(wr[:, None] * J[:3])
+                error, rotation_rows = delta.axis() * delta.angle(), J[:3]
+                if task.rotation_axes is not None:
+                    axes = task.rotation_axes.matrix()
+                    error, rotation_rows = axes.T @ error, axes.T @ rotation_rows
+                errors.append(wr * error)
+                rows.append(wr[:, None] * rotation_rows)
         return np.concatenate(errors), np.vstack(rows)
 
 

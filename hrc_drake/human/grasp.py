@@ -81,20 +81,45 @@ def _facing(heading: float, hand: str) -> RotationMatrix:
     return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(HAND_AXES[hand])
 
 
+FINGERS_DOWN = 0.1
+"""m: an object at least twice this tall is taken with the fingers pointing down its sides
+(they end above its bottom: the fingertips reach 0.53 hand lengths below the grasp frame);
+a lower one with the fingers pointing forward, the hand's breadth upright."""
+GRIP_ABOVE_SUPPORT = 0.05
+"""m: with the fingers forward the grasp frame is at least this high above the object's
+bottom, so the hand's lower edge (half its breadth, 4.5 cm for the default adult, below
+the frame) stays clear of what the object stands on."""
+
+
+def grip_style(height: float) -> str:
+    """How the hands take an object this tall (a HAND_AXES key)."""
+    return "sides_fingers_down" if height / 2 >= FINGERS_DOWN else "sides_fingers_forward"
+
+
+def grip_lift(height: float) -> float:
+    """How far above an object's centre its grasp frame is (a low object is gripped near
+    its top, the hand's edge clear of the surface below)."""
+    if grip_style(height) == "sides_fingers_down":
+        return 0.0
+    return max(GRIP_ABOVE_SUPPORT - height / 2, 0.0)
+
+
 def palm_targets(grasp: Grasp, heading: float) -> dict:
     """Where each taking hand's grasp frame goes (position, orientation) to take `grasp`:
     on the faces that face the person's sides (one hand: the right one only)."""
-    center = np.array(grasp.center, dtype=float)
+    center = np.array(grasp.center, dtype=float) + [0.0, 0.0, grip_lift(grasp.size[2])]
     axis, width, _ = _across(grasp, heading)
-    return _on_sides(grasp.hands, center, axis, width, _facing(heading, "sides_fingers_down"))
+    R = _facing(heading, grip_style(grasp.size[2]))
+    return _on_sides(grasp.hands, center, axis, width, R)
 
 
 def release_targets(hold: Hold, center, heading: float) -> dict:
     """Where each holding hand's grasp frame goes to put the held object's centre at
     `center` (facing `heading`)."""
     left = np.array([-math.sin(heading), math.cos(heading), 0.0])
-    R = _facing(heading, "sides_fingers_down")
-    return _on_sides(hold.hands, np.asarray(center, dtype=float), left, hold.size[1], R)
+    R = _facing(heading, grip_style(hold.size[2]))
+    center = np.asarray(center, dtype=float) + [0.0, 0.0, grip_lift(hold.size[2])]
+    return _on_sides(hold.hands, center, left, hold.size[1], R)
 
 
 def reach_target(body: HumanBody, point, heading: float) -> dict:
@@ -102,6 +127,12 @@ def reach_target(body: HumanBody, point, heading: float) -> dict:
     its little-finger edge resting on the point rather than the fingers sinking in."""
     position = np.asarray(point, dtype=float) + [0.0, 0.0, hand_half_breadth(body)]
     return {"right": (position, _facing(heading, "sides_fingers_forward"))}
+
+
+def outward(side: str, R: RotationMatrix) -> np.ndarray:
+    """The direction a palm on an object's face moves to let go of it (away from the
+    object: the left palm faces the hand frame's -y, the right one its +y)."""
+    return (1.0 if side == "left" else -1.0) * R.matrix()[:, 1]
 
 
 def hand_half_breadth(body: HumanBody) -> float:
@@ -117,8 +148,10 @@ def _on_sides(hands: str, center, left, width: float, R) -> dict:
 
 def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
     """Where the held object's centre sits in its holder's frame (hrc_drake.workpieces: the
-    palms' midpoint for both hands, a level frame at the palm for one)."""
-    return (0.0, hold.size[1] / 2, 0.0) if hold.hands == ONE_HAND else (0.0, 0.0, 0.0)
+    palms' midpoint for both hands, a level frame at the palm for one): beside the palm,
+    below it when the object is gripped near its top."""
+    below = -grip_lift(hold.size[2])
+    return (0.0, hold.size[1] / 2, below) if hold.hands == ONE_HAND else (0.0, 0.0, below)
 
 
 def arm_indices(body: HumanBody, sides) -> np.ndarray:
@@ -176,14 +209,20 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     return CarryArms(free, solved[free])
 
 
-def hand_tasks(targets: dict) -> list[FrameTask]:
-    """IK tasks putting each side's grasp frame at its (position, orientation) target."""
+def hand_tasks(
+    targets: dict, orientation_weight: float = ORIENTATION_WEIGHT, turn_in_palm: bool = False
+) -> list[FrameTask]:
+    """IK tasks putting each side's grasp frame at its (position, orientation) target; with
+    `turn_in_palm` only the palm's normal is held (the fingers point where the arm can put
+    them, the palm flat on the face it targets)."""
+    weights = (orientation_weight, 0.0, orientation_weight) if turn_in_palm else None
     return [
         FrameTask(
             f"{side}_hand_grasp",
             position,
             rotation,
-            rotation_weights=(ORIENTATION_WEIGHT,) * 3,
+            rotation_weights=weights or (orientation_weight,) * 3,
+            rotation_axes=rotation if turn_in_palm else None,
         )
         for side, (position, rotation) in targets.items()
     ]

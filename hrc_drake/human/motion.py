@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from hrc_drake.human.authoring import MIN_STANCE_KNEE, minimum_jerk, turn_clip
+from hrc_drake.human.authoring import minimum_jerk, turn_clip
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import (
@@ -40,6 +40,7 @@ from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.stepping import (
     START_PHASE,
+    SWING_SLACK,
     GaitProfile,
     Spot,
     gait_profile,
@@ -47,7 +48,7 @@ from hrc_drake.human.stepping import (
     sole_target,
     standing_spots,
 )
-from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
+from hrc_drake.human.targeting import TARGETED, AimedMotion, Unreachable, aim_clip
 from hrc_drake.messages import CommandResult, newer_commands, recorded
 
 BLEND_TIME = 0.5
@@ -67,7 +68,7 @@ SPEED_RAMP = 0.6
 MIN_TURN = radians(3.0)
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
-SHARP_CORNER = radians(45.0)
+SHARP_CORNER = radians(75.0)
 """Walks turn through corners up to this; at sharper ones the person stops and turns."""
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
@@ -157,7 +158,7 @@ class ClipSegment:
     anchor: tuple[float, float, float]
     speed: float = 1.0
     forever: bool = False
-    aim: TargetedOffset | None = None
+    aim: AimedMotion | None = None
     carry: CarryArms | None = None
     """Arms held in the carry posture (not with `aim`, which blends them itself)."""
 
@@ -175,7 +176,7 @@ class ClipSegment:
         q = ctx.clips[self.clip].sample(clip_time)
         placed = place(ctx, q, *self.anchor)
         if self.aim is not None:
-            return self.aim.carried(placed + self.aim.weight(clip_time) * self.aim.delta, clip_time)
+            return self.aim.pose(placed, clip_time)
         return _carried(placed, self.carry)
 
 
@@ -253,15 +254,15 @@ class WalkSegment:
 
     def halted(self, ctx: Context, t: float) -> "WalkSegment":
         """This walk coming to a stop from t as soon as it can: the feet keep the steps they
-        have taken and the one they are swinging to, and close in a step or two."""
+        have taken and close in a step or two; a foot in the air lands where the slowing body
+        needs it (the step planned at full pace would land ahead of where the body stops)."""
         speed = self.speed_at(t)
         ramp = max(SPEED_RAMP * min(speed / self.speed, 1.0), 1e-3)
         walk = replace(self, halt=(t, self.distance(t), speed, ramp))
-        kept = {}
-        for side, (stances, strikes) in self.steps.items():
-            k = bisect_right(strikes, t)
-            airborne = k < len(stances) and t >= stances[k - 1].toe_off
-            kept[side] = stances[: k + airborne]
+        kept = {
+            side: stances[: bisect_right(strikes, t)]
+            for side, (stances, strikes) in self.steps.items()
+        }
         return walk._stepped(ctx, kept)
 
     def _stepped(self, ctx: Context, kept=None) -> "WalkSegment":
@@ -380,7 +381,6 @@ class WalkSegment:
         x, y = self.point(along)
         q[ix], q[iy], q[iyaw] = 0.0, 0.0, 0.0
         q = place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
-        phase = clip_time / clip.duration
         gait_profile = ctx.gait(clip)
         targets = {}
         for side, (stances, strikes) in self.steps.items():
@@ -399,18 +399,32 @@ class WalkSegment:
             )
         iz = ctx.index("pelvis_height")
         reach = min(
-            ctx.legs.highest_pelvis(q, s, position, forward, MIN_STANCE_KNEE) + slack
+            ctx.legs.highest_pelvis(q, s, position, forward, _least_knee(slack))
             for s, (position, forward, slack) in targets.items()
         )
         q[iz] = min(q[iz], reach)
         for side, (position, forward, slack) in targets.items():
             if slack > 0.0:  # in the air: short of its place rather than a locked knee
-                position = ctx.legs.within_reach(q, side, position, forward, MIN_STANCE_KNEE)
+                position = ctx.legs.within_reach(q, side, position, forward, STANCE_KNEE)
             q = ctx.legs.place_foot(q, side, position, forward)
         return _carried(q, self.carry)
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
+
+STANCE_KNEE = radians(10.0)
+"""The least a walking stance knee bends: where the paced pelvis would need a longer leg it
+rides lower. Near a straight knee a millimetre of pelvis height is a tenth of a radian of
+knee, so a knee nearly locked would jerk at every small change of height."""
+SWING_KNEE = radians(15.0)
+"""The least a swinging leg's knee bends (until its foot settles on its step): the pelvis
+rides low enough for it, and the knee never whips straight reaching for a far target."""
+
+
+def _least_knee(slack: float) -> float:
+    """The least knee bend of a leg whose foot may fall `slack` short of its place (in the
+    air: more bent; settling: easing to a stance knee's)."""
+    return STANCE_KNEE + (SWING_KNEE - STANCE_KNEE) * slack / SWING_SLACK
 
 
 def _carried(q: np.ndarray, carry: CarryArms | None) -> np.ndarray:
@@ -568,7 +582,7 @@ def _stretches(path: list) -> list[list]:
     round a corner, the stance foot would have to twist further than a hip turns, so the
     person stops there and turns on the spot."""
     stretches, current = [], [path[0]]
-    for before, corner, after in zip(path, path[1:], path[2:]):
+    for before, corner, after in zip(path, path[1:], path[2:], strict=False):
         current.append(corner)
         turn = _wrap(
             atan2(after[1] - corner[1], after[0] - corner[0])
@@ -637,7 +651,8 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
         hands, takes = _aimed_hands(ctx, clip, command, pose)
         if takes:
             carry = _carry(ctx, hold_of(command.grasp, pose[2]))
-        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), hands, carry, takes)
+        placed = lambda q: place(ctx, q, *pose)  # noqa: E731
+        aim = aim_clip(ctx.body, clip, placed, hands, pose[2], carry, takes)
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
     return Activity.plan(ctx, (segment,), pose)
 

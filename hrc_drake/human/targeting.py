@@ -1,22 +1,28 @@
-"""Aim pick, place, reach and hand-over: IK on the human body at the clip's key event.
+"""Aim pick, place, reach and hand-over: IK on the human body along the clip.
 
 The clip's pose at its key event (grasp, release, reached, extended) is corrected by IK so
-each aiming hand's grasp frame is at its target (hrc_drake.human.grasp: palms on an object's
-faces), with the feet where they stand; arms, trunk bend and pelvis height (a squat) are
-free. The correction fades in before the event and out after the hold, so the whole clip
-stays smooth. A clip that takes an object ends in the carry posture; one that puts an
-object down starts from it.
+each aiming hand's grasp frame is at its target (hrc_drake.human.grasp: palms on an
+object's faces), with the feet where they stand; arms, trunk bend and pelvis height (a
+squat) are free. The hands come to it from outside: first to a point a little above it
+and, for palms on an object's faces, a little wider apart (APPROACH), so that they close
+on the object rather than sweeping through it or through what it stands on. A clip that
+takes an object then carries it into the carry posture: the palms stay on its faces while
+the object moves from where it was taken to where it is carried (the hands turn about
+their palms' normal, IK at a few points of the way). A clip that puts an object down
+starts from the carry posture, carries it above the target, sets it down, and opens the
+hands outwards before they go back. The corrections are joint offsets at key times of
+the clip, blended smoothly in between (`AimedMotion`).
 """
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
-from pydrake.math import RigidTransform
+from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.clip import Clip
-from hrc_drake.human.grasp import CarryArms, arm_indices, hand_tasks
+from hrc_drake.human.grasp import CarryArms, arm_indices, hand_tasks, outward
 from hrc_drake.human.skeleton import SIDES
 
 TARGETED = {
@@ -43,6 +49,23 @@ TRUNK = (
     "thorax_flexion",
     "thorax_rotation",
 )
+APPROACH = (0.06, 0.06)
+"""m: where the hands come to before they close on the target: this far outwards (palms
+on an object's faces; a reaching hand: back towards the body) and this far above it."""
+APPROACH_AT = 0.7
+"""Fraction of the time to the event at which the hands are at the approach point."""
+CARRY_SAMPLES = 8
+"""Points of the way between the grasp and the carry posture at which the palms are put on
+the object's faces by IK."""
+CHEST = "chest"
+"""The body the hands' way with a held object is laid out in."""
+
+
+PALM_ORIENTATION = 1.0
+"""Weight of a palm's orientation reaching for a target."""
+HOLDING_ORIENTATION = 1.0
+"""Weight of the hands' orientation while they hold an object on its way: a palm that
+tilts pokes its fingers into the object."""
 
 
 class Unreachable(ValueError):
@@ -50,49 +73,38 @@ class Unreachable(ValueError):
 
 
 @dataclass(frozen=True, eq=False)
-class TargetedOffset:
-    """Joint offset reaching the target, full from `event` to `hold_end`, zero at the ends.
+class AimedMotion:
+    """Joint offsets that aim a clip: at each key time an offset added to the clip's pose;
+    in between they ease from key to key (minimum jerk), or run straight through the evenly
+    spaced keys of a carried object's way (`paths`; the way itself eases the object)."""
 
-    With `carry`, the arms also blend with a carry posture: into it after the hold (the clip
-    takes an object, `takes`) or out of it before the event (it puts one down)."""
+    times: tuple[float, ...]
+    offsets: tuple[np.ndarray, ...]
+    paths: tuple[tuple[int, int], ...] = ()
+    """(first key, last key) of each stretch that is one smooth movement."""
 
-    delta: np.ndarray
-    event: float
-    hold_end: float
-    duration: float
-    carry: CarryArms | None = None
-    takes: bool = False
-    spacing: tuple = ()
-    """(clip times, arm joint corrections, arm indices) that keep two holding palms as far
-    apart as the held object is wide while the arms blend with the carry posture."""
+    def offset(self, clip_time: float) -> np.ndarray:
+        times = self.times
+        if clip_time <= times[0]:
+            return self.offsets[0]
+        if clip_time >= times[-1]:
+            return self.offsets[-1]
+        for first, last in self.paths:
+            if times[first] <= clip_time <= times[last]:
+                return self._along(first, last, clip_time)
+        k = int(np.searchsorted(times, clip_time, side="right")) - 1
+        s = minimum_jerk((clip_time - times[k]) / (times[k + 1] - times[k]))
+        return self.offsets[k] + s * (self.offsets[k + 1] - self.offsets[k])
 
-    def weight(self, clip_time: float) -> float:
-        if clip_time <= self.event:
-            return minimum_jerk(clip_time / self.event)
-        if clip_time <= self.hold_end:
-            return 1.0
-        span = max(self.duration - self.hold_end, 1e-6)
-        return 1.0 - minimum_jerk((clip_time - self.hold_end) / span)
+    def _along(self, first: int, last: int, clip_time: float) -> np.ndarray:
+        span = self.times[last] - self.times[first]
+        u = (clip_time - self.times[first]) / span * (last - first)
+        k = min(int(u), last - first - 1)
+        a, b = self.offsets[first + k], self.offsets[first + k + 1]
+        return a + (u - k) * (b - a)
 
-    def carried(self, q: np.ndarray, clip_time: float) -> np.ndarray:
-        """`q` with the arms blended into (or out of) the carry posture."""
-        if self.carry is None:
-            return q
-        if self.takes:
-            span = max(self.duration - self.hold_end, 1e-6)
-            q = self.carry.over(q, minimum_jerk((clip_time - self.hold_end) / span))
-        else:
-            q = self.carry.over(q, 1.0 - minimum_jerk(clip_time / self.event))
-        if self.spacing:
-            times, fixes, arms = self.spacing
-            if times[0] < clip_time < times[-1]:
-                q = q.copy()
-                q[arms] += [np.interp(clip_time, times, column) for column in fixes.T]
-        return q
-
-    def blend_window(self) -> tuple[float, float]:
-        """When the arms blend with the carry posture while holding the object."""
-        return (self.hold_end, self.duration) if self.takes else (0.0, self.event)
+    def pose(self, placed: np.ndarray, clip_time: float) -> np.ndarray:
+        return placed + self.offset(clip_time)
 
 
 def _hold_end(clip: Clip, event: str) -> float:
@@ -111,26 +123,11 @@ def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:
     return np.array([body.index(n) for n in names])
 
 
-def aim_clip(
-    body: HumanBody, clip: Clip, placed_pose, hands: dict, carry=None, takes=False
-) -> TargetedOffset:
-    """The joint offset that makes `clip` (placed in the world by `placed_pose`) put each
-    hand's grasp frame at its target: `hands` maps a side to (position, orientation or None).
-
-    `placed_pose(q)` maps a clip pose to the world. Raises Unreachable with a reason.
-    """
-    event_name = TARGETED[clip.name]
-    event = clip.events[event_name]
-    q_event = placed_pose(clip.sample(event))
-    middle = np.mean([position for position, _ in hands.values()], axis=0)
-    base = q_event[[body.index("base_x"), body.index("base_y")]]
-    distance = float(np.linalg.norm(middle[:2] - base))
-    if distance > MAX_HORIZONTAL_REACH:
-        raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
-    feet = []
+def _feet_tasks(body: HumanBody, q: np.ndarray) -> list[FrameTask]:
+    tasks = []
     for side in SIDES:
-        X: RigidTransform = body.frame_pose(f"{side}_sole", q_event)
-        feet.append(
+        X: RigidTransform = body.frame_pose(f"{side}_sole", q)
+        tasks.append(
             FrameTask(
                 f"{side}_sole",
                 X.translation(),
@@ -139,10 +136,20 @@ def aim_clip(
                 rotation_weights=(1.0, 1.0, 1.0),
             )
         )
+    return tasks
+
+
+def _reach(body: HumanBody, q: np.ndarray, hands: dict) -> np.ndarray:
+    """q with the aiming hands' grasp frames on their targets, the feet where they stand
+    (a squat if the hands cannot reach otherwise). Two palms on an object's faces may turn
+    in them (fingers down or forward, as the arms reach best). Raises Unreachable."""
+    feet = _feet_tasks(body, q)
+    both = len(hands) == 2
     for squat, oriented in ((False, True), (True, True), (True, False)):
-        tasks = hand_tasks(hands if oriented else {s: (p, None) for s, (p, _) in hands.items()})
+        aimed = hands if oriented else {s: (p, None) for s, (p, _) in hands.items()}
+        tasks = hand_tasks(aimed, PALM_ORIENTATION, turn_in_palm=both)
         solved = body.solve(
-            q_event,
+            q,
             tasks + feet,
             _free_joints(body, tuple(hands), squat),
             iterations=150,
@@ -151,42 +158,157 @@ def aim_clip(
         hand_error = body.task_error(solved, tasks)
         feet_error = body.task_error(solved, feet) / FEET_WEIGHT[0]
         if hand_error <= HAND_TOLERANCE and feet_error <= FOOT_TOLERANCE:
-            break
-    else:
-        reason = (
-            "only reachable by stepping"
-            if hand_error <= HAND_TOLERANCE
-            else (f"hand stays {hand_error:.2f} m from the target")
+            return solved
+    if hand_error <= HAND_TOLERANCE:
+        raise Unreachable("only reachable by stepping")
+    raise Unreachable(f"hand stays {hand_error:.2f} m from the target")
+
+
+def approached(hands: dict, heading: float, reaching: bool, opening: bool = True) -> dict:
+    """The hands' targets moved to where they come before closing on them: above, and
+    (`opening`) outwards from an object's faces (a reaching hand: back towards the body);
+    hands that hold what they put down stay on it."""
+    out, up = APPROACH
+    back = -np.array([np.cos(heading), np.sin(heading), 0.0])
+    moved = {}
+    for side, (position, R) in hands.items():
+        away = back if reaching or R is None else outward(side, R)
+        moved[side] = (np.asarray(position) + opening * out * away + [0.0, 0.0, up], R)
+    return moved
+
+
+def aim_clip(
+    body: HumanBody,
+    clip: Clip,
+    placed_pose,
+    hands: dict,
+    heading: float,
+    carry: CarryArms | None = None,
+    takes: bool = False,
+) -> AimedMotion:
+    """The joint offsets that make `clip` (placed in the world by `placed_pose`) put each
+    hand's grasp frame at its target: `hands` maps a side to (position, orientation or
+    None). `carry`: the carry posture of what the hands take (`takes`) or put down.
+
+    `placed_pose(q)` maps a clip pose to the world. Raises Unreachable with a reason.
+    """
+    event_name = TARGETED[clip.name]
+    event = clip.events[event_name]
+    hold_end = _hold_end(clip, event_name)
+    at_event = placed_pose(clip.sample(event))
+    middle = np.mean([position for position, _ in hands.values()], axis=0)
+    base = at_event[[body.index("base_x"), body.index("base_y")]]
+    distance = float(np.linalg.norm(middle[:2] - base))
+    if distance > MAX_HORIZONTAL_REACH:
+        raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
+    on_target = _reach(body, at_event, hands) - at_event
+    approach_time = APPROACH_AT * event
+    at_approach = placed_pose(clip.sample(approach_time))
+    reaching = clip.name == "reach"
+    near = approached(hands, heading, reaching, opening=carry is None or takes)
+    try:
+        near_offset = _reach(body, at_approach + on_target, near) - at_approach
+    except Unreachable:
+        near_offset = on_target
+    marks = (approach_time, event, hold_end)
+    if carry is not None and takes:
+        return _taking(body, clip, placed_pose, hands, carry, near_offset, on_target, marks)
+    if carry is not None:
+        return _putting_down(
+            body, clip, placed_pose, hands, heading, carry, near_offset, on_target, marks
         )
-        raise Unreachable(reason)
-    offset = TargetedOffset(
-        solved - q_event, event, _hold_end(clip, event_name), clip.duration, carry, takes
+    zero = np.zeros_like(on_target)
+    times = (0.0, approach_time, event, hold_end, clip.duration)
+    return AimedMotion(times, (zero, near_offset, on_target, on_target, zero))
+
+
+def _between(start: dict, end: dict, s: float) -> dict:
+    """Targets of the holding hands a fraction s of the way from their grasp frames `start`
+    to `end` (in one frame): each hand turns about its palm's normal as the object turns, two
+    palms keep their spacing about their midpoint, which moves straight."""
+    sides = tuple(start)
+    turned = {side: _slerp(start[side].rotation(), end[side].rotation(), s) for side in sides}
+    if len(sides) == 1:
+        (side,) = sides
+        a, b = start[side].translation(), end[side].translation()
+        return {side: (a + s * (b - a), turned[side])}
+    a, b = (np.mean([X[side].translation() for side in sides], axis=0) for X in (start, end))
+    width = float(np.linalg.norm(start["left"].translation() - start["right"].translation()))
+    middle = a + s * (b - a)
+    return {side: (middle + outward(side, R) * width / 2, R) for side, R in turned.items()}
+
+
+def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
+    return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
+
+
+def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms):
+    """Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
+    `end` (grasp frames in the chest's frame at the first and last time): the way runs in
+    the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
+    arms are solved to hold the object, the rest of the body eases from the offset
+    `trunk_from` to `trunk_to`."""
+    offsets, solved = [], None
+    for k, t in enumerate(times):
+        s = k / (len(times) - 1)
+        placed = placed_pose(clip.sample(t))
+        q = placed + trunk_from + s * (trunk_to - trunk_from)
+        if solved is not None:  # each point starts from the last: the arms follow the way
+            q[arms] = solved[arms]
+        chest = body.frame_pose(CHEST, q)
+        local = _between(start, end, minimum_jerk(s))
+        targets = {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION)
+        solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
+        offsets.append(solved - placed)
+    return offsets
+
+
+def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
+    """The hands' grasp frames in the chest's frame at q."""
+    chest = body.frame_pose(CHEST, q).inverse()
+    return {s: chest @ body.frame_pose(f"{s}_hand_grasp", q) for s in sides}
+
+
+def _taking(body, clip, placed_pose, hands, carry, near_offset, on_target, marks):
+    """Offsets of a clip that takes an object and carries it off in the carry posture."""
+    approach_time, event, hold_end = marks
+    sides = tuple(hands)
+    grasped = placed_pose(clip.sample(hold_end)) + on_target
+    end_pose = placed_pose(clip.sample(clip.duration))
+    carried = carry.over(end_pose)
+    start, end = _in_chest(body, grasped, sides), _in_chest(body, carried, sides)
+    times = tuple(np.linspace(hold_end, clip.duration, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    way = _way(
+        body, clip, placed_pose, times, start, end, on_target, zero, arm_indices(body, sides)
     )
-    if carry is None or len(hands) < 2:
-        return offset
-    width = float(np.linalg.norm(hands["left"][0] - hands["right"][0]))
-    return replace(offset, spacing=_keeping_width(body, clip, placed_pose, offset, width))
+    way[0], way[-1] = on_target, carried - end_pose
+    key_times = (0.0, approach_time, event, *times)
+    offsets = (zero, near_offset, on_target, *way)
+    return AimedMotion(key_times, offsets, ((3, len(key_times) - 1),))
 
 
-SPACING_SAMPLES = 6
-"""Poses solved across a carry blend to keep the palms on the held object's faces."""
-
-
-def _keeping_width(body: HumanBody, clip: Clip, placed_pose, offset, width: float):
-    """Arm corrections at a few times of the carry blend that put the palms `width` apart
-    about their midpoint (zero at the blend's ends, where aim and carry posture are exact)."""
-    start, end = offset.blend_window()
-    times = np.linspace(start, end, SPACING_SAMPLES)
-    arms = arm_indices(body, SIDES)
-    fixes = np.zeros((len(times), len(arms)))
-    for k, t in enumerate(times[1:-1], start=1):
-        q = offset.carried(placed_pose(clip.sample(t)) + offset.weight(t) * offset.delta, t)
-        left, right = (body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES)
-        middle, across = (left + right) / 2, (left - right) / np.linalg.norm(left - right)
-        targets = {
-            "left": (middle + across * width / 2, None),
-            "right": (middle - across * width / 2, None),
-        }
-        solved = body.solve(q, hand_tasks(targets), arms, iterations=30, posture_weight=1e-4)
-        fixes[k] = solved[arms] - q[arms]
-    return times, fixes, arms
+def _putting_down(body, clip, placed_pose, hands, heading, carry, near_offset, on_target, marks):
+    """Offsets of a clip that starts in the carry posture and puts the object down."""
+    approach_time, event, hold_end = marks
+    sides = tuple(hands)
+    start_pose = placed_pose(clip.sample(0.0))
+    held = carry.over(start_pose)
+    above = placed_pose(clip.sample(approach_time)) + near_offset
+    start, end = _in_chest(body, held, sides), _in_chest(body, above, sides)
+    times = tuple(np.linspace(0.0, approach_time, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    arms = arm_indices(body, sides)
+    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms)
+    way[0], way[-1] = held - start_pose, near_offset
+    release_end = hold_end + 0.3 * (clip.duration - hold_end)
+    at_open = placed_pose(clip.sample(release_end))
+    try:
+        open_offset = _reach(body, at_open + on_target, approached(hands, heading, False))
+        open_offset = open_offset - at_open
+    except Unreachable:
+        open_offset = on_target
+    key_times = (*times, event, hold_end, release_end, clip.duration)
+    offsets = (*way, on_target, on_target, open_offset, zero)
+    return AimedMotion(key_times, offsets, ((0, CARRY_SAMPLES - 1),))
