@@ -37,6 +37,9 @@ CORNER_MARGIN = 0.01
 STAND_TOLERANCE = 0.01
 """m: a place to stand may touch the cell's geometry by this much (the realism audit's
 penetration limit)."""
+EXIT_SPACING = 0.05
+"""m: a start or goal in the clearance is left through one of the free floor's edge points
+this far apart (the nearest that a straight step reaches)."""
 SEARCH_STEP, SEARCH_RINGS, SEARCH_DIRECTIONS = 0.05, 10, 16
 """A place to stand that is not clear moves to the nearest clear one on these rings."""
 FEET_HEIGHT = 0.1
@@ -151,12 +154,29 @@ class NavigationMap:
         return [*via, *(self._corners[k] for k in nodes[1:-1]), *tail]
 
     def _outside(self, point) -> tuple[float, float]:
-        """The point, or the nearest point of the free floor when it lies in the clearance."""
+        """The point, or, when it lies in the clearance, the nearest point of the free floor
+        that a straight step reaches without crossing the cell's geometry (between a pallet
+        and a belt, out along the gap rather than over the belt)."""
         if self.free(point):
             return point
         boundary = self.blocked.buffer(CORNER_MARGIN, join_style="mitre").boundary
         nearest = nearest_points(boundary, Point(point))[0]
-        return (float(nearest.x), float(nearest.y))
+        candidates = [nearest, *(boundary.interpolate(d) for d in self._exit_spacing(boundary))]
+        candidates.sort(key=Point(point).distance)
+        exit_ = next((p for p in candidates if self._passable(point, p)), nearest)
+        return (float(exit_.x), float(exit_.y))
+
+    @staticmethod
+    def _exit_spacing(boundary) -> np.ndarray:
+        return np.arange(0.0, boundary.length, EXIT_SPACING)
+
+    @cached_property
+    def _furniture(self):
+        """The cell's geometry itself (not grown), prepared for crossing tests."""
+        return prepared.prep(unary_union([o.outline for o in self.obstacles]))
+
+    def _passable(self, a, b) -> bool:
+        return not self._furniture.intersects(LineString([a, (b.x, b.y)]))
 
     def clear_spot(self, x: float, y: float, yaw: float) -> tuple[float, float]:
         """The place to stand nearest (x, y) where a person facing `yaw` stands clear of

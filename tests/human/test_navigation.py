@@ -36,6 +36,14 @@ def test_a_place_to_stand_in_the_table_moves_out_and_a_clear_one_stays():
     assert nav.clear_spot(0.0, -0.8, facing_table) == (0.0, -0.8)
 
 
+def test_a_spot_between_two_tables_is_left_along_the_gap_not_over_a_table():
+    belt = Obstacle("belt", box(-1.0, -1.0, 1.0, -0.6), 0.0, 0.9)
+    nav = NavigationMap([TABLE, belt])
+    spot, goal = (0.0, -0.5), (0.0, -2.5)
+    path = [spot, *nav.path(spot, goal), goal]
+    assert not LineString(path).crosses(belt.outline) and len(path) > 3
+
+
 def test_a_walk_keeps_out_of_the_robots_inner_space():
     nav = NavigationMap([], keep_out=[LineString([(0, 0), (0, 0.001)]).buffer(0.6)])
     path = [(-2.0, 0.0), *nav.path((-2.0, 0.0), (2.0, 0.0)), (2.0, 0.0)]
