@@ -206,6 +206,15 @@ class TurnSegment:
     def end(self, ctx: Context) -> float:
         return self.start + self.cycles * self.clip.duration
 
+    def finishing(self, t: float) -> "TurnSegment":
+        """This turn cut short after the cycle (two steps) under way at t, turned as far as
+        those cycles step."""
+        cycles = min(max(ceil((t - self.start) / self.clip.duration), 1), self.cycles)
+        if cycles == self.cycles:
+            return self
+        stepped = cycles * float(self.clip.root_shift[self.clip.joint_names.index("base_yaw")])
+        return replace(self, yaw_to=self.yaw_from + stepped, cycles=cycles)
+
     def pose(self, ctx: Context, t: float) -> np.ndarray:
         total = self.cycles * self.clip.duration
         clip_time = min(max(t - self.start, 0.0), total)
@@ -578,9 +587,11 @@ def _without_short_legs(path: list) -> list:
 
 
 def _stretches(path: list) -> list[list]:
-    """The path cut at its sharp corners (turns of more than SHARP_CORNER): walked through
-    round a corner, the stance foot would have to twist further than a hip turns, so the
-    person stops there and turns on the spot."""
+    """The path cut at its sharp corners: walked through round a corner, the stance foot
+    would have to twist further than a hip turns, so the person stops there and turns on
+    the spot. A corner is sharp beyond SHARP_CORNER where the heading can turn over
+    2 * CORNER_RADIUS, and in proportion beyond less where a short leg leaves less room
+    (the heading turns over half the shorter leg on either side)."""
     stretches, current = [], [path[0]]
     for before, corner, after in zip(path, path[1:], path[2:], strict=False):
         current.append(corner)
@@ -588,7 +599,9 @@ def _stretches(path: list) -> list[list]:
             atan2(after[1] - corner[1], after[0] - corner[0])
             - atan2(corner[1] - before[1], corner[0] - before[0])
         )
-        if abs(turn) > SHARP_CORNER:
+        room = min(CORNER_RADIUS, hypot(*np.subtract(corner, before)) / 2)
+        room = min(room, hypot(*np.subtract(after, corner)) / 2)
+        if abs(turn) > SHARP_CORNER * room / CORNER_RADIUS:
             stretches.append(current)
             current = [corner]
     current.append(path[-1])
@@ -701,33 +714,42 @@ def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **cha
     return actor._replace(activity=activity, activity_events=(), **changes)
 
 
-def _walk_at(activity: Activity | None, t: float):
-    """The walk the activity is in at t (None: standing, turning or playing a clip)."""
+def _stepping_at(ctx: Context, activity: Activity | None, t: float):
+    """The walk or turn on the spot the activity is in at t (None: standing or playing a
+    clip): the feet are stepping, so it cannot stop dead."""
     if activity is None:
         return None
     current = [s for s in activity.segments if s.start <= t]
-    walk = current[-1] if current else None
-    return walk if isinstance(walk, WalkSegment) and t < walk.over else None
+    segment = current[-1] if current else None
+    if isinstance(segment, WalkSegment | TurnSegment) and t < segment.end(ctx):
+        return segment
+    return None
 
 
 def _stopping(ctx: Context, state: ActorState, t: float) -> Activity:
     """Standing idle after a cancel: at once, or a walk under way first comes to a stop in
-    a step or two (stopping dead would slide the feet)."""
-    walk = _walk_at(state.activity, t)
-    if walk is None:
+    a step or two and a turn on the spot finishes the step it is taking (stopping dead
+    would slide the feet)."""
+    stepping = _stepping_at(ctx, state.activity, t)
+    if stepping is None:
         return _idle(ctx, state.base, t, state.hold)
-    stop = walk.halted(ctx, t)
-    along = stop.distance(stop.over)
-    pose = (*stop.point(along), _wrap(stop.heading(along)))
-    rest = ClipSegment(IDLE_CLIP, stop.over, pose, forever=True, carry=_carry(ctx, state.hold))
+    if isinstance(stepping, TurnSegment):
+        stop = stepping.finishing(t)
+        pose = (*stop.position, _wrap(stop.yaw_to))
+    else:
+        stop = stepping.halted(ctx, t)
+        along = stop.distance(stop.over)
+        pose = (*stop.point(along), _wrap(stop.heading(along)))
+    carry = _carry(ctx, state.hold)
+    rest = ClipSegment(IDLE_CLIP, stop.end(ctx), pose, forever=True, carry=carry)
     return Activity.plan(ctx, (stop, rest), pose)
 
 
-def _still_walking(activity: Activity | None, t: float):
-    """A walk coming to a stop (after a cancel) that what comes next must wait for: its
-    segment and when it is over (none and t when nothing is under way)."""
-    walk = _walk_at(activity, t)
-    return ((walk,), walk.over) if walk is not None else ((), t)
+def _still_stepping(ctx: Context, activity: Activity | None, t: float):
+    """A walk or turn coming to a stop (after a cancel) that what comes next must wait
+    for: its segment and when it is over (none and t when nothing is under way)."""
+    stepping = _stepping_at(ctx, activity, t)
+    return ((stepping,), stepping.end(ctx)) if stepping is not None else ((), t)
 
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
@@ -749,7 +771,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         return _record(state, command.seq, "succeeded")
     if state.running >= 0:
         return _record(state, command.seq, "rejected", f"busy with command {state.running}")
-    walking, t0 = _still_walking(state.activity, t)
+    walking, t0 = _still_stepping(ctx, state.activity, t)
     try:
         if isinstance(command, MoveCommand):
             activity, mode = plan_movement(ctx, command, state.anchor, t0), "MOVEMENT"

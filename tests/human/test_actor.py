@@ -142,6 +142,32 @@ def test_null_quaternion_ends_facing_the_walking_direction_via_waypoints():
 
 GAIT_CYCLE = 1.1
 """s: one gait cycle at the preferred pace (docs/human-body.md)."""
+PELVIS_SPEED_SWING = 0.15
+"""Published swing of the forward speed within a stride at a normal pace, as a fraction of
+its mean (about ±10-15 %; Cavagna et al. 1977, docs/realism.md)."""
+STANCE_SLIP = 0.01
+"""m: how far a sole point standing on the floor may slide (docs/realism.md)."""
+ON_FLOOR = 0.003
+"""m: a sole point this close to the floor stands on it (the realism audit's)."""
+
+
+def _stance_slip(body, poses) -> float:
+    """Largest horizontal travel of a sole point during one spell on the floor."""
+    tracks = {}
+    for q in poses:
+        for name, point in body.sole_points(q).items():
+            tracks.setdefault(name, []).append(point)
+    worst = 0.0
+    for track in map(np.array, tracks.values()):
+        start = None
+        for k, on_floor in enumerate(np.append(track[:, 2] < ON_FLOOR, False)):
+            if on_floor and start is None:
+                start = k
+            elif not on_floor and start is not None:
+                spell = track[start:k, :2]
+                worst = max(worst, float(np.max(np.linalg.norm(spell - spell[0], axis=1))))
+                start = None
+    return worst
 
 
 def test_walk_speed_and_planted_feet_in_the_actor():
@@ -151,6 +177,28 @@ def test_walk_speed_and_planted_feet_in_the_actor():
     assert 1.2 <= 8.0 / (arrived - 0.1 - 0.6) <= 1.4  # cruising speed; ramps cost 0.6 s
     done = next(s.time for s in statuses if s.outcome == "succeeded")
     assert arrived <= done <= arrived + GAIT_CYCLE  # the last step closes the feet
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
+
+
+def test_pelvis_speed_within_a_stride_swings_as_published():
+    run = Run([(0.1, MoveCommand(1, (8.0, 0.0, 0.0)))])
+    statuses, _ = run.record(7.0)
+    times = np.array([s.time for s in statuses])
+    x = np.array([s.base_pose[0] for s in statuses])
+    speed = np.gradient(x, times)
+    for start in np.arange(2.0, 5.0, GAIT_CYCLE / 2):  # cruising: strides after the ramp
+        stride = speed[(times >= start) & (times < start + GAIT_CYCLE)]
+        swing = (stride.max() - stride.min()) / 2 / stride.mean()
+        assert swing <= PELVIS_SPEED_SWING, f"stride from {start:.2f} s: ±{swing:.0%}"
+
+
+def test_a_turn_cancelled_halfway_finishes_its_step_without_sliding_a_foot():
+    run = Run(
+        [(0.1, MoveCommand(1, (0.0, 0.0, 0.0), _yaw(np.radians(170)))), (0.8, CancelCommand(2))]
+    )
+    statuses, poses = run.record(4.0)
+    assert statuses[-1].outcome_of(1) == "cancelled" and statuses[-1].state == "IDLE"
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
 
 
 def test_animation_progress_rises_and_speed_two_halves_the_duration():
