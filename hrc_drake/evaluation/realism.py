@@ -25,10 +25,11 @@ from hrc_drake.evaluation.metrics import rounded
 CONTACT_HEIGHT = 0.003
 """m: a sole point this close to the floor stands on it."""
 STEADY_SPEED_CHANGE = 0.05
-"""A stride is steady walking when its start and end speeds differ by less than this
-fraction of its mean (speeding up and slowing down are not strides of a gait)."""
+"""A stride is steady walking when it starts and ends at walking speed, the two differing
+by less than this fraction of its mean (speeding up, slowing down, and a short walk from
+standing to standing are not strides of a gait)."""
 WALKING_SPEED = 0.5
-"""m/s: slower strides are not walking at a normal speed."""
+"""m/s: a stride that starts or ends slower is not walking at a normal speed."""
 
 
 LIMITS = {
@@ -146,7 +147,8 @@ def _walked(state: AuditState, sample: Sample, stride_time: float) -> AuditState
     speeds = np.array([v for _, v in stride])
     mean = float(speeds.mean())
     state = replace(state, pelvis=pelvis, stride=(stride[-1],))
-    if mean < WALKING_SPEED or abs(speeds[-1] - speeds[0]) > STEADY_SPEED_CHANGE * mean:
+    ends = min(speeds[0], speeds[-1])
+    if ends < WALKING_SPEED or abs(speeds[-1] - speeds[0]) > STEADY_SPEED_CHANGE * mean:
         return state
     variation = float(speeds.max() - speeds.min()) / 2 / mean
     return replace(

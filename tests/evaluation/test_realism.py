@@ -76,6 +76,8 @@ def test_speeding_up_and_standing_are_no_strides():
     assert speeding_up.stride_variations == ()
     standing = _run(_walk(lambda t: 1.3, 3.0, walking=False))
     assert standing.stride_variations == ()
+    short_walk = _run(_walk(lambda t: 1.4 * math.sin(math.pi * min(t / STRIDE, 1)) ** 2, 1.5))
+    assert short_walk.stride_variations == ()  # from standing to standing in one stride
 
 
 def test_the_worst_of_each_measure_is_kept_with_when_and_where():
