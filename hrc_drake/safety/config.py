@@ -5,7 +5,8 @@ from dataclasses import dataclass
 
 ISO_13855 = "iso13855"
 CONSTANT = "constant"
-V_H_RULES = (ISO_13855, CONSTANT)
+MEASURED = "measured"
+V_H_RULES = (ISO_13855, CONSTANT, MEASURED)
 
 
 @dataclass
@@ -15,8 +16,9 @@ class SafetyConfig:
 
     Person speed v_h: with `v_h_rule` iso13855 (ISO 13855) it is `v_h_near` where the
     protective distance computed with it is at most `near_distance`, else `v_h` (walking);
-    with `constant`, always `v_h`. The measured speed of the closest body region towards the
-    robot is used instead when it is higher: a hand reaching in faster than walking.
+    with `constant`, always `v_h`; with `measured`, the measured speed of the closest body
+    region towards the robot (0 for a person standing still or walking away: it trusts the
+    person not to speed up within the robot's stop).
 
     T_r, the reaction time, is `sensing_time` (how long the sensing takes to report the
     person: a safety scanner's response time) plus the monitor's `period` (the person may

@@ -4,8 +4,8 @@ above it.
 
     S_p = v_h (T_r + T_s) + v_r T_r + S_s + C + Z_d + Z_r
 
-v_h is the person's speed towards the robot (ISO 13855's rule, or the measured speed of the
-closest body region when higher), v_r the robot's speed towards the person at the closest
+v_h is the person's speed towards the robot (ISO 13855's rule, a constant, or the measured
+speed of the closest body region), v_r the robot's speed towards the person at the closest
 points; T_s and S_s the robot's stop from the speed it moves at now (`StopModel`).
 
 Choosing the scale s, the monitor does not know the coming motion, so it bounds it: every
@@ -18,7 +18,7 @@ that lead added to T_r.
 import math
 from dataclasses import dataclass
 
-from hrc_drake.safety.config import ISO_13855, V_H_RULES, SafetyConfig
+from hrc_drake.safety.config import ISO_13855, MEASURED, V_H_RULES, SafetyConfig
 from hrc_drake.safety.stopping import StopModel
 
 FREE = "free"
@@ -44,6 +44,8 @@ class SsmModel:
     """ISO 13855: v_h_near applies where S_p with it is at most this (0: never)"""
     robot_speed: float
     """V: the fastest any robot point moves at full speed"""
+    measured: bool = False
+    """v_h is the measured speed of the closest body region towards the robot"""
 
     @classmethod
     def from_config(cls, config: SafetyConfig, stop: StopModel, command_latency: float):
@@ -62,6 +64,7 @@ class SsmModel:
             v_h_near=config.v_h_near if iso else config.v_h,
             near_distance=config.near_distance if iso else 0.0,
             robot_speed=config.robot_speed,
+            measured=config.v_h_rule == MEASURED,
         )
 
 
@@ -88,17 +91,21 @@ def protective_separation(
 ) -> SsmTerms:
     """S_p for a robot moving at `speed_fraction` of full speed, its fastest point at
     `point_speed` and its closest point towards the person at `v_r`, and a person whose
-    closest region approaches at `measured_v_h` (m/s)."""
+    closest region approaches at `measured_v_h` (m/s, used by the `measured` rule)."""
     t_s = model.stop.time(speed_fraction)
     s_s = model.stop.distance(speed_fraction, point_speed)
     t_r = model.reaction_time
     s_r = v_r * t_r
     robot_terms = s_r + s_s + model.margins
-    v_h = max(model.v_h_near, measured_v_h)
-    total = v_h * (t_r + t_s) + robot_terms
-    if total > model.near_distance:
-        v_h = max(model.v_h, measured_v_h)
-        total = max(v_h * (t_r + t_s) + robot_terms, model.near_distance)
+    if model.measured:
+        v_h = measured_v_h
+        total = v_h * (t_r + t_s) + robot_terms
+    else:  # ISO 13855 (a constant when v_h_near is v_h and the near distance 0)
+        v_h = model.v_h_near
+        total = v_h * (t_r + t_s) + robot_terms
+        if total > model.near_distance:
+            v_h = model.v_h
+            total = max(v_h * (t_r + t_s) + robot_terms, model.near_distance)
     return SsmTerms(v_h, v_r, t_s, v_h * (t_r + t_s), s_r, s_s, model.margins, total)
 
 
@@ -111,13 +118,13 @@ def max_safe_scale(separation: float, measured_v_h: float, model: SsmModel) -> f
     (after the lead time and its stop) before the person is that near.
     """
     reaction = model.reaction_time + model.lead_time
-    if separation < model.near_distance:
-        v_h = max(model.v_h_near, measured_v_h)
-        return _largest_scale(separation, v_h, model, reaction, model.margins)
-    v_h = max(model.v_h, measured_v_h)
+    near = separation < model.near_distance
+    v_h = measured_v_h if model.measured else model.v_h_near if near else model.v_h
+    allowed = _largest_scale(separation, v_h, model, reaction, model.margins)
+    if near or model.near_distance <= 0.0:
+        return allowed
     return min(
-        _largest_scale(separation, v_h, model, reaction, model.margins),
-        _largest_scale(separation, v_h, model, model.lead_time, model.near_distance),
+        allowed, _largest_scale(separation, v_h, model, model.lead_time, model.near_distance)
     )
 
 

@@ -28,6 +28,8 @@ class Recomputed:
     protective: np.ndarray
     robot_speed: np.ndarray
     violation: np.ndarray
+    human_approach: np.ndarray
+    robot_approach: np.ndarray
 
 
 class Scene:
@@ -134,14 +136,15 @@ def worst_stopping_times(variant: str) -> tuple[list, list, float]:
 
 
 def recompute(outcome, variant: str, command_latency: float = 0.01) -> Recomputed:
-    """S_p = v_h (T_r + T_s) + v_r T_r + S_s + C + Z_d + Z_r at every logged update."""
+    """S_p = v_h (T_r + T_s) + v_r T_r + S_s + C + Z_d + Z_r at every logged update, v_h by
+    ISO 13855 (the walk-in cell's rule); the directed speeds of both witness points too."""
     config = outcome.config
     scene = Scene(outcome.scenario)
     speeds, times, kappa = worst_stopping_times(variant)
     t_r = config.sensing_time + config.period + command_latency
     margins = config.intrusion_distance + config.sensor_uncertainty + config.robot_uncertainty
     rates = outcome.signals_named("path_rate")
-    result = Recomputed(*([] for _ in range(6)))
+    result = Recomputed(*([] for _ in range(8)))
     previous = None
     for k, t in enumerate(outcome.times):
         query, poses = scene.pose(outcome.robot_q[:, k], outcome.person_q[:, k])
@@ -162,8 +165,8 @@ def recompute(outcome, variant: str, command_latency: float = 0.01) -> Recompute
         s_s = kappa * robot_speed * t_s
 
         robot_terms = v_r * t_r + s_s + margins
-        near = max(config.v_h_near, v_h) * (t_r + t_s) + robot_terms
-        walking = max(config.v_h, v_h) * (t_r + t_s) + robot_terms
+        near = config.v_h_near * (t_r + t_s) + robot_terms  # ISO 13855
+        walking = config.v_h * (t_r + t_s) + robot_terms
         protective = near if near <= config.near_distance else max(walking, config.near_distance)
         result.separation.append(distance)
         result.region.append(scene.inspector.GetName(g_h).split("::")[-1].split("__")[0])
@@ -171,6 +174,8 @@ def recompute(outcome, variant: str, command_latency: float = 0.01) -> Recompute
         result.protective.append(protective)
         result.robot_speed.append(robot_speed)
         result.violation.append(robot_speed > config.moving_speed and distance < protective)
+        result.human_approach.append(v_h)
+        result.robot_approach.append(v_r)
     return Recomputed(
         np.array(result.separation),
         result.region,
@@ -178,6 +183,8 @@ def recompute(outcome, variant: str, command_latency: float = 0.01) -> Recompute
         np.array(result.protective),
         np.array(result.robot_speed),
         np.array(result.violation),
+        np.array(result.human_approach),
+        np.array(result.robot_approach),
     )
 
 

@@ -4,7 +4,7 @@
 import pytest
 
 from hrc_drake.motion.stopping import Stop
-from hrc_drake.safety.config import CONSTANT, SafetyConfig
+from hrc_drake.safety.config import CONSTANT, MEASURED, SafetyConfig
 from hrc_drake.safety.ssm import (
     FREE,
     REDUCED,
@@ -67,9 +67,14 @@ def test_iso_13855_least_distance_between_the_two_speeds():
     assert terms.total == 0.5
 
 
-def test_measured_hand_faster_than_the_rule_is_used():
+def test_the_rules_ignore_the_measured_speed_and_the_measured_rule_takes_it():
+    # ISO 13855 at rest: 0.37 m whatever the hand does
+    assert protective_separation(MODEL, 0.0, 0.0, 0.0, 2.5).total == pytest.approx(0.37)
+    model = SsmModel.from_config(SafetyConfig(v_h_rule=MEASURED), STOP, 0.01)
     # a hand reaching in at 2.5 m/s towards a robot at rest: 2.5 · 0.1 + 0.17 = 0.42 m
-    assert protective_separation(MODEL, 0.0, 0.0, 0.0, 2.5).total == pytest.approx(0.42)
+    assert protective_separation(model, 0.0, 0.0, 0.0, 2.5).total == pytest.approx(0.42)
+    # a person standing still by a robot at full speed: 0 + 0.1 + 0.3 + 0.17 = 0.57 m
+    assert protective_separation(model, 1.0, 1.0, 1.0, 0.0).total == pytest.approx(0.57)
 
 
 def test_constant_rule_keeps_one_speed():

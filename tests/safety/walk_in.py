@@ -38,7 +38,8 @@ WALK_SPEED = 1.6
 HAND_SPEED = 2.0
 """m/s: ISO 13855's hand approach speed (the peak speed of the reach)"""
 STAND = 0.65
-"""m from the robot's base axis where the person stops walking and reaches in"""
+"""m from the robot's base axis where the person stops walking and reaches in (by default:
+inside the sweep)"""
 HOLD = 1.0
 """s the hand stays reached in"""
 AFTER = 2.5
@@ -76,12 +77,18 @@ class Case:
     start: float
     delay: float
     ssm: bool = True
+    stand: float = STAND
 
     @property
     def id(self) -> str:
         name = self.variant.split("_")[2]
         ssm = "ssm" if self.ssm else "no-ssm"
-        return f"{name}-{self.bearing:.0f}deg-{self.start:.1f}m-{self.delay:.1f}s-{ssm}"
+        where = f"{self.start:.1f}-{self.stand:.2f}m"
+        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s-{ssm}"
+
+    @property
+    def person(self) -> PiecewisePolynomial:
+        return person_path(self.bearing, self.start, self.delay, self.stand)
 
 
 @dataclass
@@ -137,9 +144,9 @@ def sweep_goals() -> list[np.ndarray]:
 
 
 @functools.cache
-def person_path(bearing: float, start: float, delay: float) -> PiecewisePolynomial:
+def person_path(bearing: float, start: float, delay: float, stand: float) -> PiecewisePolynomial:
     """The person's plant positions over time: stand at `start` m from the base axis along
-    `bearing` (degrees) facing the robot, set off after `delay` s, walk in to STAND at
+    `bearing` (degrees) facing the robot, set off after `delay` s, walk in to `stand` at
     WALK_SPEED, reach the right hand in at HAND_SPEED, hold, take it back, walk back out."""
     body = human_body()
     direction = np.array([math.cos(math.radians(bearing)), math.sin(math.radians(bearing))])
@@ -150,13 +157,13 @@ def person_path(bearing: float, start: float, delay: float) -> PiecewisePolynomi
         q[body.index("base_yaw")] = math.radians(bearing) + math.pi
         return q
 
-    standing = standing_at(STAND)
+    standing = standing_at(stand)
     reach = _reached_in(body, standing, direction)
     reach_steps = np.linspace(0.0, 1.0, 9)
     reach_poses = [(1 - a) * standing + a * reach for a in reach_steps]
     hand = np.array([body.frame_pose("right_hand_grasp", q).translation() for q in reach_poses])
     step_time = np.linalg.norm(np.diff(hand, axis=0), axis=1).max() / HAND_SPEED
-    walk = (start - STAND) / WALK_SPEED
+    walk = (start - stand) / WALK_SPEED
     times, poses = [0.0, delay], [standing_at(start), standing_at(start)]
     t = delay + walk
     for pose in reach_poses:
@@ -192,7 +199,7 @@ def _reached_in(body, standing: np.ndarray, direction: np.ndarray) -> np.ndarray
 
 
 def duration(case: Case) -> float:
-    return person_path(case.bearing, case.start, case.delay).end_time()
+    return case.person.end_time()
 
 
 def build(case: Case):
@@ -232,7 +239,7 @@ def _kinematic_person(builder, scene_graph, case: Case):
         builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
     )
     keep_person_out_of_contact(scene_graph)
-    path = builder.AddSystem(TrajectorySource(person_path(case.bearing, case.start, case.delay)))
+    path = builder.AddSystem(TrajectorySource(case.person))
     builder.Connect(path.get_output_port(), to_pose.get_input_port())
     return human_plant, human
 
@@ -248,7 +255,7 @@ def simulate(case: Case) -> Outcome:
     signals = logs["signals"].FindLog(context).data()[:, 1:]
     robot = logs["robot"].FindLog(context).data()[:6, :-1]
     times = signals[SIGNALS.index("time")]
-    path = person_path(case.bearing, case.start, case.delay)
+    path = case.person
     return Outcome(
         case=case,
         status=status,
