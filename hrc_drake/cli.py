@@ -233,7 +233,8 @@ def key_metrics(metrics: dict) -> list[str]:
             f"min separation: {closest['distance']:.3f} m ({closest['region']} / "
             f"{closest['link']} at {closest['time']:.1f} s)",
             f"SSM violations: {safety['ssm_violations']['count']}, "
-            f"contacts: {safety['contacts']['count']}, stops: {safety['stops']}, "
+            f"contacts: {safety['contacts']['robot_moving']} by the moving robot, "
+            f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
             f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
         ]
     return lines

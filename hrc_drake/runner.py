@@ -2,8 +2,9 @@
 
 A run directory holds `report.json` (deterministic: same scenario and seed give the same
 bytes, so it holds no wall-clock figures), `replay.html` (a standalone Meshcat recording),
-`diagram.svg`, and with a safety monitor in the station `timeline.png`, `heatmap.png`, plus
-`report.html` tying them together. Wall-clock speed is returned to the caller, never
+`diagram.svg`, and with a safety monitor in the station `safety.npz` (its signals at every
+update, `hrc_drake.safety.log`), `timeline.png`, `heatmap.png`, plus `report.html` tying them
+together. Wall-clock speed is returned to the caller, never
 written to the report.
 
 Optional station parts the runner measures when they exist: `safety_signals` and
@@ -42,6 +43,7 @@ from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.log import write_safety_log
 from hrc_drake.scenario import Scenario
 from hrc_drake.yaml_check import InputError
 
@@ -95,7 +97,7 @@ def run(
     builder = DiagramBuilder()
     builder.AddSystem(station)
     state_log = LogVectorOutput(station.GetOutputPort("robot_state"), builder, LOG_PERIOD)
-    signals_log = _optional_log(station, "safety_signals", builder)
+    signals_log = _optional_log(station, "safety_signals", builder, scenario.safety.period)
     states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
     tree_logs = _open_tree_logs(station, scenario, out_dir)
@@ -159,6 +161,8 @@ class _RunOutputs:
     events: list
     states: dict[str, list[tuple[float, str]]]
     bt_statistics: dict | None
+    safety_parts: tuple[str, ...]
+    """the robot parts the `part` safety signal numbers"""
 
     @classmethod
     def collect(cls, station, scenario, context, signals_log, states_log) -> "_RunOutputs":
@@ -179,13 +183,14 @@ class _RunOutputs:
                 agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
                 for agent in scenario.trees
             },
+            safety_parts=station.GetSubsystemByName("safety").part_names if log else (),
         )
 
     def metrics(self, scenario: Scenario) -> dict:
         safety = getattr(scenario, "safety", SafetyConfig())
         measured = self.signals is not None
         return {
-            "safety": safety_metrics(self.status),
+            "safety": safety_metrics(self.status, safety.moving_speed),
             "utilisation": {
                 "robot": utilisation_metrics(self.times, self.signals, safety.moving_speed)
                 if measured
@@ -199,6 +204,8 @@ class _RunOutputs:
     def write_figures(self, out: Path, files: dict[str, Path]) -> None:
         if self.signals is None:
             return
+        parts = self.safety_parts
+        files["safety_log"] = write_safety_log(out / "safety.npz", self.signals, parts)
         files["timeline"] = plot_timeline(
             out / "timeline.png", self.times, self.signals, self.states, self.events
         )
@@ -283,10 +290,10 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
     return logs
 
 
-def _optional_log(station, port: str, builder):
+def _optional_log(station, port: str, builder, period: float):
     if not station.HasOutputPort(port):
         return None
-    return LogVectorOutput(station.GetOutputPort(port), builder, LOG_PERIOD)
+    return LogVectorOutput(station.GetOutputPort(port), builder, period)
 
 
 def _final(station, station_context, port: str):
