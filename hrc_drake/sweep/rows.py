@@ -24,12 +24,14 @@ ROW_FIELDS = {"key": str, "seed": int, "set": dict, "status": str, "error": str,
 @dataclass(frozen=True)
 class RunSpec:
     """One run of a sweep: which scenario file (and its content hash), which seed, which
-    grid point."""
+    grid point (the `--set` values)."""
 
     scenario_path: str
     seed: int
     overrides: Overrides = ()
     scenario_hash: str = ""
+    out_dir: str = ""
+    """where to write the run directory ("": none); not part of what decides the row"""
 
     @property
     def key(self) -> str:
