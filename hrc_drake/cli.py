@@ -286,8 +286,6 @@ def _falsify(args) -> int:
 
 def falsify_lines(name: str, result) -> list[str]:
     """What a search found, in a few lines: the verdict and the worst cases."""
-    from hrc_drake.evaluation.falsify_report import command
-
     verdict = (
         f"{len(result.violations)} violate ISO/TS 15066" if result.violations else "no violation"
     )
@@ -299,7 +297,7 @@ def falsify_lines(name: str, result) -> list[str]:
         lines.append(f"  trial {trial.number}: margin {_metres(margin.get('value'))}{where}")
         if trial.number in result.cases:
             lines.append(f"    {result.cases[trial.number]}")
-        lines.append(f"    {command(result.search, trial)}")
+        lines.append(f"    {result.search.command(trial.values)}")
     return lines
 
 

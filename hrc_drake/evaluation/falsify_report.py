@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
-from hrc_drake.evaluation.sweep_report import html_table, page, replay_command
+from hrc_drake.evaluation.sweep_report import html_table, page
 
 KEY_METRICS = (
     ("margin", ("margin", "value")),
@@ -50,13 +50,6 @@ def _at(metrics: dict, path: tuple):
     return metrics
 
 
-def command(search, trial) -> str:
-    """The `hrc-drake run` command that reproduces the trial's run."""
-    return replay_command(
-        search.scenario_arg, {"seed": search.seed, "set": dict(search.spec(trial.values).overrides)}
-    )
-
-
 def summary(search, result) -> dict:
     lowest = result.worst[0] if result.worst else None
     return {
@@ -82,7 +75,7 @@ def summary(search, result) -> dict:
         "worst": [
             {
                 **trial_record(t),
-                "command": command(search, t),
+                "command": search.command(t.values),
                 "run_directory": str(result.cases[t.number]) if t.number in result.cases else None,
             }
             for t in result.worst

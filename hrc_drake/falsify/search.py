@@ -31,6 +31,8 @@ NO_ENCOUNTER = 100.0
 person was there): far safer than any encounter."""
 CASES = "cases"
 """The sub-directory of the worst cases' run directories."""
+COMMAND = "command.txt"
+"""The file in a worst case's run directory that holds the command reproducing it."""
 
 
 @dataclass(frozen=True)
@@ -51,6 +53,13 @@ class Search:
         chosen = tuple((p.bind, values[name]) for name, p in self.config.parameters.items())
         sets = self.fixed + chosen
         return RunSpec(str(self.scenario_path), self.seed, sets, self.digest, out_dir)
+
+    def command(self, values: dict) -> str:
+        """The `hrc-drake run` command that reproduces the trial with these values."""
+        from hrc_drake.evaluation.sweep_report import replay_command
+
+        row = {"seed": self.seed, "set": dict(self.spec(values).overrides)}
+        return replay_command(self.scenario_arg, row)
 
 
 @dataclass
@@ -264,7 +273,8 @@ def ranked(trials: list[Trial]) -> list[Trial]:
 
 def _cases(search: Search, worst: list[Trial], cases_dir: Path, execute, notes) -> dict:
     """A run directory for each worst trial (cases/trial-N), made once: run again with
-    replay and report. A run that does not reproduce its trial's margin is noted."""
+    replay and report, and the command that reproduces it (command.txt). A run that does not
+    reproduce its trial's margin is noted."""
     directories = {trial.number: cases_dir / f"trial-{trial.number:04d}" for trial in worst}
     missing = [t for t in worst if not (directories[t.number] / "report.json").is_file()]
     partial = {
@@ -288,6 +298,7 @@ def _cases(search: Search, worst: list[Trial], cases_dir: Path, execute, notes) 
                 f"trial {trial.number}: run again, its margin is {again}, not "
                 f"{trial.margin.get('value')} (the run is not deterministic)"
             )
+        (partial[trial.number] / COMMAND).write_text(search.command(trial.values) + "\n")
         partial[trial.number].rename(directories[trial.number])
     return {n: d for n, d in directories.items() if (d / "report.json").is_file()}
 
