@@ -86,20 +86,19 @@ Problem = tuple[tuple, str]
 def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
     """Everything wrong with the scenario's trees, without running them: the engine's
     checks (unknown nodes, ports, values, scripts, includes, which tree is the main one),
-    names of places that the scenario does not define, and parameters (as a scenario
-    Problem: field names and message) that the trees cannot read."""
+    names of places that the scenario does not define, and parameters and port values
+    (as a scenario Problem: field names and message) that the trees cannot read."""
     errors: list[BTError | Problem] = []
     for agent, config in scenario.trees.items():
         found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
         if found:
             errors += found
             continue
-        port_problems = list(_port_value_problems(agent, config))
-        if port_problems:
-            errors += port_problems
-            continue
         try:
-            errors += _place_errors(scenario, load_agent_tree(scenario, agent)[0])
+            port_problems = list(_port_value_problems(agent, config))
+            errors += port_problems or _place_errors(
+                scenario, agent, load_agent_tree(scenario, agent)[0]
+            )
         except ParameterError as error:
             errors.append((("parameters", error.key), error.problem))
         except BTError as error:  # no main tree to run
@@ -110,6 +109,8 @@ def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
 def _port_value_problems(agent: str, config: AgentTree) -> Iterator[Problem]:
     """Port values the scenario gives (`ports`) for nodes and ports the tree has, in text
     the port's type reads."""
+    if not config.ports:
+        return
     named = named_nodes(config)
     for name, values in config.ports.items():
         for port, text in values.items():
@@ -145,13 +146,18 @@ def port_value_problem(named: dict, agent: str, name: str, port: str, text: str)
     return ""
 
 
-def _place_errors(scenario: Scenario, tree: Tree) -> list[BTError]:
+def _place_errors(scenario: Scenario, agent: str, tree: Tree) -> list[BTError | Problem]:
+    """Places the tree names that the scenario lacks: at the tree's node and port, or at
+    the scenario's `ports` entry that gave the value."""
     errors = []
+    given = scenario.trees[agent].ports
     for _, _, node in tree.nodes():
         for port, binding in node.config.inputs.items():
             value = getattr(binding, "value", None)
             problem = _unknown_place(scenario, value)
-            if problem:
+            if problem and port in given.get(node.name, {}):
+                errors.append((("trees", agent, "ports", node.name, port), problem))
+            elif problem:
                 errors.append(node.error(problem, port=port))
     return errors
 

@@ -311,15 +311,15 @@ def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     for name, parameter in scenario.falsify.parameters.items():
         kind = field_type(Scenario, parameter.bind)
         for names, sample in parameter.ends():
-            where = ("falsify", "parameters", name, *names)
+            where = ("falsify", "parameters", name)
             value = parameter.value(sample, kind)
             try:
                 changed = apply(plain, ((parameter.bind, value),))
-            except InputError as error:
-                yield where, str(error).removeprefix("--set ")
-                continue
+            except InputError as error:  # the bound field is not in the scenario
+                yield (*where, "bind"), str(error).removeprefix("--set ")
+                break
             for _, message in itertools.islice(scenario_problems(changed, directory), 1):
-                yield where, f"{parameter.bind}={value}: {message}"
+                yield (*where, *names), f"{parameter.bind}={value}: {message}"
 
 
 def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:
