@@ -137,15 +137,14 @@ def falsify(
     worst cases' run directories, and writes the trials and the report."""
     from hrc_drake.evaluation.falsify_report import write_falsify_report
 
-    out_dir = Path(out_dir)
-    store = RowStore(out_dir)
-    with _executor(workers, dask_address) as execute:
-        trials = _search(search, budget, store, execute, progress, retry_failed)
+    with _executor(workers, dask_address) as execute:  # a bad address writes nothing
+        store = RowStore(Path(out_dir))
+        trials = run_trials(search, budget, store, execute, progress, retry_failed)
         worst = ranked(trials)[: search.config.worst]
         result = FalsifyResult(search, trials, worst, warnings=list(store.warnings))
-        result.cases = _cases(search, worst, out_dir / CASES, execute, result.warnings)
+        result.cases = _cases(search, worst, store.out_dir / CASES, execute, result.warnings)
     result.files = {"rows": store.jsonl, "csv": store.csv}
-    result.files.update(write_falsify_report(out_dir, search, result))
+    result.files.update(write_falsify_report(store.out_dir, search, result))
     return result
 
 
@@ -166,7 +165,16 @@ def _executor(workers: int, dask_address: str | None) -> Iterator[Execute]:
             yield pool.run
 
 
-def _search(search, budget, store, execute, progress, retry_failed) -> list[Trial]:
+def run_trials(
+    search: Search,
+    budget: int,
+    store: RowStore,
+    execute: Execute,
+    progress: bool = False,
+    retry_failed: bool = False,
+) -> list[Trial]:
+    """The search's first `budget` trials, told to the study round by round: rows already
+    in `store` are reused (failed ones run again with `retry_failed`), the rest run."""
     import optuna
     from optuna.trial import TrialState
 
