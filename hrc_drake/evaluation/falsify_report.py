@@ -9,6 +9,7 @@ worst_cases.png (each worst case's separation and S_p over time) and falsify.htm
 import csv
 import json
 import math
+import textwrap
 from html import escape
 from pathlib import Path
 
@@ -31,6 +32,10 @@ KEY_METRICS = (
     ("time_stopped", ("safety", "time_stopped")),
 )
 """(column, path in the run's metrics) of each trial's line."""
+MAX_SEPARATION_SHOWN = 4.0
+"""m: higher separations are cut off (the encounter is what matters)."""
+TITLE_WIDTH = 120
+"""Characters per line of a worst case's title (its parameter values)."""
 
 
 def trial_record(trial) -> dict:
@@ -133,8 +138,8 @@ def plot_margins(trials, path: Path) -> Path:
 
 
 def plot_worst_cases(search, cases, path: Path) -> Path:
-    """Per worst case: separation and S_p (as the margin takes it) while the robot moves,
-    their difference, and the robot's speed; the least margin marked."""
+    """Per worst case over time: the separation, S_p as the margin takes it and as the
+    monitor had it, when the robot moved; the least margin marked."""
     import matplotlib.pyplot as plt
 
     from hrc_drake.safety.log import read_safety_log
@@ -174,14 +179,11 @@ def plot_worst_cases(search, cases, path: Path) -> Path:
                 fontsize=8,
                 color="firebrick",
             )
-        ax.set_ylim(
-            0,
-            min(4.0, np.nanmax(log["separation"]) * 1.05)
-            if np.isfinite(log["separation"]).any()
-            else 1,
-        )
+        seen = log["separation"][np.isfinite(log["separation"])]
+        ax.set_ylim(0, min(MAX_SEPARATION_SHOWN, 1.05 * seen.max()) if seen.size else 1.0)
+        values = ", ".join(f"{k}={v}" for k, v in trial.values.items())
         ax.set_title(
-            f"trial {trial.number}: " + ", ".join(f"{k}={v}" for k, v in trial.values.items()),
+            textwrap.fill(f"trial {trial.number}: {values}", TITLE_WIDTH),
             fontsize=9,
         )
         ax.set_ylabel("m")
