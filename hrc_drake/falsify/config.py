@@ -8,9 +8,9 @@ parameter without code: it reads `{@NAME}` or names a node.
 ```yaml
 falsify:
   parameters:
-    walk_speed: {bind: trees.human.ports.walk_in.animation_distance, low: 0.8, high: 2.2}
-    wait_ms: {bind: parameters.wait_ms, low: 0, high: 8000, step: 100}
-    target: {bind: parameters.reach_target, choices: [input_add, output_tray_spot]}
+    set_off: {bind: parameters.set_off_ms, low: 0, high: 8000, step: 100}
+    side: {bind: parameters.visit_area, choices: [walkway, far_side, left_side, right_side]}
+    walk: {bind: trees.human.ports.walk_in.animation_distance, low: 0.8, high: 1.707}
 ```
 """
 
@@ -45,12 +45,14 @@ class SearchParameter:
         field: the range's ends or every choice."""
         if self.choices:
             return [(("choices", i), choice) for i, choice in enumerate(self.choices)]
-        last = self.low + self.step * self.steps() if self.step else self.high
-        return [(("low",), self.low), (("high",), last)]
+        return [(("low",), self.low), (("high",), self.top)]
 
-    def steps(self) -> int:
-        """How many steps fit between low and high."""
-        return int((self.high - self.low) / self.step + 1e-9)
+    @property
+    def top(self) -> float:
+        """The range's highest value: high, or with a step the last step not above it."""
+        if self.step is None:
+            return self.high
+        return self.low + self.step * int((self.high - self.low) / self.step + 1e-9)
 
     def value(self, sample, kind):
         """What a sample sets the bound field (of type `kind`) to: text for text fields

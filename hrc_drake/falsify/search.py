@@ -231,11 +231,9 @@ def search_space(config: FalsifyConfig) -> dict:
         if p.choices:
             space[name] = CategoricalDistribution(p.choices)
         elif p.integral:
-            high = int(p.low + p.step * p.steps())
-            space[name] = IntDistribution(int(p.low), high, step=int(p.step))
+            space[name] = IntDistribution(int(p.low), int(p.top), step=int(p.step))
         else:
-            high = p.low + p.step * p.steps() if p.step else p.high
-            space[name] = FloatDistribution(p.low, high, step=p.step)
+            space[name] = FloatDistribution(p.low, p.top, step=p.step)
     return space
 
 
