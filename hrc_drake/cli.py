@@ -7,6 +7,7 @@ nothing the run already wrote is removed.
 import argparse
 import os
 import sys
+from functools import partial
 from pathlib import Path
 
 from hrc_drake.drake_logging import quiet_drake_logging
@@ -41,6 +42,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _make_parser() -> argparse.ArgumentParser:
+    from hrc_drake.bt.groot2 import DEFAULT_PORT
+
     parser = _Parser(prog=PROG, description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(required=True, metavar="COMMAND", parser_class=_Parser)
 
@@ -56,6 +59,27 @@ def _make_parser() -> argparse.ArgumentParser:
     )
     run.add_argument(
         "--meshcat", action="store_true", help="show the run live in Meshcat, at real time"
+    )
+    run.add_argument(
+        "--groot",
+        nargs="?",
+        const=DEFAULT_PORT,
+        type=_port,
+        metavar="PORT",
+        help=f"serve the trees live to Groot2 at real time: the robot's on PORT "
+        f"(default {DEFAULT_PORT}), the person's on the next free pair",
+    )
+    run.add_argument(
+        "--groot-host",
+        metavar="ADDRESS",
+        help="address the Groot2 servers listen on (default 127.0.0.1: this machine only)",
+    )
+    run.add_argument(
+        "--realtime",
+        type=_positive_float,
+        metavar="RATE",
+        help="simulated seconds per wall-clock second (default 1 with --meshcat or "
+        "--groot, else as fast as it goes)",
     )
     _add_set_option(run)
     run.set_defaults(command=_run)
@@ -163,6 +187,26 @@ def _worker_count(text: str) -> int:
     return value
 
 
+def _port(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number") from None
+    if not 1 <= value <= 65534:
+        raise argparse.ArgumentTypeError(f"port {text} is out of range (1 to 65534: it uses two)")
+    return value
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+    return value
+
+
 def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
@@ -172,16 +216,21 @@ def _run(args) -> int:
     overrides, options = _single_sets(args, "run", "use sweep for grids")
     scenario = load_scenario(args.scenario, overrides, options)
     out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
+    if args.groot_host is not None and args.groot is None:
+        raise InputError("run: --groot-host goes with --groot")
     meshcat = Meshcat() if args.meshcat else None
     if meshcat is not None:
         print(f"Meshcat: {meshcat.web_url()}")
+    live = args.meshcat or args.groot is not None
+    serve = None if args.groot is None else partial(_serve_groot, args.groot, args.groot_host)
     try:
         report = run(
             scenario,
             out_dir=out,
             meshcat=meshcat,
             progress=True,
-            realtime_rate=1.0 if args.meshcat else 0.0,
+            realtime_rate=args.realtime or (1.0 if live else 0.0),
+            serve=serve,
         )
     except RunStopped as stopped:
         _print_node_failures(stopped.report.metrics)
@@ -213,6 +262,19 @@ def _single_sets(args, command: str, grids: str) -> tuple[tuple, dict]:
             overrides.append((name, getattr(args, name)))
             options[name] = f"--{name} {getattr(args, name)}"
     return tuple(overrides), options
+
+
+def _serve_groot(port: int, host: str | None, station):
+    """Groot2 servers for the run's trees, bound before anything is simulated or written."""
+    from hrc_drake.bt.groot2 import ServeError
+    from hrc_drake.groot import LOCALHOST, serve_groot
+
+    try:
+        servers = serve_groot(station, port, host or LOCALHOST)
+    except ServeError as error:
+        raise InputError(str(error)) from None
+    print(servers, flush=True)
+    return servers
 
 
 def _fresh_directory(path: Path) -> Path:
@@ -364,10 +426,39 @@ def _validate(args) -> int:
     from hrc_drake.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)
-    build_diagram(scenario)
+    diagram = build_diagram(scenario)
+    _check_stand_spots(args.scenario, scenario, diagram)
     trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
     print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
     return 0
+
+
+def _check_stand_spots(name_or_path: str, scenario, diagram) -> None:
+    """Places to stand where the person would stand in the cell's geometry (file:line)."""
+    from hrc_drake.builder import HUMAN_NAME
+    from hrc_drake.human.navigation import stand_problems
+    from hrc_drake.scenario import resolve_scenario_path
+    from hrc_drake.yaml_check import compose, located_error, node_at
+
+    actor = f"{HUMAN_NAME}_actor"
+    if not diagram.HasSubsystemNamed(actor):
+        return
+    navigation = diagram.GetSubsystemByName(actor).navigation
+    locations = {name: scenario.location(name) for name in scenario.locations}
+    problems = stand_problems(navigation, locations)
+    if problems:
+        path = resolve_scenario_path(name_or_path)
+        root = compose(path, path.read_text())
+        raise InputError(
+            "\n".join(
+                str(
+                    located_error(
+                        path, node_at(root, ("locations", name)), f"locations.{name}", why
+                    )
+                )
+                for name, why in problems
+            )
+        )
 
 
 def _tree(args) -> int:

@@ -39,6 +39,7 @@ from hrc_drake.evaluation.metrics import (
     task_metrics,
     utilisation_metrics,
 )
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
@@ -84,10 +85,14 @@ def run(
     meshcat: Meshcat | None = None,
     progress: bool = False,
     realtime_rate: float = 0.0,
+    serve=None,
 ) -> Report:
     """Simulates `scenario` once; with `out_dir` (a new or empty directory, so files of
     two runs never mix), writes the run directory. A tree fault ends the run early: the
-    run directory is still written, then RunStopped says where the fault is."""
+    run directory is still written, then RunStopped says where the fault is.
+
+    `serve(station)`, if given, starts watchers of the station before the simulation
+    (e.g. `hrc_drake.groot.serve_groot`); they are closed when the simulation ends."""
     scenario = scenario.with_overrides(seed=seed, duration=duration)
     out_dir = Path(out_dir) if out_dir is not None else None
     if out_dir is not None:
@@ -101,10 +106,13 @@ def run(
     signals_log = _optional_log(station, "safety_signals", builder, scenario.safety.period)
     states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
+    servers = serve(station) if serve is not None else None
     tree_logs = _open_tree_logs(station, scenario, out_dir)
 
     simulator = Simulator(diagram)
     simulator.set_target_realtime_rate(realtime_rate)
+    if servers is not None:
+        servers.keep_pace(simulator)
     visualizer = _visualizer(station)
     if visualizer is not None:
         visualizer.StartRecording(set_transforms_while_recording=realtime_rate > 0)
@@ -114,6 +122,9 @@ def run(
         _advance(simulator, scenario.duration, progress, scenario.name)
     except BTError as error:  # the tree's own message names file, line, node and port
         fault = error
+    finally:
+        if servers is not None:
+            servers.close()
     wall_time = time.perf_counter() - start
     for log in tree_logs:
         log.close()
@@ -164,6 +175,7 @@ class _RunOutputs:
     bt_statistics: dict | None
     safety_parts: tuple[str, ...]
     """the robot parts the `part` safety signal numbers"""
+    realism: object | None
 
     @classmethod
     def collect(cls, station, scenario, context, signals_log, states_log) -> "_RunOutputs":
@@ -180,6 +192,7 @@ class _RunOutputs:
             status=_final(station, station_context, "safety_status"),
             events=sorted(events, key=lambda e: (e.time, e.agent)),
             states=states_log.changes(),
+            realism=_final(station, station_context, "realism"),
             bt_statistics={
                 agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
                 for agent in scenario.trees
@@ -201,6 +214,7 @@ class _RunOutputs:
             "margin": self._margin(scenario, safety) if measured else {},
             "tasks": task_metrics(self.events, scenario.duration),
             "bt": bt_metrics(self.bt_statistics),
+            "realism": realism_metrics(self.realism),
         }
 
     def _margin(self, scenario: Scenario, safety: SafetyConfig) -> dict:

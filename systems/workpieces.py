@@ -207,7 +207,8 @@ def hand_poses(status: HumanStatus | None) -> HandPoses | None:
     (x, y, z, qw, qx, qy, qz)); None before the person's first update."""
     if status is None or not status.left_hand or not status.right_hand:
         return None
-    return HandPoses(_pose(status.left_hand), _pose(status.right_hand), status.time)
+    left, right = _pose(status.left_hand), _pose(status.right_hand)
+    return HandPoses(left, right, status.time, status.base_pose[2])
 
 
 def _pose(values: tuple[float, ...]) -> RigidTransform:

@@ -14,7 +14,7 @@ from .blackboard import Blackboard
 from .decorators import SubTreeNode
 from .errors import BTError, closest
 from .node import POSTCONDITIONS, PRECONDITIONS, EntryRef, Literal, NodeConfig, TreeNode
-from .ports import PortDirection, PortInfo, convert_from_string
+from .ports import PortDirection, PortInfo, convert_from_string, literal_value
 from .registry import NodeModel, NodeRegistry, default_registry
 from .script import ScriptCode, compile_script
 from .tree import SubtreeInstance, Tree
@@ -133,7 +133,7 @@ class _Builder:
         least, most = model.children_range
         count = len(element.children)
         if least <= count and (most is None or count <= most):
-            return True
+            return self._check_async_children(model, element, scope, path)
         expected = (
             f"exactly {least}"
             if least == most
@@ -144,6 +144,24 @@ class _Builder:
         self.report(
             BTError(
                 f"'{model.id}' needs {expected} children, has {count}",
+                node=path,
+                **scope.where(element),
+            )
+        )
+        return False
+
+    def _check_async_children(
+        self, model: NodeModel, element: XmlElement, scope: _Scope, path: str
+    ) -> bool:
+        """BT.CPP's loader refuses a ReactiveSequence with two AsyncSequence children (it
+        counts children by tag, so only these): a tree it cannot load must not run here."""
+        tags = [child.tag for child in element.children]
+        if model.id != "ReactiveSequence" or tags.count("AsyncSequence") < 2:
+            return True
+        self.report(
+            BTError(
+                "a ReactiveSequence cannot have more than one AsyncSequence child "
+                "(BehaviorTree.CPP refuses to load it)",
                 node=path,
                 **scope.where(element),
             )
@@ -314,7 +332,7 @@ class _Builder:
         remap, literals, autoremap = self._subtree_ports(attributes, element, scope, path)
         blackboard = Blackboard(scope.blackboard, remap, autoremap)
         for key, text in literals.items():
-            blackboard.set(key, text)
+            blackboard.set_local(key, literal_value(text))
         config = NodeConfig(
             "SubTree",
             attributes.get("name") or subtree_id,
