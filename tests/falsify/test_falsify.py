@@ -101,6 +101,21 @@ def test_correct_monitor_reports_its_lowest_margin_and_no_violation(tmp_path, ca
     assert f"margin {found['lowest_margin']:.3f} m" in said
 
 
+def test_one_seed_same_trials_on_local_workers_and_on_dask(tmp_path):
+    """Rounds of 2 trials on two local workers and on a Dask cluster: the same values, the
+    same margins (short runs; the worst case is not run again)."""
+    from distributed import LocalCluster
+
+    sets = (("duration", 3.0), ("falsify.batch", 2), ("falsify.worst", 0))
+    search = prepare("walk_up", 5, sets)
+    local = falsify(search, 4, tmp_path / "local", workers=2)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster:
+        dask = falsify(search, 4, tmp_path / "dask", dask_address=cluster.scheduler_address)
+    assert [t.values for t in dask.trials] == [t.values for t in local.trials]
+    assert [t.row["metrics"] for t in dask.trials] == [t.row["metrics"] for t in local.trials]
+    assert all(t.ok for t in local.trials)
+
+
 @pytest.mark.long
 def test_scenario_length_search_against_as_many_seeds(tmp_path):
     """The walk-up cell as written (14 s runs): 8 trials find the weakened monitor's
