@@ -49,9 +49,9 @@ def assert_ssm_holds(outcome) -> None:
     moving = outcome.signals_named("robot_speed") > outcome.config.moving_speed
     separation = outcome.signals_named("separation")
     protective = outcome.signals_named("protective")
-    # the robot was under way as fast as S_p let it, and the person came all the way in
+    # the robot was under way (as fast as S_p let it) before the person came near
     far = separation > 1.0
-    assert outcome.signals_named("robot_speed")[far].max() > 0.4
+    assert outcome.signals_named("robot_speed")[far].max() > 0.1
     reach = 0.05 if outcome.case.stand <= STAND else 0.4
     assert totals.min_separation < reach, "the person did not come as near as planned"
     # never moving closer than S_p: in the report and at every logged update
