@@ -1,10 +1,13 @@
 # `make demo` and `make test` set themselves up on a fresh machine (Python + apt only).
 # Re-running them reuses the virtual environment: it is rebuilt only when pyproject.toml changes.
 
+# PYTHON picks the interpreter (3.11 gets Drake 1.51, 3.12 and 3.13 the newest Drake); give
+# each interpreter its own VENV, e.g. `make test PYTHON=python3.12 VENV=.venv-3.12`.
 PYTHON ?= python3
-VENV := .venv
+VENV ?= .venv
 BIN := $(VENV)/bin
-STAMP := $(VENV)/.installed
+PYTHON_VERSION := $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+STAMP := $(VENV)/.installed-$(PYTHON_VERSION)
 DEMO_SCENARIO ?= coexistence
 
 .PHONY: demo test lint format graphviz clean
@@ -24,6 +27,10 @@ format: $(STAMP)
 	$(BIN)/ruff check --fix .
 
 $(STAMP): pyproject.toml
+	@test -n "$(PYTHON_VERSION)" || { echo "no Python interpreter '$(PYTHON)'"; exit 1; }
+	@if [ -x $(BIN)/python ] && [ "$$($(BIN)/python -c 'import sys; print("%d.%d" % sys.version_info[:2])')" \
+	    != "$(PYTHON_VERSION)" ]; then \
+	  echo "$(VENV) holds another Python than $(PYTHON) ($(PYTHON_VERSION)): rebuilding it"; rm -rf $(VENV); fi
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev,dist]'

@@ -13,12 +13,12 @@ CPU time, so that other work on the machine does not blur the comparison.
 import argparse
 import time
 
-from pydrake.common.value import AbstractValue
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from hrc_drake.builder import build_diagram
 from hrc_drake.human.messages import MoveCommand
+from hrc_drake.ports import message_value
 from hrc_drake.scenario import HumanConfig, load_scenario
 
 LEGS = ((1.5, -2.0), (-1.5, -2.0))
@@ -30,8 +30,8 @@ class Patrol(LeafSystem):
 
     def __init__(self):
         LeafSystem.__init__(self)
-        self._status = self.DeclareAbstractInputPort("status", AbstractValue.Make(None))
-        self.DeclareAbstractOutputPort("command", lambda: AbstractValue.Make(None), self._calc)
+        self._status = self.DeclareAbstractInputPort("status", message_value())
+        self.DeclareAbstractOutputPort("command", message_value, self._calc)
 
     def _calc(self, context, output):
         status = self._status.Eval(context)

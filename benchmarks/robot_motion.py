@@ -22,7 +22,7 @@ import numpy as np
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.messages import FINISHED
-from hrc_drake.motion.deadline import PlanningFailed
+from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.messages import MoveTo
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner

@@ -39,6 +39,14 @@ def blackboard_entries(scenario: Scenario) -> dict:
     }
 
 
+class ParameterError(BTError):
+    """A scenario parameter that a tree reads as a type its text cannot be converted to."""
+
+    def __init__(self, key: str, error: BTError):
+        super().__init__(f"a tree cannot read it: {error.problem}")
+        self.key = key
+
+
 def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]:
     """The agent's tree, its context, and its root blackboard filled from the scenario.
 
@@ -53,19 +61,34 @@ def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]
     )
     tree = load_tree(config.file, hrc_registry(), tree_id=config.tree_id or None, context=context)
     for key, value in blackboard_entries(scenario).items():
-        tree.root_blackboard.set(key, value)
+        try:
+            tree.root_blackboard.set(key, value)
+        except BTError as error:  # only parameters are text the tree may not read
+            raise ParameterError(key, error) from None
     tree.root_blackboard.remember_initial_state()
     return tree, context
 
 
-def tree_errors(scenario: Scenario) -> list[BTError]:
+Problem = tuple[tuple, str]
+
+
+def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
     """Everything wrong with the scenario's trees, without running them: the engine's
-    checks (unknown nodes, ports, values, scripts, includes) and names of places that the
-    scenario does not define."""
-    errors = []
+    checks (unknown nodes, ports, values, scripts, includes, which tree is the main one),
+    names of places that the scenario does not define, and parameters (as a scenario
+    Problem: field names and message) that the trees cannot read."""
+    errors: list[BTError | Problem] = []
     for agent, config in scenario.trees.items():
         found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
-        errors += found or _place_errors(scenario, load_agent_tree(scenario, agent)[0])
+        if found:
+            errors += found
+            continue
+        try:
+            errors += _place_errors(scenario, load_agent_tree(scenario, agent)[0])
+        except ParameterError as error:
+            errors.append((("parameters", error.key), error.problem))
+        except BTError as error:  # no main tree to run
+            errors.append(error.located(file=config.file))
     return errors
 
 

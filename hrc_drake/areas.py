@@ -1,9 +1,9 @@
 """Named floor areas: 2-D polygons kept as triangles, for containment tests and sampling.
 
-The original system described an area as a list of triangles and sampled it by picking a
-triangle with probability proportional to its area, then a uniform point inside it. We keep
-that representation and triangulate user polygons (ear clipping) into it.
-"""
+The thesis system this project re-creates (docs/thesis-system.md) described an area as a list of
+triangles and sampled it by picking a triangle with probability proportional to its area, then a
+uniform point inside it. We keep that representation and triangulate user polygons (ear clipping)
+into it."""
 
 from dataclasses import dataclass
 
@@ -61,8 +61,16 @@ def _in_triangle(p: np.ndarray, tri: np.ndarray, eps: float = 1e-12) -> bool:
 
 def triangulate(polygon: np.ndarray) -> list[np.ndarray]:
     """Ear-clipping triangulation of a simple polygon (n >= 3 vertices, no self-crossing)."""
+    if polygon.ndim != 2 or polygon.shape[1] != 2:
+        raise ValueError(
+            "every point needs exactly two coordinates [x, y] (areas lie on the floor)"
+        )
     if len(polygon) < 3:
         raise ValueError(f"a polygon needs at least 3 points, got {len(polygon)}")
+    crossing = _crossing_edges(polygon)
+    if crossing:
+        i, j = crossing
+        raise ValueError(f"its edges cross (the edge from point {i} and the edge from point {j})")
     signed_area = 0.5 * sum(_cross(polygon[i - 1], polygon[i]) for i in range(len(polygon)))
     if abs(signed_area) < 1e-12:
         raise ValueError("the polygon has zero area")
@@ -75,6 +83,38 @@ def triangulate(polygon: np.ndarray) -> list[np.ndarray]:
         del remaining[ear]
     triangles.append(polygon[remaining])
     return triangles
+
+
+def _crossing_edges(polygon: np.ndarray) -> tuple[int, int] | None:
+    """Two edges (by their first point) that touch though they are not neighbours; ear
+    clipping would give such a polygon a wrong area and wrong containment."""
+    n = len(polygon)
+    edges = [(polygon[i], polygon[(i + 1) % n]) for i in range(n)]
+    for i in range(n):
+        for j in range(i + 1, n):
+            neighbours = j == i + 1 or (i == 0 and j == n - 1)
+            if neighbours:
+                continue
+            if _segments_touch(*edges[i], *edges[j]):
+                return i, j
+    return None
+
+
+def _segments_touch(a, b, c, d) -> bool:
+    def side(p, q, r):
+        return _cross(q - p, r - p)
+
+    d1, d2, d3, d4 = side(c, d, a), side(c, d, b), side(a, b, c), side(a, b, d)
+    if d1 * d2 < 0 and d3 * d4 < 0:
+        return True
+    return any(
+        abs(s) < 1e-12 and _on_segment(p, q, r)
+        for s, p, q, r in ((d1, c, d, a), (d2, c, d, b), (d3, a, b, c), (d4, a, b, d))
+    )
+
+
+def _on_segment(p, q, r) -> bool:
+    return bool(np.all(np.minimum(p, q) - 1e-12 <= r) and np.all(r <= np.maximum(p, q) + 1e-12))
 
 
 def _find_ear(polygon: np.ndarray, ring: list[int]) -> int:

@@ -16,7 +16,8 @@ Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
-`safety_status`, `safety_signals`, `<agent>_tree_status`, `<agent>_task_events`.
+`safety_status`, `safety_signals`, `realism` (the person's realism audit),
+`<agent>_tree_status`, `<agent>_task_events`.
 """
 
 import numpy as np
@@ -27,7 +28,8 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.human.builder import add_human
-from hrc_drake.iisy import TCP_FRAME
+from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
+from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
 from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
 from hrc_drake.seeding import stream
@@ -37,6 +39,7 @@ from hrc_drake.station_models import (
     model_parser,
 )
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
+from hrc_drake.systems.realism_audit import add_realism_audit
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
@@ -66,12 +69,13 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     controller = add_robot_controller(builder, scenario, plant, arm)
     scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
-    human, human_plant = _add_person(builder, scene_graph, scenario)
+    human, human_plant = _add_person(builder, scene_graph, mirror, scenario)
     workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
     motion = add_robot_motion(
         builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
+    audit = _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario)
     if human is not None:
         for reader in filter(None, (motion, safety)):
             builder.Connect(
@@ -83,6 +87,8 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
         _add_visualizer(builder, scene_graph, meshcat, scenario)
 
     _export_outputs(builder, plant, arm, scene_graph, actors, trees)
+    if audit is not None:
+        builder.ExportOutput(audit.GetOutputPort("realism"), "realism")
     _export_open_inputs(builder, [motion, human, workpieces])
     diagram = builder.Build()
     diagram.set_name(scenario.name)
@@ -114,10 +120,12 @@ def _add_world_scene(builder, plant, scenario):
     return scene_graph, mirror
 
 
-def _add_person(builder, scene_graph, scenario):
+def _add_person(builder, scene_graph, mirror, scenario):
+    """The person, walking round the cell's static geometry (the mirror's)."""
     if scenario.human is None:
         return None, None
     x, y, yaw_deg = scenario.human.start
+    robot_xy = scenario.robot.base_pose.GetDeterministicValue().translation()[:2]
     human, human_plant = add_human(
         builder,
         scene_graph,
@@ -126,6 +134,10 @@ def _add_person(builder, scene_graph, scenario):
         name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
         issuers=tuple(tree_issuer(agent) for agent in AGENTS),
+        navigation=NavigationMap(
+            cell_obstacles(mirror, scene_graph.model_inspector()),
+            keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
+        ),
     )
     return human, human_plant
 
@@ -176,6 +188,25 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
             safety.get_workpieces_status_input_port(),
         )
     return safety
+
+
+def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario):
+    """The realism audit of the person, sampled at the person's own rate."""
+    if human is None:
+        return None
+    solids = workpieces.cell.solids() if workpieces is not None else {}
+    return add_realism_audit(
+        builder,
+        scene_graph,
+        mirror,
+        human_plant,
+        human_plant.GetModelInstanceByName(HUMAN_NAME),
+        human,
+        workpieces,
+        solids,
+        period=human.period,
+        stride_time=human.stride_time,
+    )
 
 
 def _add_tree(builder, scenario, agent: str, actors: dict) -> BehaviorTreeSystem:

@@ -5,34 +5,36 @@ nothing the run already wrote is removed.
 """
 
 import argparse
-import logging
 import os
 import sys
+from functools import partial
 from pathlib import Path
 
+from hrc_drake.drake_logging import quiet_drake_logging
 from hrc_drake.yaml_check import InputError
 
 EXIT_USAGE = 2
+PROG = "hrc-drake"
+MAX_WORKERS = 4 * (os.cpu_count() or 1)
+"""More local workers than this only share the cores and exhaust the memory."""
 
 
 class _Parser(argparse.ArgumentParser):
     """argparse, but a usage error is one line (no usage dump) and exit status 2."""
 
     def error(self, message):
-        raise InputError(f"{self.prog}: {message}")
+        command = self.prog.removeprefix(PROG).strip()
+        raise InputError(f"{command}: {message}" if command else message)
 
 
 def main(argv: list[str] | None = None) -> int:
-    import pydrake.common  # noqa: F401  (it sets the "drake" logger's level on import)
-
-    logging.getLogger("drake").setLevel(logging.WARNING)  # keep the output to what we print
+    quiet_drake_logging()
     parser = _make_parser()
     try:
         args = parser.parse_args(argv)
         return args.command(args)
     except InputError as e:
-        for line in str(e).splitlines():
-            print(f"hrc-drake: error: {line}", file=sys.stderr)
+        print(f"{PROG}: error: {' '.join(str(e).split())}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         print("hrc-drake: interrupted", file=sys.stderr)
@@ -40,16 +42,44 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _make_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="hrc-drake", description=__doc__.splitlines()[0])
+    from hrc_drake.bt.groot2 import DEFAULT_PORT
+
+    parser = _Parser(prog=PROG, description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(required=True, metavar="COMMAND", parser_class=_Parser)
 
     run = commands.add_parser("run", help="simulate a scenario and write its run directory")
     run.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
     run.add_argument("--seed", type=int, help="random seed (default: the scenario's)")
-    run.add_argument("--duration", type=_positive_float, help="simulated seconds")
-    run.add_argument("--out", type=Path, help="run directory (default: runs/<scenario>-seed<N>)")
+    run.add_argument("--duration", type=float, help="simulated seconds")
+    run.add_argument(
+        "--out",
+        type=Path,
+        help="run directory, new or empty (default: runs/<scenario>-seed<N>, or -2, -3... "
+        "if that holds an earlier run)",
+    )
     run.add_argument(
         "--meshcat", action="store_true", help="show the run live in Meshcat, at real time"
+    )
+    run.add_argument(
+        "--groot",
+        nargs="?",
+        const=DEFAULT_PORT,
+        type=_port,
+        metavar="PORT",
+        help=f"serve the trees live to Groot2 at real time: the robot's on PORT "
+        f"(default {DEFAULT_PORT}), the person's on the next free pair",
+    )
+    run.add_argument(
+        "--groot-host",
+        metavar="ADDRESS",
+        help="address the Groot2 servers listen on (default 127.0.0.1: this machine only)",
+    )
+    run.add_argument(
+        "--realtime",
+        type=_positive_float,
+        metavar="RATE",
+        help="simulated seconds per wall-clock second (default 1 with --meshcat or "
+        "--groot, else as fast as it goes)",
     )
     _add_set_option(run)
     run.set_defaults(command=_run)
@@ -59,10 +89,18 @@ def _make_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
     _add_set_option(sweep)
     sweep.add_argument(
-        "--workers", type=_positive_int, default=os.cpu_count(), help="local worker processes"
+        "--workers",
+        type=_worker_count,
+        default=os.cpu_count(),
+        help=f"local worker processes (at most {MAX_WORKERS}: each holds a whole simulation)",
     )
     sweep.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
-    sweep.add_argument("--out", type=Path, help="sweep directory (default: sweeps/<scenario>)")
+    sweep.add_argument(
+        "--out", type=Path, help="sweep directory, new or an earlier sweep's (sweeps/<scenario>)"
+    )
+    sweep.add_argument(
+        "--retry-failed", action="store_true", help="run the failed runs of an earlier sweep again"
+    )
     sweep.set_defaults(command=_sweep)
 
     diagram = commands.add_parser("diagram", help="export the scenario's system diagram")
@@ -108,13 +146,23 @@ def _add_set_option(parser) -> None:
     )
 
 
-def _positive_int(text: str) -> int:
+def _worker_count(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
+    if not 1 <= value <= MAX_WORKERS:
+        raise argparse.ArgumentTypeError(f"must lie within 1..{MAX_WORKERS}, got {text}")
+    return value
+
+
+def _port(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number") from None
+    if not 1 <= value <= 65534:
+        raise argparse.ArgumentTypeError(f"port {text} is out of range (1 to 65534: it uses two)")
     return value
 
 
@@ -128,61 +176,104 @@ def _positive_float(text: str) -> float:
     return value
 
 
-def _load(name_or_path: str):
-    """The scenario, with its trees checked against the node library and its places."""
-    from hrc_drake.agent_trees import tree_errors
-    from hrc_drake.scenario import load_scenario
-
-    scenario = load_scenario(name_or_path)
-    errors = tree_errors(scenario)
-    if errors:
-        raise InputError("\n".join(str(error) for error in errors))
-    return scenario
-
-
 def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
-    from hrc_drake.runner import run
-    from hrc_drake.scenario import Scenario
-    from hrc_drake.sweep.overrides import apply, parse_sets
+    from hrc_drake.runner import RunStopped, run
+    from hrc_drake.scenario import Scenario, load_scenario
+    from hrc_drake.sweep.overrides import parse_sets
 
     axes = parse_sets(args.set, Scenario)
     if any(len(values) > 1 for _, values in axes):
         raise InputError("run: --set takes one value per field (use sweep for grids)")
-    scenario = apply(_load(args.scenario), tuple((path, values[0]) for path, values in axes))
-    seed = scenario.seed if args.seed is None else args.seed
-    out = args.out or Path("runs") / f"{scenario.name}-seed{seed}"
+    overrides = [(path, values[0]) for path, values in axes]
+    options = {}
+    for name in ("seed", "duration"):  # checked like the scenario's own fields
+        if getattr(args, name) is not None:
+            overrides.append((name, getattr(args, name)))
+            options[name] = f"--{name} {getattr(args, name)}"
+    scenario = load_scenario(args.scenario, tuple(overrides), options)
+    out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
+    if args.groot_host is not None and args.groot is None:
+        raise InputError("run: --groot-host goes with --groot")
     meshcat = Meshcat() if args.meshcat else None
     if meshcat is not None:
         print(f"Meshcat: {meshcat.web_url()}")
-    report = run(
-        scenario,
-        seed=seed,
-        duration=args.duration,
-        out_dir=out,
-        meshcat=meshcat,
-        progress=True,
-        realtime_rate=1.0 if args.meshcat else 0.0,
-    )
+    live = args.meshcat or args.groot is not None
+    serve = None if args.groot is None else partial(_serve_groot, args.groot, args.groot_host)
+    try:
+        report = run(
+            scenario,
+            out_dir=out,
+            meshcat=meshcat,
+            progress=True,
+            realtime_rate=args.realtime or (1.0 if live else 0.0),
+            serve=serve,
+        )
+    except RunStopped as stopped:
+        _print_node_failures(stopped.report.metrics)
+        raise
     print(
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
     )
     for line in key_metrics(report.metrics):
         print(f"  {line}")
+    _print_node_failures(report.metrics)
     _print_files(report.files)
     return 0
 
 
+def _serve_groot(port: int, host: str | None, station):
+    """Groot2 servers for the run's trees, bound before anything is simulated or written."""
+    from hrc_drake.bt.groot2 import ServeError
+    from hrc_drake.groot import LOCALHOST, serve_groot
+
+    try:
+        servers = serve_groot(station, port, host or LOCALHOST)
+    except ServeError as error:
+        raise InputError(str(error)) from None
+    print(servers, flush=True)
+    return servers
+
+
+def _fresh_directory(path: Path) -> Path:
+    """`path`, or `path-2`, `path-3`... : the first that is missing or empty."""
+    candidate, n = path, 1
+    while candidate.is_dir() and any(candidate.iterdir()) or candidate.is_file():
+        n += 1
+        candidate = path.with_name(f"{path.name}-{n}")
+    return candidate
+
+
+def _print_node_failures(metrics: dict) -> None:
+    from hrc_drake.evaluation.metrics import node_failures
+
+    failures = node_failures(metrics.get("bt", {}))
+    if failures:
+        print("  tree nodes that failed:")
+    for line in failures:
+        print(f"    {line}")
+
+
 def _sweep(args) -> int:
-    from hrc_drake.scenario import resolve_scenario_path
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
     from hrc_drake.sweep import parse_seeds, plan, sweep
 
-    scenario = _load(args.scenario)
+    scenario = load_scenario(args.scenario)
     specs = plan(resolve_scenario_path(args.scenario), parse_seeds(args.seeds), args.set)
     out = args.out or Path("sweeps") / scenario.name
-    result = sweep(specs, out, args.workers, args.dask, progress=True, scenario_name=scenario.name)
+    result = sweep(
+        specs,
+        out,
+        args.workers,
+        args.dask,
+        progress=True,
+        scenario_name=scenario.name,
+        retry_failed=args.retry_failed,
+    )
+    for warning in result.warnings:
+        print(f"{PROG}: warning: {warning}", file=sys.stderr)
     print(
         f"{scenario.name}: {len(result.rows)} runs ({result.skipped} already done, "
         f"{len(result.failed)} failed)"
@@ -219,39 +310,81 @@ def _print_files(files: dict[str, Path]) -> None:
 
 def _diagram(args) -> int:
     from hrc_drake.builder import build_diagram
-    from hrc_drake.diagram_export import FORMATS, write_diagram
+    from hrc_drake.diagram_export import write_diagram
+    from hrc_drake.scenario import load_scenario
 
-    if args.output.suffix.lstrip(".").lower() not in FORMATS:
-        raise InputError(f"{args.output}: use a .svg, .png or .dot file name")
-    write_diagram(build_diagram(_load(args.scenario)), args.output)
+    _check_output(args.output, "-o", (".svg", ".png", ".dot"))
+    write_diagram(build_diagram(load_scenario(args.scenario)), args.output)
     print(args.output)
     return 0
 
 
+def _check_output(path: Path, option: str, suffixes: tuple[str, ...]) -> None:
+    """An output file the command can write, checked before any work is done."""
+    if suffixes and path.suffix.lower() not in suffixes:
+        raise InputError(f"{option} {path}: use a {', '.join(suffixes)} file name")
+    if path.is_dir():
+        raise InputError(f"{option} {path}: is a directory; give a file name")
+    if not path.parent.is_dir():
+        raise InputError(f"{option} {path}: directory '{path.parent}' does not exist")
+    if not os.access(path.parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise InputError(f"{option} {path}: cannot write there: permission denied")
+
+
 def _validate(args) -> int:
     from hrc_drake.builder import build_diagram
+    from hrc_drake.scenario import load_scenario
 
-    scenario = _load(args.scenario)
-    build_diagram(scenario)
+    scenario = load_scenario(args.scenario)
+    diagram = build_diagram(scenario)
+    _check_stand_spots(args.scenario, scenario, diagram)
     trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
     print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
     return 0
+
+
+def _check_stand_spots(name_or_path: str, scenario, diagram) -> None:
+    """Places to stand where the person would stand in the cell's geometry (file:line)."""
+    from hrc_drake.builder import HUMAN_NAME
+    from hrc_drake.human.navigation import stand_problems
+    from hrc_drake.scenario import resolve_scenario_path
+    from hrc_drake.yaml_check import compose, located_error, node_at
+
+    actor = f"{HUMAN_NAME}_actor"
+    if not diagram.HasSubsystemNamed(actor):
+        return
+    navigation = diagram.GetSubsystemByName(actor).navigation
+    locations = {name: scenario.location(name) for name in scenario.locations}
+    problems = stand_problems(navigation, locations)
+    if problems:
+        path = resolve_scenario_path(name_or_path)
+        root = compose(path, path.read_text())
+        raise InputError(
+            "\n".join(
+                str(
+                    located_error(
+                        path, node_at(root, ("locations", name)), f"locations.{name}", why
+                    )
+                )
+                for name, why in problems
+            )
+        )
 
 
 def _tree(args) -> int:
     from hrc_drake.agent_trees import load_agent_tree
     from hrc_drake.bt import BTError, load_tree, render_tree
     from hrc_drake.nodes import hrc_registry
+    from hrc_drake.scenario import load_scenario
 
-    if args.output.suffix.lstrip(".").lower() not in ("svg", "png", "dot"):
-        raise InputError(f"{args.output}: use a .svg, .png or .dot file name")
+    _check_output(args.output, "-o", (".svg", ".png", ".dot"))
     if args.source.endswith(".xml"):
         try:
             tree = load_tree(Path(args.source), hrc_registry(), tree_id=args.tree_id)
-        except (BTError, OSError) as error:
+        except BTError as error:
             raise InputError(str(error)) from None
     else:
-        scenario = _load(args.source)
+        scenario = load_scenario(args.source)
         if args.agent not in scenario.trees:
             known = ", ".join(scenario.trees) or "none"
             raise InputError(f"{args.source}: give --agent, one of: {known}")
@@ -291,6 +424,7 @@ def _list_nodes(xml_file: str | None) -> int:
     elif xml_file == "-":
         print(tree_nodes_model_xml(registry))
     else:
+        _check_output(Path(xml_file), "--xml", ())
         Path(xml_file).write_text(tree_nodes_model_xml(registry) + "\n")
         print(xml_file)
     return 0

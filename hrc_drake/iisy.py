@@ -1,6 +1,6 @@
 """KUKA LBR iisy variants: published limits, model files, controller gains, plant helpers.
 
-The numbers are those of /work/shared/facts/iisy.md (public `kuka_lbr_iisy_support` data),
+The numbers are those of docs/robot-data.md (public `kuka_lbr_iisy_support` data),
 written here in the published units (degrees, deg/s) and converted to radians once. The
 model generator (`python -m hrc_drake.modelgen`) writes the same limits into the model files,
 so `MultibodyPlant.GetPosition/Velocity/Effort/AccelerationUpperLimits()` return them too.

@@ -2,7 +2,7 @@
 
 Commands flow down and carry a sequence number; every actor's status reports the last
 sequence number it accepted and that command's outcome, so an asynchronous behavior tree
-node knows when *its* command finished (DESIGN.md, "Data flow and timing").
+node knows when *its* command finished (README: "How a scenario becomes a Diagram").
 """
 
 from dataclasses import dataclass
@@ -43,12 +43,17 @@ def result_of(results: tuple, seq: int):
     return next((r for r in reversed(results) if r.seq == seq), None)
 
 
+NO_COMMANDS = ()
+"""What a command port carries before its first command (ports cannot carry None)."""
+
+
 def newer_commands(value, seen: int, cancels: tuple[type, ...] = ()) -> list:
     """The commands on a command port that are newer than sequence number `seen`, cancels
     first.
 
-    A port carries None, one command, or a tuple of recent commands oldest first (a
-    behavior tree may send two commands to one actor in one tick); every command has `seq`.
+    A port carries one command or a tuple of recent commands oldest first (a behavior tree
+    may send two commands to one actor in one tick; NO_COMMANDS before the first); every
+    command has `seq`. An input that nothing drives reads as None.
     Commands of the `cancels` types are handled before the others: when a reactive node
     interrupts a running action, the new action is sent before the halted one's cancel,
     and the actor must be free before it can take the new one.

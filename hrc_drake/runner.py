@@ -15,13 +15,13 @@ person's states for the timeline.
 """
 
 import json
+import tempfile
 import time
 from dataclasses import dataclass, field
 from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
-from pydrake.common.value import AbstractValue
 from pydrake.geometry import Meshcat
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
@@ -29,7 +29,7 @@ from pydrake.systems.primitives import LogVectorOutput
 from tqdm import tqdm
 
 import hrc_drake
-from hrc_drake.bt import BtlogWriter, JsonLinesWriter
+from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import VISUALIZER, build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
@@ -39,14 +39,27 @@ from hrc_drake.evaluation.metrics import (
     task_metrics,
     utilisation_metrics,
 )
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
+from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.log import write_safety_log
 from hrc_drake.scenario import Scenario
+from hrc_drake.yaml_check import InputError
 
 LOG_PERIOD = 0.01
 PROGRESS_STEP = 0.1
+
+
+class RunStopped(InputError):
+    """A tree fault (e.g. a blackboard key no node wrote) stopped the run; what the run
+    recorded until then is in its report and run directory."""
+
+    def __init__(self, fault: BTError, time: float, out_dir: Path | None, report: "Report"):
+        where = f"; what it recorded is in {out_dir}" if out_dir is not None else ""
+        super().__init__(f"{fault} (the run stopped at {time:.2f} s{where})")
+        self.report = report
 
 
 @dataclass
@@ -71,10 +84,18 @@ def run(
     meshcat: Meshcat | None = None,
     progress: bool = False,
     realtime_rate: float = 0.0,
+    serve=None,
 ) -> Report:
-    """Simulates `scenario` once; with `out_dir`, writes the run directory."""
+    """Simulates `scenario` once; with `out_dir` (a new or empty directory, so files of
+    two runs never mix), writes the run directory. A tree fault ends the run early: the
+    run directory is still written, then RunStopped says where the fault is.
+
+    `serve(station)`, if given, starts watchers of the station before the simulation
+    (e.g. `hrc_drake.groot.serve_groot`); they are closed when the simulation ends."""
     scenario = scenario.with_overrides(seed=seed, duration=duration)
     out_dir = Path(out_dir) if out_dir is not None else None
+    if out_dir is not None:
+        prepare_run_directory(out_dir)
     if meshcat is None and out_dir is not None and scenario.visualization.record:
         meshcat = Meshcat()
     station = build_diagram(scenario, meshcat)
@@ -84,15 +105,25 @@ def run(
     signals_log = _optional_log(station, "safety_signals", builder, scenario.safety.period)
     states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
+    servers = serve(station) if serve is not None else None
     tree_logs = _open_tree_logs(station, scenario, out_dir)
 
     simulator = Simulator(diagram)
     simulator.set_target_realtime_rate(realtime_rate)
+    if servers is not None:
+        servers.keep_pace(simulator)
     visualizer = _visualizer(station)
     if visualizer is not None:
         visualizer.StartRecording(set_transforms_while_recording=realtime_rate > 0)
     start = time.perf_counter()
-    _advance(simulator, scenario.duration, progress, scenario.name)
+    fault = None
+    try:
+        _advance(simulator, scenario.duration, progress, scenario.name)
+    except BTError as error:  # the tree's own message names file, line, node and port
+        fault = error
+    finally:
+        if servers is not None:
+            servers.close()
     wall_time = time.perf_counter() - start
     for log in tree_logs:
         log.close()
@@ -101,10 +132,34 @@ def run(
     outputs = _RunOutputs.collect(station, scenario, context, signals_log, states_log)
     metrics = _metrics(scenario, state_log.FindLog(context))
     metrics.update(outputs.metrics(scenario))
+    if fault is not None:
+        metrics["stopped"] = {"time": _rounded(context.get_time()), "error": str(fault)}
     report = Report(metrics, out_dir, wall_time)
     if out_dir is not None:
         _write_run_directory(report, station, visualizer, meshcat, outputs)
+    if fault is not None:
+        raise RunStopped(fault, context.get_time(), out_dir, report)
     return report
+
+
+def prepare_run_directory(out_dir: Path) -> None:
+    """Creates the run directory; one that holds anything already is refused."""
+    if out_dir.is_dir() and any(out_dir.iterdir()):
+        raise InputError(
+            f"{out_dir}: the run directory is not empty (it may hold another run); "
+            "give a new or empty directory"
+        )
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise InputError(f"{out_dir}: is a file, not a directory") from None
+    except OSError as e:
+        raise InputError(f"{out_dir}: cannot create the run directory: {e.strerror}") from None
+    try:
+        with tempfile.TemporaryFile(dir=out_dir):
+            pass  # a file can be written there: the run's files will be
+    except OSError as e:
+        raise InputError(f"{out_dir}: cannot write in the run directory: {e.strerror}") from None
 
 
 @dataclass
@@ -119,6 +174,7 @@ class _RunOutputs:
     bt_statistics: dict | None
     safety_parts: tuple[str, ...]
     """the robot parts the `part` safety signal numbers"""
+    realism: object | None
 
     @classmethod
     def collect(cls, station, scenario, context, signals_log, states_log) -> "_RunOutputs":
@@ -135,6 +191,7 @@ class _RunOutputs:
             status=_final(station, station_context, "safety_status"),
             events=sorted(events, key=lambda e: (e.time, e.agent)),
             states=states_log.changes(),
+            realism=_final(station, station_context, "realism"),
             bt_statistics={
                 agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
                 for agent in scenario.trees
@@ -155,6 +212,7 @@ class _RunOutputs:
             "person": person_metrics(self.times, self.signals) if measured else {},
             "tasks": task_metrics(self.events, scenario.duration),
             "bt": bt_metrics(self.bt_statistics),
+            "realism": realism_metrics(self.realism),
         }
 
     def write_figures(self, out: Path, files: dict[str, Path]) -> None:
@@ -176,7 +234,7 @@ class _StateChanges(LeafSystem):
     def __init__(self, fields: dict[str, str], period: float):
         super().__init__()
         self._inputs = {
-            actor: (self.DeclareAbstractInputPort(actor, AbstractValue.Make(None)), attribute)
+            actor: (self.DeclareAbstractInputPort(actor, message_value()), attribute)
             for actor, attribute in fields.items()
         }
         self._changes: dict[str, list[tuple[float, str]]] = {}
@@ -223,6 +281,7 @@ def _node_statistics(tree_system) -> dict:
             "successes": counts[uid].successes,
             "failures": counts[uid].failures,
             "time_running": counts[uid].time_running,
+            **({"first_failure": counts[uid].first_failure} if counts[uid].first_failure else {}),
         }
         for uid, path, _ in tree_system.tree.nodes()
         if uid in counts
@@ -233,7 +292,6 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
     """Groot2 and JSON-lines transition logs of every tree, in the run directory."""
     if out_dir is None:
         return []
-    out_dir.mkdir(parents=True, exist_ok=True)
     logs = []
     for agent in scenario.trees:
         tree = station.GetSubsystemByName(f"bt_{agent}").tree
@@ -310,7 +368,6 @@ def _versions() -> dict:
 
 def _write_run_directory(report: Report, station, visualizer, meshcat, outputs) -> None:
     out = report.out_dir
-    out.mkdir(parents=True, exist_ok=True)
     report.files["report"] = out / "report.json"
     report.files["report"].write_text(json.dumps(report.metrics, indent=2, sort_keys=True) + "\n")
     report.files["diagram"] = write_diagram(station, out / "diagram.svg")

@@ -8,21 +8,25 @@ one Diagram. Every problem in a file is reported as one line naming file, line a
 import dataclasses
 import difflib
 import math
+import re
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from pydrake.common.schema import Transform
+from pydrake.common.schema import Rotation, Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import ModelDirective, PackageMap
 
 from hrc_drake.areas import Area
+from hrc_drake.directives_check import directive_problems
 from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir
-from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.config import V_H_RULES, SafetyConfig
+from hrc_drake.sweep.overrides import Overrides, apply
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.yaml_check import (
     InputError,
@@ -31,6 +35,8 @@ from hrc_drake.yaml_check import (
     field_path,
     located_error,
     node_at,
+    read_text,
+    schema_fields,
 )
 
 REQUIRED = {"required": True}
@@ -142,105 +148,288 @@ def resolve_scenario_path(name_or_path: str) -> Path:
     )
 
 
-def load_scenario(name_or_path: str | Path) -> Scenario:
-    """Reads and checks a scenario; raises InputError with file, line and field."""
+def load_scenario(
+    name_or_path: str | Path, overrides: Overrides = (), options: dict[str, str] | None = None
+) -> Scenario:
+    """Reads and checks a scenario; raises InputError with file, line and field.
+
+    `overrides` ((dotted field, value), ...) replace fields before the checks, so a value
+    from the command line is checked exactly like one from the file; `options` names how
+    the user gave a field (e.g. {"seed": "--seed -1"}), default `--set field=value`.
+    """
     path = resolve_scenario_path(str(name_or_path))
-    text = path.read_text()
+    text = read_text(path, "scenario file")
     root = compose(path, text)
     if root is None:
         raise InputError(f"{path}: the file is empty")
     check_node(path, root, Scenario)
     try:
         scenario = yaml_load_typed(schema=Scenario, data=text)
-    except Exception as e:  # Drake's reader; our check above catches the common cases first.
-        raise InputError(f"{path}: {e}") from None
-    _check_meaning(path, root, scenario)
+    except Exception as e:  # Drake's reader; check_node catches the common cases first.
+        raise located_error(path, root, "<document>", _first_line(e)) from None
+    scenario = apply(scenario, overrides)
+    given = {name: f"--set {name}={value}" for name, value in overrides} | (options or {})
+    where = _Where(path, root, given)
+    for names, message in scenario_problems(scenario, path.parent):
+        raise where.error(names, message)
     return scenario
 
 
-def _check_meaning(path: Path, root, scenario: Scenario) -> None:
-    """Checks what the schema cannot: known names, sane numbers, files that exist."""
+@dataclass
+class _Where:
+    """Where a field was given: the file's line, or the command-line option that set it."""
 
-    def fail(field_names: tuple, message: str):
-        raise located_error(path, node_at(root, field_names), field_path(field_names), message)
+    path: Path
+    root: object
+    options: dict[str, str]
 
-    if not scenario.duration > 0 or not math.isfinite(scenario.duration):
-        fail(("duration",), f"must be a positive number of seconds, got {scenario.duration}")
-    if not scenario.time_step > 0:
-        fail(("time_step",), f"must be positive, got {scenario.time_step}")
-    _check_robot(scenario.robot, lambda names, msg: fail(("robot", *names), msg))
-    for name, points in scenario.areas.items():
-        try:
-            Area.from_polygon(points)
-        except ValueError as e:
-            fail(("areas", name), f"not a valid polygon: {e}")
-    _check_model_files(scenario.cell, lambda names, msg: fail(("cell", *names), msg))
-    for names, message in problems(scenario.workpieces):
-        fail(("workpieces", *names), message)
-    if scenario.human is not None:
-        _check_human(scenario.human, lambda names, msg: fail(("human", *names), msg))
-    _resolve_tree_files(
-        path.parent, scenario.trees, lambda names, msg: fail(("trees", *names), msg)
-    )
+    def error(self, names: tuple | None, message: str) -> InputError:
+        if names is None:  # the message names its own place (e.g. a tree file's line)
+            return InputError(message)
+        dotted = field_path(names)
+        for name, option in self.options.items():
+            if dotted == name or dotted.startswith(f"{name}."):
+                return InputError(f"{option}: {message}")
+        return located_error(self.path, node_at(self.root, names), dotted, message)
 
 
-def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree], fail) -> None:
-    """Tree files are named relative to the scenario file; keep them as absolute paths so
-    the loaded scenario works from any directory (and in sweep workers)."""
-    for agent, tree in trees.items():
-        if agent not in AGENTS:
-            fail((agent,), _unknown("agent", agent, AGENTS))
-        file = (directory / tree.file).resolve()
-        if not file.is_file():
-            fail((agent, "file"), f"tree file '{tree.file}' not found (looked at {file})")
-        tree.file = str(file)
-        if not tree.period > 0:
-            fail((agent, "period"), f"must be positive, got {tree.period}")
+def _first_line(error: Exception) -> str:
+    """What Drake says, on one line: its first line, and what it was called with when
+    that line only announces a list of signatures (pybind's "incompatible arguments")."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()] or [repr(error)]
+    invoked = next((line for line in lines if line.startswith("Invoked with")), "")
+    return f"{lines[0]} {invoked}" if lines[0].endswith(":") and invoked else lines[0]
 
 
-def _check_robot(robot: RobotConfig, fail) -> None:
+Problem = tuple[tuple | None, str]
+"""(field names from the scenario's top, message): one thing wrong with a scenario; no
+names when the message says where it is itself."""
+Rule = Callable[[object], str]
+"""A value's problem, or "" when the value is fine."""
+
+
+def positive(value) -> str:
+    return "" if value is None or value > 0 else f"must be positive, got {value}"
+
+
+def not_negative(value) -> str:
+    return "" if value is None or value >= 0 else f"must not be negative, got {value}"
+
+
+def within(low: float, high: float, unit: str = "", why: str = "") -> Rule:
+    def rule(value) -> str:
+        if low <= value <= high:
+            return ""
+        reason = f" ({why})" if why else ""
+        return f"must lie within {low}..{high}{unit}, got {value}{reason}"
+
+    return rule
+
+
+def one_of(known: Iterable[str]) -> Rule:
+    return lambda value: "" if value in known else _unknown("value", value, known)
+
+
+MAX_SEED = 2**63 - 1
+FIELD_RULES: dict[str, Rule] = {
+    "seed": within(0, MAX_SEED),
+    "duration": positive,
+    "time_step": within(1e-5, 0.01, " s", "the controller and the monitor run at 100 Hz"),
+    "robot.motion.update_period": positive,
+    "robot.motion.ik_attempts": positive,
+    "robot.motion.search_nodes": positive,
+    "robot.motion.clearance": not_negative,
+    "robot.motion.linear_tolerance": positive,
+    "robot.motion.tool_speed_limit": positive,
+    "robot.motion.settle_tolerance": positive,
+    "robot.motion.settle_timeout": positive,
+    "robot.motion.gripper_timeout": positive,
+    "robot.motion.seed": within(0, MAX_SEED),
+    "robot.motion.person_radius": positive,
+    "visualization.publish_period": positive,
+    "human.height": within(*HEIGHT_RANGE, " m"),
+    "human.mass": positive,
+    "trees.*.period": positive,
+    "safety.period": positive,
+    "safety.v_h_rule": one_of(V_H_RULES),
+    "safety.v_h": not_negative,
+    "safety.v_h_near": not_negative,
+    "safety.near_distance": not_negative,
+    "safety.sensing_time": not_negative,
+    "safety.robot_speed": positive,
+    "safety.intrusion_distance": not_negative,
+    "safety.sensor_uncertainty": not_negative,
+    "safety.robot_uncertainty": not_negative,
+    "safety.hysteresis": not_negative,
+    "safety.min_scale": within(0, 1),
+    "safety.moving_speed": positive,
+    "safety.contact_area_cm2": positive,
+    "safety.clamping_gap": not_negative,
+}
+"""The valid range of every field that has one, by dotted path (`*`: every key of a
+mapping). A new field with a range gets its line here; YAML and `--set` both meet it."""
+
+
+def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
+    """Everything the schema cannot say, first problem first: finite numbers, the field
+    rules above, then the sections' own checks. Tree files are made absolute on the way."""
+    yield from _value_problems(scenario, ())
+    for pattern, rule in FIELD_RULES.items():
+        for names, value in _values_at(scenario, pattern.split(".")):
+            if value is not None and (problem := rule(value)):
+                yield names, problem
+    yield from _prefixed("robot", _robot_problems(scenario.robot))
+    yield from _place_problems(scenario)
+    yield from _prefixed("cell", directive_problems(scenario.cell, _package_map(), RESERVED))
+    yield from _station_problems(scenario)
+    yield from _prefixed("workpieces", problems(scenario.workpieces))
+    if scenario.human is not None and len(scenario.human.start) != 3:
+        yield ("human", "start"), "needs [x, y, yaw_deg]"
+    yield from _prefixed("trees", _resolve_tree_files(directory, scenario.trees))
+    yield from tree_problems(scenario)
+
+
+def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:
+    return ((None if names is None else (name, *names), message) for names, message in found)
+
+
+def _values_at(obj, pattern: list[str], names: tuple = ()) -> Iterator[tuple[tuple, object]]:
+    if not pattern:
+        yield names, obj
+        return
+    head, rest = pattern[0], pattern[1:]
+    if obj is None:
+        return
+    if head == "*":
+        for key, value in obj.items():
+            yield from _values_at(value, rest, (*names, key))
+    else:
+        yield from _values_at(getattr(obj, head), rest, (*names, head))
+
+
+def _value_problems(value, names: tuple) -> Iterator[Problem]:
+    """Every number in the scenario is finite (inf or nan would only fail deep in a run)
+    and every pose fixed (Drake's random distributions are schema, not yet supported)."""
+    if isinstance(value, float | np.floating):
+        if not math.isfinite(value):
+            yield names, f"must be a finite number, got {value}"
+    elif isinstance(value, list | tuple | np.ndarray):
+        for i, item in enumerate(value):
+            yield from _value_problems(item, (*names, i))
+    elif isinstance(value, dict):
+        for key, item in value.items():
+            yield from _value_problems(item, (*names, key))
+    elif isinstance(value, Transform) and not value.IsDeterministic():
+        yield names, "must be a fixed pose (random distributions are not supported here)"
+    elif (fields := schema_fields(type(value))) is not None:
+        for name in fields:
+            yield from _value_problems(getattr(value, name), (*names, name))
+    elif isinstance(value, Rotation):
+        yield from _value_problems(value.value, names)
+
+
+def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
     if robot.variant not in VARIANTS:
-        fail(("variant",), _unknown("robot variant", robot.variant, VARIANTS))
+        yield ("variant",), _unknown("robot variant", robot.variant, VARIANTS)
+        return
     if robot.tool not in TOOLS:
-        fail(("tool",), _unknown("tool", robot.tool, TOOLS))
+        yield ("tool",), _unknown("tool", robot.tool, TOOLS)
     joints = len(VARIANTS[robot.variant].joint_names)
     for name, q in robot.configurations_deg.items():
         if len(q) != joints:
-            fail(("configurations_deg", name), f"needs {joints} joint angles, got {len(q)}")
-    for name in ("update_period", "planning_time_budget", "tool_speed_limit", "person_radius"):
-        if not getattr(robot.motion, name) > 0:
-            fail(("motion", name), f"must be positive, got {getattr(robot.motion, name)}")
+            yield ("configurations_deg", name), f"needs {joints} joint angles, got {len(q)}"
     known = {"home", *robot.configurations_deg}
     if robot.initial_configuration not in known:
-        fail(
+        yield (
             ("initial_configuration",),
             _unknown("configuration", robot.initial_configuration, known),
         )
 
 
-def _check_human(human: HumanConfig, fail) -> None:
-    low, high = HEIGHT_RANGE
-    if not low <= human.height <= high:
-        fail(("height",), f"must lie within {low}..{high} m, got {human.height}")
-    if not human.mass > 0:
-        fail(("mass",), f"must be positive, got {human.mass}")
-    if len(human.start) != 3:
-        fail(("start",), "needs [x, y, yaw_deg]")
+def _place_problems(scenario: Scenario) -> Iterator[Problem]:
+    """Areas are simple floor polygons; the names of locations, areas and parameters
+    share the trees' root blackboard, so no name may be used twice."""
+    for name, points in scenario.areas.items():
+        short = next((i for i, point in enumerate(points) if len(point) != 2), None)
+        if short is not None:
+            yield ("areas", name, short), "a point needs exactly [x, y] (areas lie on the floor)"
+            continue
+        try:
+            Area.from_polygon(points)
+        except ValueError as e:
+            yield ("areas", name), f"not a valid polygon: {e}"
+    seen: dict[str, str] = {}
+    for section in ("locations", "areas", "parameters"):
+        for name in getattr(scenario, section):
+            if name in seen:
+                yield (section, name), f"'{name}' is already a name in {seen[name]}"
+            seen.setdefault(name, section)
 
 
-def _check_model_files(directives: list[ModelDirective], fail) -> None:
+RESERVED = ("iisy", "tool", "WorldModelInstance", "DefaultModelInstance")
+"""Model instance names the station gives itself; the cell cannot use them."""
+
+
+def _station_problems(scenario: Scenario) -> Iterator[Problem]:
+    """Builds the robot and cell models once (no simulation), so whatever else Drake
+    refuses (e.g. a weld to a frame the model lacks) is one line at load time. Parsing
+    takes half a second, so each robot and cell is tried once per process."""
+    from pydrake.multibody.plant import MultibodyPlant
+
+    from hrc_drake.station_models import add_station_models, model_parser
+
+    key = repr((scenario.robot.variant, scenario.robot.tool, scenario.cell))
+    if key not in _STATION_PROBLEMS:
+        plant = MultibodyPlant(0.0)
+        try:
+            add_station_models(plant, model_parser(plant), scenario)
+            _STATION_PROBLEMS[key] = ""
+        except Exception as e:  # Drake's parser: its first line says what is wrong
+            _STATION_PROBLEMS[key] = _first_line(e)
+    if _STATION_PROBLEMS[key]:
+        message = _STATION_PROBLEMS[key].split(" (valid names")[0]
+        yield _directive_naming(scenario.cell, message), message
+
+
+def _directive_naming(directives: list[ModelDirective], message: str) -> tuple:
+    """The first directive that holds a name Drake quotes in `message` (else the cell)."""
+    quoted = re.findall(r"'([^']+)'", message)
+    for i, directive in enumerate(directives):
+        if any(name in repr(directive) for name in quoted):
+            return ("cell", i)
+    return ("cell",)
+
+
+_STATION_PROBLEMS: dict[str, str] = {}
+"""Robot and cell (as text) -> what Drake said about them ("" when they load)."""
+
+
+def _package_map() -> PackageMap:
     package_map = PackageMap()
     add_model_package(package_map)
-    for i, directive in enumerate(directives):
-        if directive.add_model is None:
+    return package_map
+
+
+def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree]) -> Iterator[Problem]:
+    """Tree files are named relative to the scenario file; keep them as absolute paths so
+    the loaded scenario works from any directory (and in sweep workers)."""
+    for agent, tree in trees.items():
+        if agent not in AGENTS:
+            yield (agent,), _unknown("agent", agent, AGENTS)
             continue
-        url = directive.add_model.file
-        try:
-            exists = Path(package_map.ResolveUrl(url)).is_file()
-        except Exception:
-            exists = False
-        if not exists:
-            fail((i, "add_model", "file"), f"model file '{url}' not found")
+        file = (directory / tree.file).resolve()
+        if not file.is_file():
+            yield (agent, "file"), f"tree file '{tree.file}' not found (looked at {file})"
+        tree.file = str(file)
+
+
+def tree_problems(scenario: Scenario) -> Iterator[Problem]:
+    """The trees' own errors (they name the tree file, line, node and port: the field
+    names are empty) and scenario parameters the trees cannot read."""
+    from hrc_drake.agent_trees import tree_errors
+
+    for error in tree_errors(scenario):
+        yield error if isinstance(error, tuple) else (None, str(error))
 
 
 def _unknown(what: str, name: str, known) -> str:

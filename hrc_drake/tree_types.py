@@ -1,11 +1,9 @@
 """Port types that trees write as text: poses and areas (BehaviorTree.CPP style strings).
 
-Pose text is `x;y;z`, `x;y;z;qw;qx;qy;qz`, or the name of a scenario location. Area text
-is the name of a scenario area or triangles `x1,y1;x2,y2;x3,y3;...` (three points each),
-as in the original system. Names are kept as names here and resolved by the running
-agent's context against its scenario, so one tree file serves every scenario that names
-the same places.
-"""
+Pose text is `x;y;z`, `x;y;z;qw;qx;qy;qz`, or the name of a scenario location. Area text is the name
+of a scenario area or triangles `x1,y1;x2,y2;x3,y3;...` (three points each), as in the thesis system
+(docs/thesis-system.md). Names are kept as names here and resolved by the running agent's context
+against its scenario, so one tree file serves every scenario that names the same places."""
 
 import math
 import re
@@ -26,7 +24,7 @@ class Pose:
     """A position with an optional orientation (quaternion w, x, y, z), or a location name.
 
     A pose without orientation leaves it to its user: the robot keeps its tool pointing
-    down, the person faces the walking direction (the original's null quaternion).
+    down, the person faces the walking direction (the thesis system's null quaternion).
     """
 
     position: tuple[float, float, float] = (0.0, 0.0, 0.0)

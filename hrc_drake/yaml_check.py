@@ -7,6 +7,7 @@ alongside the schema and report the first mismatch as one line.
 
 import dataclasses
 import difflib
+import re
 import types
 import typing
 from pathlib import Path
@@ -24,15 +25,52 @@ def located_error(filename, node, field: str, message: str) -> InputError:
     return InputError(f"{filename}{line}: {field}: {message}")
 
 
-def compose(filename: Path, text: str) -> yaml.Node | None:
-    """The YAML node tree of `text`; syntax errors become an InputError with the line."""
+def read_text(filename: Path, what: str = "file") -> str:
+    """The file's text; a file that cannot be read or is not UTF-8 text is an InputError."""
     try:
-        return yaml.compose(text, Loader=yaml.SafeLoader)
+        data = Path(filename).read_bytes()
+    except OSError as e:
+        raise InputError(f"{filename}: cannot read the {what}: {e.strerror}") from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = data[: e.start].count(b"\n") + 1
+        raise InputError(
+            f"{filename}:{line}: the {what} is not UTF-8 text (byte 0x{data[e.start]:02x})"
+        ) from None
+
+
+def compose(filename: Path, text: str) -> yaml.Node | None:
+    """The YAML node tree of `text`; syntax errors and keys given twice in one mapping
+    (PyYAML and Drake would silently keep the last) become an InputError with the line."""
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError as e:
         mark = getattr(e, "problem_mark", None)
         line = f":{mark.line + 1}" if mark else ""
         problem = getattr(e, "problem", None) or str(e)
         raise InputError(f"{filename}{line}: malformed YAML: {problem}") from None
+    _check_unique_keys(filename, root, ())
+    return root
+
+
+def _check_unique_keys(filename, node, path: tuple) -> None:
+    if isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            _check_unique_keys(filename, item, (*path, i))
+    elif isinstance(node, yaml.MappingNode):
+        first_line: dict[str, int] = {}
+        for key, value in node.value:
+            name = key.value if isinstance(key, yaml.ScalarNode) else str(key.value)
+            if name in first_line:
+                raise located_error(
+                    filename,
+                    key,
+                    field_path((*path, name)),
+                    f"given twice (first on line {first_line[name]})",
+                )
+            first_line[name] = key.start_mark.line + 1
+            _check_unique_keys(filename, value, (*path, name))
 
 
 def field_path(path: tuple) -> str:
@@ -80,8 +118,7 @@ def check_node(filename, node, schema, path: tuple = ()) -> None:
         for key, value in _expect(filename, node, yaml.MappingNode, path, "a mapping"):
             check_node(filename, value, typing.get_args(schema)[1], (*path, key.value))
     elif schema is np.ndarray:
-        for i, item in enumerate(_expect(filename, node, yaml.SequenceNode, path, "a list")):
-            _check_scalar(filename, item, float, (*path, i))
+        _check_vector(filename, node, path, size=None)
     elif schema in (float, int, bool, str):
         _check_scalar(filename, node, schema, path)
     elif (fields := schema_fields(schema)) is not None:
@@ -94,7 +131,54 @@ def _check_union(filename, node, schema, path):
         return
     if len(options) == 1:
         check_node(filename, node, options[0], path)
-    # Several options are Drake's tagged variants (e.g. !Rpy); yaml_load_typed checks them.
+    elif all(option in (float, int, bool, str) for option in options):
+        _check_any_scalar(filename, node, options, path)
+    else:
+        _check_variant(filename, node, options, path)
+
+
+_VECTOR_SIZE = re.compile(r"Vector\D*(\d+)\D*$")
+"""Drake names its fixed-size vector variants e.g. `DeterministicVector𝓣3𝓤`."""
+
+
+def _check_variant(filename, node, options, path):
+    """Drake's tagged variants (`!Rpy {deg: [...]}`): the tag names the option; no tag is
+    the first option. A vector option's siblings tell its size."""
+    tagged = {_VECTOR_SIZE.sub("Vector", t.__name__): t for t in options}
+    tag = node.tag if node.tag.startswith("!") and not node.tag.startswith("!!") else ""
+    if tag and (tag[1:] not in tagged or tag[1:].startswith("_")):
+        known = ", ".join(f"!{name}" for name in list(tagged)[1:] if not name.startswith("_"))
+        raise located_error(filename, node, field_path(path), f"unknown tag '{tag}' ({known})")
+    chosen = tagged[tag[1:]] if tag else options[0]
+    sizes = {int(m.group(1)) for t in options if (m := _VECTOR_SIZE.search(t.__name__))}
+    size = sizes.pop() if len(sizes) == 1 else None
+    if chosen is np.ndarray:
+        _check_vector(filename, node, path, size)
+        return
+    check_node(filename, node, chosen, path)
+    fields = schema_fields(chosen) or {}
+    for key, value in node.value if size is not None else ():  # e.g. !UniformVector min, max
+        if fields[key.value] is np.ndarray:
+            _check_vector(filename, value, (*path, key.value), size)
+
+
+def _check_any_scalar(filename, node, options, path):
+    for option in options:
+        try:
+            return _check_scalar(filename, node, option, path)
+        except InputError as error:
+            problem = error
+    raise problem
+
+
+def _check_vector(filename, node, path, size: int | None):
+    items = _expect(filename, node, yaml.SequenceNode, path, "a list")
+    if size is not None and len(items) != size:
+        raise located_error(
+            filename, node, field_path(path), f"needs {size} numbers, got {len(items)}"
+        )
+    for i, item in enumerate(items):
+        _check_scalar(filename, item, float, (*path, i))
 
 
 def _check_mapping(filename, node, schema, fields, path):
@@ -133,12 +217,19 @@ def _check_scalar(filename, node, schema, path):
     if not isinstance(node, yaml.ScalarNode):
         raise located_error(filename, node, name, f"expected a single {schema.__name__} value")
     value = node.value
+    if schema is str and not node.tag.endswith(":str"):
+        raise located_error(filename, node, name, f"'{value}' is not text: put it in quotes")
     try:
         if schema is bool and value.lower() not in _BOOL_WORDS:
             raise ValueError
         if schema is int:
             int(value)
-        if schema is float:
-            float(value)
+        if schema is float and value.lower().lstrip("+-") not in (".inf", ".nan"):
+            float(value)  # YAML's .inf and .nan are floats: the value checks refuse them
     except ValueError:
-        raise located_error(filename, node, name, f"'{value}' is not a {schema.__name__}") from None
+        raise located_error(filename, node, name, f"'{value}' is not {a_kind(schema)}") from None
+
+
+def a_kind(schema) -> str:
+    """`a float`, `an int`: how messages name a scalar type."""
+    return f"{'an' if schema.__name__[0] in 'aeiou' else 'a'} {schema.__name__}"

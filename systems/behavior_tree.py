@@ -23,7 +23,7 @@ from pydrake.systems.framework import LeafSystem
 from hrc_drake.bt import NodeCounters, Status, Tree
 from hrc_drake.messages import TaskEvent
 from hrc_drake.nodes.context import ACTORS, STATUS_INPUTS, AgentContext
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 
 COMMAND_WINDOW = 16
 """Commands kept per actor port: far more than one tick sends to one actor."""
@@ -79,7 +79,7 @@ class BehaviorTreeSystem(LeafSystem):
         self.counters = NodeCounters()
         self.tree.add_observer(self.counters)
         self._inputs = {
-            source: self.DeclareAbstractInputPort(status_port(source), AbstractValue.Make(None))
+            source: self.DeclareAbstractInputPort(status_port(source), message_value())
             for source in STATUS_INPUTS
         }
         self._state = self.DeclareAbstractState(AbstractValue.Make(self._initial_outputs()))

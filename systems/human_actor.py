@@ -19,9 +19,11 @@ from hrc_drake.human.body import HumanBody, human_body
 from hrc_drake.human.clip import Clip, load_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
-from hrc_drake.ports import value_or_none
+from hrc_drake.human.navigation import NavigationMap
+from hrc_drake.ports import message_value, value_or_none
 
 UPDATE_PERIOD = 1.0 / 60.0
+WALK_CLIP = "walk"
 REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
 """The frames whose world poses the status reports (hands, then head)."""
 
@@ -41,12 +43,16 @@ class HumanActor(LeafSystem):
         start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
         period: float = UPDATE_PERIOD,
         issuers: tuple[str, ...] = ("human",),
+        navigation: NavigationMap | None = None,
     ):
         LeafSystem.__init__(self)
-        self._ctx = Context(body or human_body(), clips or load_clips())
+        self._ctx = Context(body or human_body(), clips or load_clips(), navigation)
+        self.period = period
+        self.stride_time = self._ctx.clips[WALK_CLIP].duration
+        """One gait cycle of the walk clip (s)."""
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
         self._commands = {
-            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))
+            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", message_value())
             for issuer in issuers
         }
         self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -64,6 +70,10 @@ class HumanActor(LeafSystem):
     @property
     def body(self) -> HumanBody:
         return self._ctx.body
+
+    @property
+    def navigation(self) -> NavigationMap | None:
+        return self._ctx.navigation
 
     def _frames(self, positions: np.ndarray) -> tuple[tuple[float, ...], ...]:
         """The hands' and head's poses at the plant's `positions`: one forward kinematics."""

@@ -1,13 +1,12 @@
 """RobotMotion: the robot's motion planner and executor as one Drake system.
 
-It replaces MoveIt, ros_control and the original's re-planning hack: a move command is
-planned (inverse kinematics, collision-free path, TOPP-RA timing) inside a periodic update,
-then executed by advancing a path parameter whose rate is the product of the SetSpeed
-fraction and the safety monitor's scale. The desired state for the inverse-dynamics
-controller is evaluated from that parameter and the time since the last update, so it is
-smooth between updates and the system has no per-step Python events and no direct
-feedthrough. See hrc_drake/motion/messages.py for the commands and the status.
-"""
+It replaces MoveIt, ros_control and the re-planning workaround of the thesis system
+(docs/thesis-system.md): a move command is planned (inverse kinematics, collision-free path, TOPP-RA
+timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
+product of the SetSpeed fraction and the safety monitor's scale. The desired state for the
+inverse-dynamics controller is evaluated from that parameter and the time since the last update, so
+it is smooth between updates and the system has no per-step Python events and no direct feedthrough.
+See hrc_drake/motion/messages.py for the commands and the status."""
 
 import dataclasses
 import functools
@@ -23,13 +22,14 @@ from hrc_drake.messages import (
     CANCELLED,
     FAILED,
     FINISHED,
+    NO_COMMANDS,
     REJECTED,
     RUNNING,
     SUCCEEDED,
     newer_commands,
     recorded,
 )
-from hrc_drake.motion.deadline import PlanningFailed
+from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.execution import Progress, desired_motion, next_progress
 from hrc_drake.motion.messages import (
     IDLE,
@@ -48,7 +48,7 @@ from hrc_drake.motion.messages import (
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scenario import Scenario
 from hrc_drake.workpieces.messages import ROBOT, Attach
 from hrc_drake.workpieces.messages import Release as WorkpiecesRelease
@@ -128,13 +128,11 @@ class RobotMotion(LeafSystem):
         initial = MotionState(hold=tuple(q0), tool_pose=self._model.tool_pose(q0))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
 
-        self._command = self.DeclareAbstractInputPort("robot_command", AbstractValue.Make(None))
+        self._command = self.DeclareAbstractInputPort("robot_command", message_value())
         self._speed_scale = self.DeclareVectorInputPort("speed_scale", 1)
         self._robot_state = self.DeclareVectorInputPort("robot_state", 2 * self._n)
-        self._workpieces = self.DeclareAbstractInputPort(
-            "workpieces_status", AbstractValue.Make(None)
-        )
-        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
+        self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
+        self._human = self.DeclareAbstractInputPort("human_status", message_value())
         from_state_and_time = {self.time_ticket(), self.all_state_ticket()}
         self._desired_motion = self.DeclareCacheEntry(
             "desired q, v and vdot",
@@ -156,13 +154,13 @@ class RobotMotion(LeafSystem):
         )
         self.DeclareAbstractOutputPort(
             "robot_status",
-            lambda: AbstractValue.Make(None),
+            message_value,
             self._calc_status,
             {self.all_state_ticket()},
         )
         self.DeclareAbstractOutputPort(
             "gripper_command",
-            lambda: AbstractValue.Make(None),
+            message_value,
             self._calc_gripper_command,
             {self.all_state_ticket()},
         )
@@ -218,7 +216,8 @@ class RobotMotion(LeafSystem):
         )
 
     def _calc_gripper_command(self, context, output: AbstractValue) -> None:
-        output.set_value(self._state(context).gripper_command)
+        command = self._state(context).gripper_command
+        output.set_value(NO_COMMANDS if command is None else command)
 
     @staticmethod
     def _effective_scale(state: MotionState) -> float:

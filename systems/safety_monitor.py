@@ -35,7 +35,7 @@ from pydrake.geometry import GeometryId, QueryObject
 from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.motion.options import MotionOptions
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import Part, body_parts, human_parts
 from hrc_drake.safety.judge import Judge
@@ -88,10 +88,8 @@ class SafetyMonitor(LeafSystem):
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
-        self._workpieces = self.DeclareAbstractInputPort(
-            "workpieces_status", AbstractValue.Make(object())
-        )
-        self._human = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(object()))
+        self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
+        self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self._path_rate = self.DeclareVectorInputPort("robot_path_rate", 1)
         self._scale = self.DeclareDiscreteState(np.zeros(1))  # no motion before a measurement
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))

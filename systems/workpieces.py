@@ -35,7 +35,7 @@ from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
 from hrc_drake.human.messages import HumanStatus
-from hrc_drake.ports import value_or_none
+from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
@@ -92,7 +92,7 @@ class Workpieces(LeafSystem):
         initial = self.cell.initial_world()
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
-            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", AbstractValue.Make(None))
+            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", message_value())
             for issuer in self.cell.issuers
         }
         self._tool = self.DeclareAbstractInputPort(
@@ -207,7 +207,8 @@ def hand_poses(status: HumanStatus | None) -> HandPoses | None:
     (x, y, z, qw, qx, qy, qz)); None before the person's first update."""
     if status is None or not status.left_hand or not status.right_hand:
         return None
-    return HandPoses(_pose(status.left_hand), _pose(status.right_hand), status.time)
+    left, right = _pose(status.left_hand), _pose(status.right_hand)
+    return HandPoses(left, right, status.time, status.base_pose[2])
 
 
 def _pose(values: tuple[float, ...]) -> RigidTransform:
@@ -216,15 +217,16 @@ def _pose(values: tuple[float, ...]) -> RigidTransform:
 
 
 class HumanHands(LeafSystem):
-    """The person's hand grasp frames (HandPoses) from HumanActor's `human_status`."""
+    """The person's hand grasp frames (HandPoses) from HumanActor's `human_status`; an empty
+    tuple before the person's first update (ports cannot carry None)."""
 
     def __init__(self):
         super().__init__()
-        status = self.DeclareAbstractInputPort("human_status", AbstractValue.Make(None))
+        status = self.DeclareAbstractInputPort("human_status", message_value())
         self.DeclareAbstractOutputPort(
             "human_hands",
-            lambda: AbstractValue.Make(None),
-            lambda context, output: output.set_value(hand_poses(status.Eval(context))),
+            message_value,
+            lambda context, output: output.set_value(hand_poses(status.Eval(context)) or ()),
         )
 
 

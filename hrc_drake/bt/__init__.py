@@ -1,6 +1,6 @@
 """Behavior tree engine for BehaviorTree.CPP v4 XML, in pure Python (imports no Drake).
 
-Semantics follow BehaviorTree.CPP 4.x (see /work/shared/facts/btcpp-v4.md), except
+Semantics follow BehaviorTree.CPP 4.x (see docs/bt-semantics.md), except
 that time comes only from ``Tree.tick(now)`` (Delay, Timeout, Sleep run on simulation
 time) and randomness only from the tree's numpy Generator; one ``tick`` is BT.CPP's
 ``tickExactlyOnce``.

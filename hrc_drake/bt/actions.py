@@ -8,7 +8,7 @@ from collections.abc import Callable
 
 from .decorators import ENTRY_PORT, EntryWatch
 from .node import ConditionNode, EntryRef, NodeConfig, StatefulActionNode, SyncActionNode
-from .ports import BidirectionalPort, InputPort, PortInfo
+from .ports import BidirectionalPort, InputPort, PortInfo, literal_value
 from .script import ScriptCode, compile_script
 from .status import FAILURE, RUNNING, SUCCESS, Status
 from .timing import has_elapsed
@@ -59,10 +59,23 @@ class SetBlackboard(SyncActionNode):
         key = key_binding.key if isinstance(key_binding, EntryRef) else key_binding.value
         destination = self.blackboard.entry(key, create=True)
         source = self._inputs["value"]
-        if isinstance(source, EntryRef) and destination.type is None:
-            destination.type = source.entry.type
-        destination.assign(self.get_input("value"))
+        value = self.get_input("value")
+        if isinstance(source, EntryRef):
+            if destination.type is None:
+                destination.type = source.entry.type
+        elif destination.type is None and isinstance(destination.value, int | float):
+            value = self._as_number(value, key)
+        destination.assign(value)
         return SUCCESS
+
+    def _as_number(self, text: str, key: str) -> int | float:
+        """A literal written into an untyped entry that holds a number or a truth value
+        (both numbers in BT.CPP's scripts) stays a number, as BT.CPP converts it for a
+        typed entry (BT.CPP itself empties such an entry: see docs/bt-conformance.md)."""
+        number = literal_value(text)
+        if isinstance(number, str):
+            raise self.error(f"cannot write '{text}' into '{key}', which holds a number", "value")
+        return number
 
 
 class UnsetBlackboard(SyncActionNode):

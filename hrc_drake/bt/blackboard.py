@@ -98,6 +98,12 @@ class Blackboard:
     def set(self, key: str, value: Any) -> None:
         self.entry(key, create=True).assign(value)
 
+    def set_local(self, key: str, value: Any) -> None:
+        """Set an entry of this blackboard itself, even where ``key`` would otherwise
+        reach the parent by autoremapping (a SubTree's literal port)."""
+        found = self._entries.setdefault(key, Entry())
+        found.assign(value)
+
     def unset(self, key: str) -> None:
         found = self.entry(key)
         if found is not None:
@@ -113,6 +119,19 @@ class Blackboard:
 
     def as_dict(self) -> dict[str, Any]:
         return {key: self._entries[key].value for key in self.keys()}
+
+    def snapshot(self) -> dict[str, Any]:
+        """Every entry stored here, unset ones as None, lists copied: a copy that another
+        thread may read while the tree runs on (values are replaced, never mutated, except
+        lists such as a Loop's queue)."""
+        return {
+            key: None
+            if found.value is UNSET
+            else list(found.value)
+            if isinstance(found.value, list)
+            else found.value
+            for key, found in self._entries.items()
+        }
 
     def remember_initial_state(self) -> None:
         self._initial = {key: (e.value, e.type) for key, e in self._entries.items()}

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .errors import BTError
 from .node import ControlNode, NodeConfig, halt_and_reset
 from .ports import InputPort, value_to_text
 from .script import EPSILON
@@ -216,6 +217,14 @@ class ParallelAll(ControlNode):
         super().halt()
 
 
+def _skipped_condition(node: ControlNode) -> BTError:
+    """BT.CPP has no branch for a skipped condition and throws; so do we, naming it."""
+    condition = node.children[0]
+    return node.error(
+        f"its condition '{condition.path}' returned SKIPPED: a condition must succeed or fail"
+    )
+
+
 class IfThenElse(ControlNode):
     """Tick the condition (first child) once, then the second child if it succeeded or
     the third (if any) if it failed, until that branch completes."""
@@ -230,15 +239,16 @@ class IfThenElse(ControlNode):
         self.set_status(RUNNING)
         if self.branch == 0:
             condition = self.children[0].execute_tick()
-            if condition is RUNNING or condition is SKIPPED:
-                return condition
+            if condition is RUNNING:
+                return RUNNING
             if condition is SUCCESS:
                 self.branch = 1
+            elif condition is SKIPPED:
+                raise _skipped_condition(self)
             elif len(self.children) == 3:
                 self.branch = 2
             else:
-                self.reset_children()  # BT.CPP leaves the condition in FAILURE here
-                return FAILURE
+                return FAILURE  # as BT.CPP: the condition keeps its FAILURE status
         status = self.children[self.branch].execute_tick()
         if status is RUNNING:
             return RUNNING
@@ -261,8 +271,10 @@ class WhileDoElse(ControlNode):
         self.set_status(RUNNING)
         children = self.children
         condition = children[0].execute_tick()
-        if condition is RUNNING or condition is SKIPPED:
-            return condition
+        if condition is RUNNING:
+            return RUNNING
+        if condition is SKIPPED:
+            raise _skipped_condition(self)
         if condition is SUCCESS:
             if len(children) == 3:
                 self.halt_child(2)

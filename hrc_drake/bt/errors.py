@@ -40,7 +40,7 @@ class BTError(Exception):
             for label, value in (("tree", self.tree), ("node", self.node), ("port", self.port))
             if value is not None
         )
-        location = f"{self.file or '<unknown>'}:{self.line or 0}"
+        location = (self.file or "<unknown>") + (f":{self.line}" if self.line else "")
         text = f"{location}: {where + ': ' if where else ''}{self.problem}"
         if self.suggestion:
             text += f" (did you mean '{self.suggestion}'?)"

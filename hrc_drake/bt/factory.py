@@ -13,7 +13,7 @@ from .blackboard import Blackboard
 from .decorators import SubTreeNode
 from .errors import BTError, closest
 from .node import POSTCONDITIONS, PRECONDITIONS, EntryRef, Literal, NodeConfig, TreeNode
-from .ports import PortDirection, PortInfo, convert_from_string
+from .ports import PortDirection, PortInfo, convert_from_string, literal_value
 from .registry import NodeModel, NodeRegistry, default_registry
 from .script import ScriptCode, compile_script
 from .tree import SubtreeInstance, Tree
@@ -130,7 +130,7 @@ class _Builder:
         least, most = model.children_range
         count = len(element.children)
         if least <= count and (most is None or count <= most):
-            return True
+            return self._check_async_children(model, element, scope, path)
         expected = (
             f"exactly {least}"
             if least == most
@@ -141,6 +141,24 @@ class _Builder:
         self.report(
             BTError(
                 f"'{model.id}' needs {expected} children, has {count}",
+                node=path,
+                **scope.where(element),
+            )
+        )
+        return False
+
+    def _check_async_children(
+        self, model: NodeModel, element: XmlElement, scope: _Scope, path: str
+    ) -> bool:
+        """BT.CPP's loader refuses a ReactiveSequence with two AsyncSequence children (it
+        counts children by tag, so only these): a tree it cannot load must not run here."""
+        tags = [child.tag for child in element.children]
+        if model.id != "ReactiveSequence" or tags.count("AsyncSequence") < 2:
+            return True
+        self.report(
+            BTError(
+                "a ReactiveSequence cannot have more than one AsyncSequence child "
+                "(BehaviorTree.CPP refuses to load it)",
                 node=path,
                 **scope.where(element),
             )
@@ -310,7 +328,7 @@ class _Builder:
         remap, literals, autoremap = self._subtree_ports(attributes, element, scope, path)
         blackboard = Blackboard(scope.blackboard, remap, autoremap)
         for key, text in literals.items():
-            blackboard.set(key, text)
+            blackboard.set_local(key, literal_value(text))
         config = NodeConfig(
             "SubTree",
             attributes.get("name") or subtree_id,
@@ -364,6 +382,8 @@ class TreeFactory:
         self.definitions: dict[str, TreeDefinition] = {}
         self.main_tree_id: str | None = None
         self.declared_models: dict[str, str] = {}
+        self.main_source: tuple[str, int] | None = None
+        """File and line of the first <root>: where a wrong main tree is reported."""
         self._loaded_files: set[str] = set()
 
     def load_file(self, path: str | os.PathLike) -> None:
@@ -371,7 +391,13 @@ class TreeFactory:
         if resolved in self._loaded_files:
             return
         self._loaded_files.add(resolved)
-        self.load_string(Path(resolved).read_text(), file=str(path), base_dir=Path(resolved).parent)
+        try:
+            text = Path(resolved).read_bytes().decode("utf-8")
+        except OSError as error:
+            raise BTError(f"cannot read the tree file: {error.strerror}", file=str(path)) from None
+        except UnicodeDecodeError:
+            raise BTError("the tree file is not UTF-8 text", file=str(path)) from None
+        self.load_string(text, file=str(path), base_dir=Path(resolved).parent)
 
     def load_string(
         self, xml: str, file: str = "<string>", base_dir: str | os.PathLike | None = None
@@ -381,7 +407,8 @@ class TreeFactory:
             raise BTError(
                 f"the top element must be <root>, not <{root.tag}>", file=file, line=root.line
             )
-        if self.main_tree_id is None:
+        if self.main_source is None:
+            self.main_source = (file, root.line)
             self.main_tree_id = root.attributes.get("main_tree_to_execute")
         base = Path(base_dir) if base_dir is not None else Path.cwd()
         for element in root.children:
@@ -420,16 +447,21 @@ class TreeFactory:
 
     def _main_id(self, tree_id: str | None) -> str:
         chosen = tree_id or self.main_tree_id
+        file, line = self.main_source or (None, None)
         if chosen is None:
             if len(self.definitions) == 1:
                 return next(iter(self.definitions))
             raise BTError(
-                "several BehaviorTrees and no main_tree_to_execute: "
-                f"choose one of {', '.join(self.definitions) or 'none'}"
+                f"{'several BehaviorTrees' if self.definitions else 'no BehaviorTree'} and "
+                f"no main_tree_to_execute: choose one of {', '.join(self.definitions) or 'none'}",
+                file=file,
+                line=line,
             )
         if chosen not in self.definitions:
             raise BTError(
-                f"no BehaviorTree with ID '{chosen}'",
+                f"no BehaviorTree with ID '{chosen}' (trees: {', '.join(self.definitions)})",
+                file=file,
+                line=line,
                 tree=chosen,
                 suggestion=closest(chosen, list(self.definitions)),
             )
@@ -460,9 +492,9 @@ class TreeFactory:
         try:
             main_id = self._main_id(tree_id)
         except BTError as error:
-            if tree_id is not None or not self.definitions:
+            if tree_id is not None or self.main_tree_id is not None or not self.definitions:
                 return [error]
-            main_id = next(iter(self.definitions))
+            main_id = next(iter(self.definitions))  # a library of trees: check them all
         errors: list[BTError] = []
         reached: set[str] = set()
         for root_id in [main_id, *self.definitions]:
@@ -474,7 +506,20 @@ class TreeFactory:
             reached.update(instance.tree_id for instance in tree.subtrees if instance)
             reached.add(root_id)
             errors.extend(builder.errors)
-        return errors
+        return _once_per_place(errors)
+
+
+def _once_per_place(errors: list[BTError]) -> list[BTError]:
+    """One error per place in the XML: a mistake in a SubTree used several times is
+    reported once (for its first instance), not once per instance."""
+    seen = set()
+    kept = []
+    for error in errors:
+        place = (error.file, error.line, error.port, error.problem)
+        if place not in seen:
+            seen.add(place)
+            kept.append(error)
+    return kept
 
 
 def _factory_for(source: str | os.PathLike, registry: NodeRegistry | None) -> TreeFactory:

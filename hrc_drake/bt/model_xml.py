@@ -44,10 +44,22 @@ def tree_nodes_model_xml(registry: NodeRegistry, include_builtin: bool = False) 
     return _to_text(root)
 
 
+_OWN = ("_uid", "_fullpath")
+_SUBTREE_OWN = (*_OWN, "name", "_autoremap")
+"""Attributes BT.CPP's WriteTreeToXML writes itself or leaves out (a SubTree's name is its
+``_fullpath``)."""
+
+
+_OWN = ("_uid", "_fullpath")
+_SUBTREE_OWN = (*_OWN, "name", "_autoremap")
+"""Attributes BT.CPP's WriteTreeToXML writes itself or leaves out (a SubTree's name is its
+``_fullpath``)."""
+
+
 def _add_node(parent: ElementTree.Element, node: TreeNode) -> None:
     element = ElementTree.SubElement(parent, node.registration_id)
     for attribute, value in node.config.attributes.items():
-        if attribute not in ("_uid", "_fullpath"):
+        if attribute not in (_SUBTREE_OWN if node.kind == "SubTree" else _OWN):
             element.set(attribute, value)
     if node.kind == "SubTree":
         element.set("_fullpath", node.path)

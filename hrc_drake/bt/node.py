@@ -8,6 +8,7 @@ Authors subclass :class:`SyncActionNode`, :class:`ConditionNode`,
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -22,6 +23,9 @@ if TYPE_CHECKING:
 
 PRECONDITIONS = ("_failureIf", "_successIf", "_skipIf", "_while")
 POSTCONDITIONS = ("_onSuccess", "_onFailure", "_onHalted", "_post")
+
+PreTickHook = Callable[["TreeNode"], Status]
+PostTickHook = Callable[["TreeNode", Status], Status]
 
 
 class Literal:
@@ -77,6 +81,8 @@ class TreeNode(ABC):
     ports: ClassVar[tuple[PortInfo, ...]] = ()
     children_range: ClassVar[tuple[int, int | None]] = (0, 0)
     synchronous: ClassVar[bool] = False
+    _pre_tick: PreTickHook | None = None
+    _post_tick: PostTickHook | None = None
 
     def __init__(self, config: NodeConfig):
         self.config = config
@@ -87,11 +93,12 @@ class TreeNode(ABC):
         self.blackboard = config.blackboard
         self.status = IDLE
         self.tick_counts: list[int] | None = None  # results by status, once NodeCounters attach
+        self.failure_reason = ""
+        """Why the node last returned FAILURE, when it knows (e.g. the actor's answer)."""
         self._observers = config.tree.observers  # the tree's list, shared
         self._inputs = config.inputs
         self._outputs = config.outputs
-        self._preconditions = config.preconditions or None
-        self._postconditions = config.postconditions or None
+        self._refresh_guards()
         self._script_env: ScriptEnv | None = None
 
     @classmethod
@@ -186,8 +193,8 @@ class TreeNode(ABC):
             else:
                 forced = self._check_preconditions()
                 status = self.tick() if forced is None else forced
-            if self._postconditions is not None and (status is SUCCESS or status is FAILURE):
-                self._run_postconditions(status)
+            if self._postconditions is not None:
+                status = self._after_tick(status)
         except BTError as error:
             if error.node is not None:
                 raise
@@ -218,16 +225,51 @@ class TreeNode(ABC):
             elif self.status is RUNNING and kind == "_while" and not script.is_true(env):
                 self.halt_node()
                 return SKIPPED
+        if self._pre_tick is not None and not self.status.is_completed:
+            override = self._pre_tick(self)
+            if override is SUCCESS or override is FAILURE:
+                return override
         return None
 
-    def _run_postconditions(self, status: Status) -> None:
-        scripts = self._postconditions
-        specific = scripts.get("_onSuccess" if status is SUCCESS else "_onFailure")
-        if specific is not None:
-            specific(self.script_env)
-        always = scripts.get("_post")
-        if always is not None:
-            always(self.script_env)
+    def _after_tick(self, status: Status) -> Status:
+        """Post-condition scripts of a completed tick, then the post-tick hook, which may
+        replace the result (as BehaviorTree.CPP's executeTick)."""
+        if status is SUCCESS or status is FAILURE:
+            scripts = self._postconditions
+            specific = scripts.get("_onSuccess" if status is SUCCESS else "_onFailure")
+            if specific is not None:
+                specific(self.script_env)
+            always = scripts.get("_post")
+            if always is not None:
+                always(self.script_env)
+        if self._post_tick is not None:
+            override = self._post_tick(self, status)
+            if override is SUCCESS or override is FAILURE:
+                return override
+        return status
+
+    # hooks --------------------------------------------------------------------------
+    def set_pre_tick(self, hook: PreTickHook | None) -> None:
+        """Call ``hook(node)`` before each tick of a node that has not completed; a
+        SUCCESS or FAILURE it returns replaces the tick (BT.CPP's setPreTickFunction)."""
+        self._pre_tick = hook
+        self._refresh_guards()
+
+    def set_post_tick(self, hook: PostTickHook | None) -> None:
+        """Call ``hook(node, status)`` after each tick; a SUCCESS or FAILURE it returns
+        replaces the result (BT.CPP's setPostTickFunction)."""
+        self._post_tick = hook
+        self._refresh_guards()
+
+    def _refresh_guards(self) -> None:
+        """Take the slow path of execute_tick only for nodes with scripts or hooks."""
+        config = self.config
+        self._preconditions = (
+            config.preconditions if config.preconditions or self._pre_tick else None
+        )
+        self._postconditions = (
+            config.postconditions if config.postconditions or self._post_tick else None
+        )
 
     def set_status(self, new_status: Status) -> None:
         previous = self.status

@@ -75,6 +75,8 @@ class NodeCount:
     skipped: int = 0
     time_running: float = 0.0
     last_status: Status = IDLE
+    first_failure: str = ""
+    """The reason the node gave the first time it failed with one."""
 
 
 class NodeCounters:
@@ -85,6 +87,7 @@ class NodeCounters:
         self._running_since: dict[int, float] = {}
         self._time_running: dict[int, float] = {}
         self._last_status: dict[int, Status] = {}
+        self._first_failure: dict[int, str] = {}
 
     def attach(self, tree: Tree) -> None:
         self.tree = tree
@@ -95,6 +98,7 @@ class NodeCounters:
         self._running_since.clear()
         self._time_running.clear()
         self._last_status.clear()
+        self._first_failure.clear()
         for node in self.tree.node_list:
             node.tick_counts = [0] * len(Status)
 
@@ -106,6 +110,8 @@ class NodeCounters:
             self._time_running[node.uid] = self._time_running.get(node.uid, 0.0) + time - started
         if new is not IDLE:
             self._last_status[node.uid] = new
+        if new is Status.FAILURE and node.failure_reason:
+            self._first_failure.setdefault(node.uid, node.failure_reason)
 
     def count(self, node: TreeNode) -> NodeCount:
         counts = node.tick_counts or [0] * len(Status)
@@ -119,6 +125,7 @@ class NodeCounters:
             skipped=counts[Status.SKIPPED],
             time_running=running,
             last_status=self._last_status.get(node.uid, IDLE),
+            first_failure=self._first_failure.get(node.uid, ""),
         )
 
     def counts(self) -> dict[int, NodeCount]:

@@ -7,6 +7,7 @@ conversions are global, as in BehaviorTree.CPP where they are template specialis
 from __future__ import annotations
 
 import enum
+import re
 import typing
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -150,6 +151,20 @@ def coerce(value: Any, py_type: Any) -> Any:
     if cls is str and isinstance(value, int | float | enum.Enum):
         return value_to_text(value)
     raise ValueError(f"a {type(value).__name__} value {value!r} is not a {type_name(py_type)}")
+
+
+_INTEGER = re.compile(r"-?\d+")
+_REAL = re.compile(r"-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def literal_value(text: str) -> int | float | str:
+    """A number if the whole text is one, else the text: how BehaviorTree.CPP (4.9.1 on)
+    stores a SubTree's literal port, so that scripts can compute with it."""
+    if _INTEGER.fullmatch(text):
+        return int(text)
+    if _REAL.fullmatch(text):
+        return float(text)
+    return text
 
 
 def value_to_text(value: Any) -> str:

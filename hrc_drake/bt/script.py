@@ -154,19 +154,19 @@ _COMPARISONS: dict[str, Callable[[Any, Any], bool]] = {
     ">=": operator.ge,
 }
 
-# Binary operators from the loosest to the tightest binding.
+# Binary operators from the loosest to the tightest binding, each level left-associative,
+# as BehaviorTree.CPP 4.9's Pratt parser (4.8's grammar got `a - b + c` and the logical
+# operators wrong; see docs/bt-conformance.md). Comparisons bind looser than bitwise ones.
 _PRECEDENCE = [
     ("||",),
     ("&&",),
-    ("|",),
-    ("^",),
-    ("&",),
     ("==", "!=", "<", ">", "<=", ">="),
-    ("..",),
-    ("+", "-"),
+    ("|", "^"),
+    ("&",),
+    ("+", "-", ".."),
     ("*", "/"),
 ]
-_COMPARISON_LEVEL = 5
+_COMPARISON_LEVEL = 2
 
 
 def _compare(left: Any, right: Any, symbol: str, env: ScriptEnv) -> bool:

@@ -20,6 +20,15 @@ class TransitionObserver(Protocol):
     def on_transition(self, time: float, node: TreeNode, previous: Status, new: Status) -> None: ...
 
 
+class TickMonitor(Protocol):
+    """Called at the boundaries of every tick (e.g. a Groot2 server taking snapshots):
+    the only moments at which the tree is consistent and may be changed from outside."""
+
+    def before_tick(self, tree: Tree) -> None: ...
+
+    def after_tick(self, tree: Tree) -> None: ...
+
+
 @dataclass(frozen=True)
 class SubtreeInstance:
     """One instance of a <BehaviorTree> in the tree (the main tree has path "")."""
@@ -44,6 +53,7 @@ class Tree:
         self.context = context
         self.now = 0.0
         self.observers: list[TransitionObserver] = []
+        self.monitors: list[TickMonitor] = []
         self.subtrees: list[SubtreeInstance] = []
         self.node_list: list[TreeNode] = []
 
@@ -63,9 +73,13 @@ class Tree:
         """Tick the root once at simulation time ``now`` (seconds); a completed root is
         reset to IDLE afterwards, so the next tick starts a new run."""
         self.now = now
+        for monitor in self.monitors:
+            monitor.before_tick(self)
         status = self.root.execute_tick()
         if status is SUCCESS or status is FAILURE:
             self.root.reset_status()
+        for monitor in self.monitors:
+            monitor.after_tick(self)
         return status
 
     def halt(self) -> None:
@@ -92,6 +106,19 @@ class Tree:
         for node in self.node_list:
             yield node.uid, node.path, node
 
+    def instance_nodes(self) -> Iterator[tuple[SubtreeInstance, list[TreeNode]]]:
+        """Each SubTree instance with its own nodes in pre-order (a SubTree node belongs
+        to the instance that contains it): BehaviorTree.CPP's ``tree.subtrees[i]->nodes``."""
+        for instance in self.subtrees:
+            nodes: list[TreeNode] = []
+            pending = [instance.root]
+            while pending:
+                node = pending.pop()
+                nodes.append(node)
+                if node.kind != "SubTree":
+                    pending.extend(reversed(node.children_nodes()))
+            yield instance, nodes
+
     def node(self, path_or_name: str) -> TreeNode:
         """The node with this path, or else the first with this name."""
         for node in self.node_list:
@@ -110,6 +137,12 @@ class Tree:
 
     def remove_observer(self, observer: TransitionObserver) -> None:
         self.observers.remove(observer)
+
+    def add_monitor(self, monitor: TickMonitor) -> None:
+        self.monitors.append(monitor)
+
+    def remove_monitor(self, monitor: TickMonitor) -> None:
+        self.monitors.remove(monitor)
 
     def notify(self, node: TreeNode, previous: Status, new: Status) -> None:
         for observer in self.observers:

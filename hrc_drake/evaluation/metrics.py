@@ -144,6 +144,21 @@ def bt_metrics(node_statistics: dict | None) -> dict:
     return _rounded_tree(node_statistics or {})
 
 
+def node_failures(bt: dict) -> list[str]:
+    """One line per tree node that failed with a reason (an actor refused or failed its
+    command): which node, how often, the first reason; most frequent first."""
+    failed = [
+        (counts["failures"], agent, path, counts["first_failure"])
+        for agent, nodes in bt.items()
+        for path, counts in nodes.items()
+        if counts.get("first_failure")
+    ]
+    return [
+        f"{agent} {path}: failed {n} time{'s' if n != 1 else ''}, first: {reason}"
+        for n, agent, path, reason in sorted(failed, key=lambda f: (-f[0], f[1], f[2]))
+    ]
+
+
 def _rounded_tree(value):
     if isinstance(value, dict):
         return {str(k): _rounded_tree(v) for k, v in sorted(value.items())}

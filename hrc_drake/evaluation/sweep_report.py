@@ -13,7 +13,7 @@ import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
 from hrc_drake.sweep.overrides import label
-from hrc_drake.sweep.rows import OK, RunSpec, flatten
+from hrc_drake.sweep.rows import OK, flatten
 
 PERCENTILES = (0, 5, 25, 50, 75, 95, 100)
 WORST_CRITERIA = (
@@ -91,9 +91,8 @@ def replay_command(scenario_path: str, row: dict) -> str:
 
 
 def write_sweep_report(
-    out_dir: Path, rows: list[dict], specs: list[RunSpec], scenario_name: str
+    out_dir: Path, rows: list[dict], scenario_path: str, scenario_name: str
 ) -> dict[str, Path]:
-    scenario_path = specs[0].scenario_path if specs else ""
     summary = summarize(rows, scenario_name, scenario_path)
     files = {"summary": out_dir / "summary.json", "report_html": out_dir / "report.html"}
     files["summary"].write_text(json.dumps(summary, indent=2, sort_keys=True) + "\n")

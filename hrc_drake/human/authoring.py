@@ -240,7 +240,7 @@ GAIT_KEYS = {
         (94, 1),
     ),
 }
-"""Sagittal angles (degrees) at % of the gait cycle from heel strike (facts/human.md)."""
+"""Sagittal angles (degrees) at % of the gait cycle from heel strike (docs/human-body.md)."""
 
 
 def periodic_curve(keys, phase: np.ndarray) -> np.ndarray:
@@ -451,14 +451,15 @@ REACH = {
 """Right hand to a point in front at table height."""
 
 HAND_OVER = {
-    "right_shoulder_flexion": 58,
-    "right_shoulder_rotation": 12,
-    "right_elbow_flexion": 32,
-    "right_wrist_flexion": -10,
+    "shoulder_flexion": 58,
+    "shoulder_abduction": 12,
+    "shoulder_rotation": 12,
+    "elbow_flexion": 32,
+    "wrist_flexion": -10,
     "thorax_flexion": 4,
     "neck_flexion": 12,
 }
-"""Right hand offered in front of the chest."""
+"""Both hands offered in front of the chest (to take or give a box between the palms)."""
 
 WAVE = {
     "right_shoulder_abduction": 115,
@@ -492,6 +493,31 @@ def _turn_keys(step: float, degrees: float, lift: float) -> tuple[Key, ...]:
     )
 
 
+TURN_STEP_TIME = 0.45
+TURN_LIFT = 0.05
+
+
+def _turn_spec(name: str, degrees: float) -> KeyedSpec:
+    return KeyedSpec(
+        name,
+        f"Two steps turning {degrees:g} degrees left on the spot (loops; one cycle turns "
+        f"{degrees:g} degrees).",
+        _turn_keys(TURN_STEP_TIME, degrees, TURN_LIFT),
+        events={"left_step": 0.0, "right_step": TURN_STEP_TIME},
+        loop=True,
+    )
+
+
+def turn_clip(body: HumanBody, degrees: float) -> Clip:
+    """Two steps turning on the spot by `degrees` (negative: to the right, right foot
+    first), the feet planted by IK like every keyed clip: a turn of any angle that does not
+    skate."""
+    clip = keyed_clip(body, _turn_spec(f"turn_{abs(degrees):g}", abs(degrees)))
+    if degrees >= 0:
+        return clip
+    return mirrored_clip(body, clip, f"turn_{degrees:g}", clip.description.replace("left", "right"))
+
+
 KEYED_CLIPS = (
     KeyedSpec(
         "idle",
@@ -506,13 +532,7 @@ KEYED_CLIPS = (
             Layer("lumbar_bending", -1.0, 1),
         ),
     ),
-    KeyedSpec(
-        "turn_left",
-        "Two steps turning 60 degrees left on the spot (loops; one cycle turns 60 degrees).",
-        _turn_keys(0.45, 60.0, 0.05),
-        events={"left_step": 0.0, "right_step": 0.45},
-        loop=True,
-    ),
+    _turn_spec("turn_left", 60.0),
     KeyedSpec(
         "pick_floor",
         "Squat and stoop to take an object off the floor with both hands; rise holding it.",
@@ -558,7 +578,7 @@ KEYED_CLIPS = (
     ),
     KeyedSpec(
         "hand_over",
-        "Extend the right hand with an object, hold it out to be taken, retract.",
+        "Extend both hands to take or give an object, hold them out, retract.",
         (Key(0.0), Key(0.9, HAND_OVER), Key(2.1, HAND_OVER), Key(3.0), Key(3.3)),
         events={"extended": 0.9, "release": 2.1},
     ),

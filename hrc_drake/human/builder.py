@@ -9,6 +9,7 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.human.clip import LENGTH_JOINTS, Clip, load_clips
+from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.sdf import REGION_SEPARATOR
 from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.systems.human_actor import HumanActor
@@ -47,6 +48,7 @@ def add_human(
     start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
     dynamic_plant: MultibodyPlant | None = None,
     issuers: tuple[str, ...] = ("human",),
+    navigation: NavigationMap | None = None,
 ) -> tuple[HumanActor, MultibodyPlant]:
     """Add a person: returns the HumanActor and the person's kinematic plant.
 
@@ -54,7 +56,8 @@ def add_human(
     diagram: it is never stepped. Its geometry is collision-filtered against itself and
     against every collision geometry `dynamic_plant` has at this point (add the person after
     the dynamic plant's models). Connect each issuer's commands to the actor's
-    `<issuer>_command` input (default: `human_command`).
+    `<issuer>_command` input (default: `human_command`). With a `navigation` map the person
+    walks round the cell's geometry.
     """
     plant = MultibodyPlant(0.0)
     plant.set_name(f"{name}_plant")  # names its geometry source in SceneGraph
@@ -63,7 +66,13 @@ def add_human(
     plant.Finalize()
     body = human_body(height, mass)
     actor = builder.AddSystem(
-        HumanActor(body, scaled_clips(load_clips(), height), start_pose, issuers=issuers)
+        HumanActor(
+            body,
+            scaled_clips(load_clips(), height),
+            start_pose,
+            issuers=issuers,
+            navigation=navigation,
+        )
     )
     actor.set_name(f"{name}_actor")
     to_pose = builder.AddSystem(MultibodyPositionToGeometryPose(plant))

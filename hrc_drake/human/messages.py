@@ -16,6 +16,33 @@ NULL_QUATERNION = (0.0, 0.0, 0.0, 0.0)
 STATES = ("SETUP", "IDLE", "MOVEMENT", "ANIMATION")
 
 
+ONE_HAND = "right"
+BOTH_HANDS = "both"
+
+
+@dataclass(frozen=True)
+class Hold:
+    """What the hands hold: one hand (the right) or both, and the object's extents (m) along
+    the person's forward, sideways and up directions while held. Both hands hold an object
+    between their palms (its centre halfway between them); one hand holds it from above (its
+    top face at the palm)."""
+
+    hands: str
+    size: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Grasp:
+    """An object to take: which hands, its centre and heading (rad) in the world, and its
+    box extents along its own x, y and z. The person puts their palms on the two faces
+    that face their sides (both hands) or on its top face (one hand)."""
+
+    hands: str
+    center: tuple[float, float, float]
+    yaw: float
+    size: tuple[float, float, float]
+
+
 @dataclass(frozen=True)
 class MoveCommand:
     """Walk to `target_position` (x, y[, z ignored]) and turn to `target_quaternion` (w, x, y, z).
@@ -30,16 +57,24 @@ class MoveCommand:
     animation_name: str = "walk"
     animation_distance: float | None = None
     waypoints: tuple[tuple[float, float], ...] = ()
+    hold: Hold | None = None
+    """What the hands hold meanwhile (they keep it in the carry posture)."""
 
 
 @dataclass(frozen=True)
 class AnimateCommand:
-    """Play a clip in place; `target` (world x, y, z) aims pick/place/reach/hand_over."""
+    """Play a clip in place; `target` (world x, y, z) aims pick/place/reach/hand_over.
+
+    `hold` is what the hands hold when the clip starts: a place or a giving hand-over puts
+    its centre at `target`; other clips keep it in the carry posture. `grasp` is what a pick
+    or a taking hand-over takes (the hands close on its faces; `target` is then ignored)."""
 
     seq: int
     animation_name: str
     animation_speed: float = 1.0
     target: tuple[float, float, float] | None = None
+    hold: Hold | None = None
+    grasp: Grasp | None = None
 
 
 @dataclass(frozen=True)
@@ -90,7 +125,10 @@ class HumanStatus:
         """Immutable: Drake's state copies can share it."""
         return self
 
+    def result_of(self, seq: int) -> CommandResult | None:
+        """The result of command `seq`, if it is still in the recent results."""
+        return result_of(self.results, seq)
+
     def outcome_of(self, seq: int) -> str | None:
-        """The outcome of command `seq`, if it is still in the recent results."""
-        result = result_of(self.results, seq)
+        result = self.result_of(seq)
         return result.outcome if result is not None else None

@@ -8,24 +8,35 @@ SETUP -> IDLE <-> MOVEMENT / ANIMATION (docs: hrc_drake.human.messages).
 
 from bisect import bisect_right
 from dataclasses import dataclass, replace
-from functools import cached_property
+from functools import cached_property, lru_cache
 from itertools import pairwise
-from math import atan2, copysign, cos, hypot, inf, pi, radians, sin
+from math import atan2, ceil, copysign, cos, degrees, hypot, inf, pi, radians, sin
 from typing import NamedTuple
 
 import numpy as np
 
-from hrc_drake.human.authoring import minimum_jerk
+from hrc_drake.human.authoring import minimum_jerk, turn_clip
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.grasp import (
+    CarryArms,
+    carry_arms,
+    hold_of,
+    palm_targets,
+    reach_target,
+    release_targets,
+)
 from hrc_drake.human.messages import (
     NULL_QUATERNION,
     AnimateCommand,
     CancelCommand,
+    Hold,
     HumanStatus,
     MoveCommand,
     SetCalledCommand,
 )
+from hrc_drake.human.navigation import NavigationMap
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import TARGETED, TargetedOffset, Unreachable, aim_clip
 from hrc_drake.messages import CommandResult, newer_commands, recorded
 
@@ -37,21 +48,33 @@ MINIMUM_JERK_PEAK = 1.875
 """Peak speed of a minimum-jerk fade relative to its average."""
 SEGMENT_BLEND = 0.3
 """Cross-fade between the turn and walk parts of one movement (s)."""
-TURN_PER_CYCLE = radians(60.0)
+MAX_TURN_PER_CYCLE = radians(90.0)
+"""A turn on the spot takes two steps of at most half this each per cycle."""
+TURN_ROUNDING = 3.0
+"""Degrees: turn clips are authored (once per angle) for multiples of this."""
 SPEED_RAMP = 0.6
 """Seconds to reach walking speed, and to stop."""
 MIN_TURN = radians(3.0)
+WALK_START_PHASE = 0.31
+"""Walks start this far into the gait cycle: the left foot planted where it stands, the
+right one swinging past it, so that setting off moves no foot along the floor."""
+MIN_LEG = 0.3
+"""m: shorter legs between waypoints are dropped."""
 CORNER_RADIUS = 0.4
 """Around a waypoint the heading turns smoothly over this distance (m)."""
 IDLE_CLIP = "idle"
+RELEASING = ("place_floor", "place_table", "hand_over")
+"""Clips that, aimed while holding something, put it down (or hand it over)."""
 
 
 @dataclass(frozen=True)
 class Context:
-    """What every pose computation needs: the body's joint layout and the clips."""
+    """What every pose computation needs: the body's joint layout and the clips; and the
+    cell's navigation map, which walks go round (None: walk straight)."""
 
     body: HumanBody
     clips: dict[str, Clip]
+    navigation: NavigationMap | None = None
 
     def index(self, name: str) -> int:
         return self.body.index(name)
@@ -112,6 +135,8 @@ class ClipSegment:
     speed: float = 1.0
     forever: bool = False
     aim: TargetedOffset | None = None
+    carry: CarryArms | None = None
+    """Arms held in the carry posture (not with `aim`, which blends them itself)."""
 
     def end(self, ctx: Context) -> float:
         return inf if self.forever else self.start + ctx.clips[self.clip].duration / self.speed
@@ -127,35 +152,50 @@ class ClipSegment:
         q = ctx.clips[self.clip].sample(clip_time)
         placed = place(ctx, q, *self.anchor)
         if self.aim is not None:
-            placed = placed + self.aim.weight(clip_time) * self.aim.delta
-        return placed
+            return self.aim.carried(placed + self.aim.weight(clip_time) * self.aim.delta, clip_time)
+        return _carried(placed, self.carry)
 
 
 @dataclass(frozen=True, eq=False)
 class TurnSegment:
-    """Step round on the spot from one heading to another."""
+    """Step round on the spot from one heading to another: `cycles` cycles of a turn clip
+    authored for the angle (rounded to TURN_ROUNDING; the rest of the angle eases in)."""
 
     start: float
     position: tuple[float, float]
     yaw_from: float
     yaw_to: float
+    clip: Clip
+    cycles: int
+    carry: CarryArms | None = None
 
-    def angle(self, t: float) -> tuple[float, float]:
-        change = self.yaw_to - self.yaw_from
-        rate = TURN_PER_CYCLE / 0.9
-        turned, total = travel(t - self.start, abs(change), rate, ramp=0.3)
-        return copysign(turned, change), total
+    @classmethod
+    def between(cls, ctx: Context, start, position, yaw_from, yaw_to, carry=None):
+        change = yaw_to - yaw_from
+        cycles = ceil(abs(change) / MAX_TURN_PER_CYCLE) if abs(change) >= MIN_TURN else 0
+        if cycles == 0:
+            return cls(start, position, yaw_from, yaw_to, ctx.clips[IDLE_CLIP], 0, carry)
+        step = round(degrees(change / cycles) / TURN_ROUNDING) * TURN_ROUNDING
+        clip = _turn_clip(ctx.body, step or copysign(TURN_ROUNDING, change))
+        return cls(start, position, yaw_from, yaw_to, clip, cycles, carry)
 
     def end(self, ctx: Context) -> float:
-        return self.start + self.angle(self.start)[1]
+        return self.start + self.cycles * self.clip.duration
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
-        turned, _ = self.angle(t)
-        clip = ctx.clips["turn_left" if self.yaw_to >= self.yaw_from else "turn_right"]
-        clip_time = abs(turned) / TURN_PER_CYCLE * clip.duration
-        q = clip.sample(clip_time)
-        q[ctx.root[2]] = 0.0
-        return place(ctx, q, *self.position, self.yaw_from + turned)
+        total = self.cycles * self.clip.duration
+        clip_time = min(max(t - self.start, 0.0), total)
+        q = self.clip.sample(clip_time)
+        stepped = float(q[ctx.root[2]]) if self.cycles else 0.0
+        authored = self.cycles * float(self.clip.root_shift[ctx.root[2]])
+        rest = self.yaw_to - self.yaw_from - authored
+        q[ctx.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
+        return _carried(place(ctx, q, *self.position, self.yaw_from), self.carry)
+
+
+@lru_cache(maxsize=256)
+def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
+    return turn_clip(body, step_degrees)
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,6 +211,7 @@ class WalkSegment:
     clip: str
     animation_distance: float
     speed: float
+    carry: CarryArms | None = None
 
     @cached_property
     def _legs(self) -> np.ndarray:
@@ -199,7 +240,7 @@ class WalkSegment:
         return self._cycle_time(ctx.clips[self.clip], self.distance(t))
 
     def _cycle_time(self, clip: Clip, covered: float) -> float:
-        return covered / self.animation_distance * clip.duration
+        return (covered / self.animation_distance + WALK_START_PHASE) * clip.duration
 
     def point(self, along: float) -> tuple[float, float]:
         lengths, path = self.lengths, self.path
@@ -209,16 +250,22 @@ class WalkSegment:
         (x0, y0), (x1, y1) = path[k], path[k + 1]
         return x0 + s * (x1 - x0), y0 + s * (y1 - y0)
 
+    @cached_property
+    def _corner_radii(self) -> tuple[float, ...]:
+        """Per waypoint, the distance before and after it over which the heading turns: at
+        most CORNER_RADIUS and half of either leg, so neighbouring turns never overlap."""
+        legs = np.diff(self.lengths)
+        return (0.0, *(min(CORNER_RADIUS, a / 2, b / 2) for a, b in pairwise(legs)))
+
     def heading(self, along: float) -> float:
         """Path direction, turning smoothly through each waypoint."""
-        directions, lengths = self.directions, self.lengths
-        k = min(max(bisect_right(lengths, along) - 1, 0), len(directions) - 1)
-        heading = directions[k]
+        directions, lengths, radii = self.directions, self.lengths, self._corner_radii
+        heading = directions[0]
         for corner in range(1, len(directions)):
-            offset = along - lengths[corner]
-            if abs(offset) < CORNER_RADIUS:
-                w = minimum_jerk((offset + CORNER_RADIUS) / (2 * CORNER_RADIUS))
-                heading = directions[corner - 1] + w * (directions[corner] - directions[corner - 1])
+            offset = along - lengths[corner] + radii[corner]
+            if offset > 0:
+                w = minimum_jerk(offset / (2 * radii[corner])) if radii[corner] > 0 else 1.0
+                heading += w * (directions[corner] - directions[corner - 1])
         return heading
 
     def pose(self, ctx: Context, t: float) -> np.ndarray:
@@ -232,10 +279,15 @@ class WalkSegment:
         heading = self.heading(along)
         x, y = self.point(along)
         q[ix], q[iy] = 0.0, 0.0
-        return place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+        placed = place(ctx, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
+        return _carried(placed, self.carry)
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
+
+
+def _carried(q: np.ndarray, carry: CarryArms | None) -> np.ndarray:
+    return q if carry is None else carry.over(q)
 
 
 @dataclass(frozen=True, eq=False)
@@ -331,6 +383,8 @@ class ActorState(NamedTuple):
     speed: float = 0.0
     pose: np.ndarray | None = None
     """Joint positions at the last update."""
+    hold: Hold | None = None
+    """What the hands hold once the current activity is done (the last command said)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -350,8 +404,13 @@ def pose_at(ctx: Context, state: ActorState, t: float) -> np.ndarray:
     return state.activity.pose(ctx, t)
 
 
-def _idle(ctx: Context, pose: tuple[float, float, float], t: float) -> Activity:
-    return Activity.plan(ctx, (ClipSegment(IDLE_CLIP, t, pose, forever=True),), pose)
+def _idle(ctx: Context, pose: tuple[float, float, float], t: float, hold=None) -> Activity:
+    segment = ClipSegment(IDLE_CLIP, t, pose, forever=True, carry=_carry(ctx, hold))
+    return Activity.plan(ctx, (segment,), pose)
+
+
+def _carry(ctx: Context, hold: Hold | None) -> CarryArms | None:
+    return None if hold is None else carry_arms(ctx.body, hold)
 
 
 def _base_pose(ctx: Context, q: np.ndarray) -> tuple[float, float, float]:
@@ -364,28 +423,49 @@ def _yaw_of(quaternion) -> float:
     return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
 
 
+def _without_short_legs(path: list) -> list:
+    """The path without waypoints closer than MIN_LEG to the point before them (the goal
+    stays): a short leg would make the person swing round on the spot while walking."""
+    kept = [path[0]]
+    for point in path[1:-1]:
+        if hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) >= MIN_LEG:
+            kept.append(point)
+    goal = path[-1]
+    if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:
+        kept.append(goal)
+    return kept
+
+
 def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activity:
-    """Turn towards the path, walk it, then turn to the target orientation."""
+    """Turn towards the path, walk it, then turn to the target orientation. Without given
+    waypoints the path goes round the cell's geometry (the navigation map); a place to
+    stand (a target with an orientation) that is not clear moves to the nearest that is."""
     clip = ctx.clips.get(command.animation_name)
     if clip is None or not clip.loop or clip.animation_distance <= 0:
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
-    path = [(x, y), *[tuple(p) for p in command.waypoints], tuple(command.target_position[:2])]
-    path = [
-        p for k, p in enumerate(path) if k == 0 or np.hypot(*np.subtract(p, path[k - 1])) > 1e-3
-    ]
+    goal = tuple(command.target_position[:2])
+    waypoints = command.waypoints
+    if ctx.navigation is not None:
+        facing = _yaw_of(command.target_quaternion)
+        if tuple(command.target_quaternion) != NULL_QUATERNION:
+            goal = ctx.navigation.clear_spot(*goal, facing)
+        if not waypoints:
+            waypoints = ctx.navigation.path((x, y), goal)
+    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
     segments: list[Segment] = []
     start = t
     heading = yaw
+    carry = _carry(ctx, command.hold)
     if len(path) > 1:
         first = atan2(path[1][1] - y, path[1][0] - x)
         heading = yaw + _wrap(first - yaw)
         if abs(heading - yaw) > MIN_TURN:
-            segments.append(TurnSegment(start, (x, y), yaw, heading))
+            segments.append(TurnSegment.between(ctx, start, (x, y), yaw, heading, carry))
             start = segments[-1].end(ctx)
         distance = command.animation_distance or clip.animation_distance
         speed = distance / clip.duration
-        walk = WalkSegment(start, tuple(path), clip.name, distance, speed)
+        walk = WalkSegment(start, tuple(path), clip.name, distance, speed, carry)
         segments.append(walk)
         start = walk.end(ctx)
         heading = walk.heading(walk.lengths[-1])
@@ -393,9 +473,9 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     if tuple(command.target_quaternion) != NULL_QUATERNION:
         final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
         if abs(final_yaw - heading) > MIN_TURN:
-            segments.append(TurnSegment(start, path[-1], heading, final_yaw))
+            segments.append(TurnSegment.between(ctx, start, path[-1], heading, final_yaw, carry))
     if not segments:
-        segments.append(TurnSegment(t, (x, y), yaw, yaw))
+        segments.append(TurnSegment.between(ctx, t, (x, y), yaw, yaw, carry))
     return Activity.plan(ctx, segments, (*path[-1], _wrap(final_yaw)))
 
 
@@ -405,13 +485,47 @@ def plan_animation(ctx: Context, command: AnimateCommand, pose, t: float) -> Act
         raise Unreachable(f"no animation named '{command.animation_name}'")
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
-    aim = None
-    if command.target is not None:
+    aim, carry = None, _carry(ctx, command.hold)
+    if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
-        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), command.target)
-    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim)
+        hands, takes = _aimed_hands(ctx, clip, command, pose)
+        if takes:
+            carry = _carry(ctx, hold_of(command.grasp, pose[2]))
+        aim = aim_clip(ctx.body, clip, lambda q: place(ctx, q, *pose), hands, carry, takes)
+    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
     return Activity.plan(ctx, (segment,), pose)
+
+
+def _aimed_hands(ctx: Context, clip: Clip, command: AnimateCommand, pose) -> tuple[dict, bool]:
+    """Each aiming hand's target (position, orientation or None), and whether the clip
+    takes an object: the palms on the faces of what it takes, on the faces of what they
+    put down at the target, or (holding nothing) the right hand's edge of a reach on the
+    target and both hands of other clips either side of it, as far apart as the clip has
+    them."""
+    if command.grasp is not None:
+        return palm_targets(command.grasp, pose[2]), True
+    if command.hold is not None:
+        return release_targets(command.hold, command.target, pose[2]), False
+    target = np.asarray(command.target, dtype=float)
+    if clip.name == "reach":
+        return reach_target(ctx.body, target, pose[2]), False
+    q = place(ctx, clip.sample(clip.events[TARGETED[clip.name]]), *pose)
+    hands = {s: ctx.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES}
+    middle = np.mean(list(hands.values()), axis=0)
+    return {s: (target + p - middle, None) for s, p in hands.items()}, False
+
+
+def hold_after(command, pose) -> Hold | None:
+    """What the hands hold once `command` is done: what it takes, nothing after it puts
+    something down (a place, or a hand-over giving what the hands hold), else what they
+    held."""
+    if isinstance(command, MoveCommand):
+        return command.hold
+    if command.grasp is not None:
+        return hold_of(command.grasp, pose[2])
+    releases = command.target is not None and command.animation_name in RELEASING
+    return None if releases else command.hold
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
@@ -437,7 +551,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         state = _switch(
             ctx,
             state,
-            _idle(ctx, state.base, t),
+            _idle(ctx, state.base, t, state.hold),
             t,
             state="IDLE",
             running=-1,
@@ -454,7 +568,14 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
     except Unreachable as error:
         return _record(state, command.seq, "failed", str(error))
     state = _switch(
-        ctx, state, activity, t, state=mode, running=command.seq, animation=command.animation_name
+        ctx,
+        state,
+        activity,
+        t,
+        state=mode,
+        running=command.seq,
+        animation=command.animation_name,
+        hold=hold_after(command, state.anchor),
     )
     return _record(state, command.seq, "running")
 
@@ -511,9 +632,8 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
     if state.running >= 0 and t >= state.activity.end:
         final = state.activity.final_pose
         state = _record(state, state.running, "succeeded")
-        state = _switch(
-            ctx, state, _idle(ctx, final, t), t, state="IDLE", running=-1, animation=IDLE_CLIP
-        )
+        idle = _idle(ctx, final, t, state.hold)
+        state = _switch(ctx, state, idle, t, state="IDLE", running=-1, animation=IDLE_CLIP)
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
     q = pose_at(ctx, state, t)
     base = _base_pose(ctx, q)

@@ -1,7 +1,7 @@
 """The human skeleton: bodies, joints, limits, frames and body-region geometry for one person.
 
 Every length comes from the Drillis & Contini fractions of body height H and every mass from
-Dempster's fractions of body mass (docs: /work/shared/facts/human.md). Joint limits are the
+Dempster's fractions of body mass (docs/human-body.md). Joint limits are the
 typical adult range of motion. The zero configuration stands upright, arms hanging, facing +x
 (x forward, y left, z up) with the pelvis origin (midpoint of the hip joints) on the floor, so
 that the `pelvis_height` coordinate *is* the height of the hip joints above the floor.

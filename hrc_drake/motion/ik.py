@@ -13,7 +13,7 @@ from pydrake.multibody.inverse_kinematics import (
 )
 from pydrake.solvers import Solve
 
-from hrc_drake.motion.deadline import Deadline, PlanningFailed
+from hrc_drake.motion.errors import PlanningFailed
 
 POSITION_TOLERANCE = 1e-4
 """m: IK accuracy; the robot's arrival error comes on top of it."""
@@ -23,7 +23,7 @@ WRIST_MARGIN = np.radians(2.0)
 WRIST = 4
 """Index of A5."""
 NEAR_SEEDS = 4
-ANYWHERE_SEEDS = 10
+"""Random starts near the nominal posture, tried before starts anywhere."""
 SEED_SPREAD = 0.6
 """rad: standard deviation of the extra seeds around the nominal posture."""
 TOOL_REACH_MARGIN = 0.25
@@ -49,14 +49,15 @@ class ToolTargetSolver:
         q_start: np.ndarray,
         free_rotation: bool,
         rng: np.random.Generator,
-        deadline: Deadline,
+        attempts: int,
     ) -> np.ndarray:
-        """A collision-free solution, trying the current posture, home, then random seeds."""
+        """A collision-free solution, starting from the current posture, home, then random
+        postures: `attempts` starts in all (a count, not a time, so the outcome never
+        depends on how busy the machine is)."""
         self._check_reach(pose, q_start)
-        seeds = [q_start, self.q_nominal] + self._random_seeds(rng)
+        seeds = ([q_start, self.q_nominal] + self._random_seeds(rng, attempts - 2))[:attempts]
         wrist_sign = self._wrist_side(q_start)
         for seed in seeds:
-            deadline.check("solving inverse kinematics")
             q = self._solve_from(pose, seed, q_start, free_rotation, wrist_sign)
             if q is not None:
                 return q
@@ -65,14 +66,15 @@ class ToolTargetSolver:
             f"{np.round(pose.translation(), 3).tolist()}"
         )
 
-    def _random_seeds(self, rng: np.random.Generator) -> list[np.ndarray]:
-        """Seeds near the nominal posture first, then anywhere (other elbow and arm postures)."""
+    def _random_seeds(self, rng: np.random.Generator, count: int) -> list[np.ndarray]:
+        """`count` seeds: near the nominal posture first, then anywhere (other elbow and arm
+        postures)."""
         lower, upper = self.model.lower, self.model.upper
         near = [
             np.clip(self.q_nominal + rng.normal(0.0, SEED_SPREAD, lower.size), lower, upper)
-            for _ in range(NEAR_SEEDS)
+            for _ in range(min(count, NEAR_SEEDS))
         ]
-        return near + [rng.uniform(lower, upper) for _ in range(ANYWHERE_SEEDS)]
+        return near + [rng.uniform(lower, upper) for _ in range(count - len(near))]
 
     def solve_near(self, pose: RigidTransform, q_near: np.ndarray) -> np.ndarray | None:
         """The solution nearest `q_near`, seeded there, without the clearance check."""

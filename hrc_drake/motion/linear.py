@@ -9,7 +9,7 @@ import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.trajectories import PiecewisePose
 
-from hrc_drake.motion.deadline import Deadline, PlanningFailed
+from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.timing import spline_path
 
 STEP_LENGTH = 0.01
@@ -21,7 +21,7 @@ CHECK_SPACING = 0.005
 """rad of joint-space arc length between the samples that check deviation and contact."""
 
 
-def linear_waypoints(model, ik, q_start, pose, tolerance: float, deadline: Deadline):
+def linear_waypoints(model, ik, q_start, pose, tolerance: float):
     """Joint waypoints whose spline keeps the tool within `tolerance` of the line."""
     start = model.tool_pose(q_start)
     steps = _step_count(start, pose)
@@ -30,7 +30,6 @@ def linear_waypoints(model, ik, q_start, pose, tolerance: float, deadline: Deadl
     line = PiecewisePose.MakeLinear([0.0, 1.0], [start, pose])
     waypoints = [q_start]
     for i in range(1, steps + 1):
-        deadline.check("solving the straight line")
         q = ik.solve_near(line.GetPose(i / steps), waypoints[-1])
         if q is None:
             raise PlanningFailed(f"linear move unreachable at {100 * i / steps:.0f}% of the line")

@@ -8,7 +8,11 @@ class MotionOptions:
     """How RobotMotion plans and executes; the defaults suit every iisy variant.
 
     update_period: seconds between RobotMotion updates (commands, planning, speed changes).
-    planning_time_budget: wall-clock seconds one plan may take before it fails.
+    ik_attempts: inverse-kinematics starts one MoveTo may try (the current posture, home,
+        then random postures) before its target counts as unreachable.
+    search_nodes: nodes the collision-free path search may grow (both trees together)
+        before a move fails; with `ik_attempts` the planning budget, counted and never timed,
+        so plans do not depend on how busy the machine is.
     clearance: minimum distance (m) to the static cell kept by free-space moves.
     linear_tolerance: largest distance (m) of the tool from the line in MoveLinear.
     tool_speed_limit: collaborative Cartesian speed limit (m/s) of the tool centre point.
@@ -17,12 +21,14 @@ class MotionOptions:
     gripper_timeout: seconds to wait for the workpieces system to answer Grip/Release.
     seed: seed of the planner's random sampling (the plan is deterministic).
     avoid_person: plan around the person where they stand when the move is planned (a
-        vertical capsule of `person_radius` around them), the "environment perception"
-        the original system wanted; off, the planner sees the static cell only.
+        vertical capsule of `person_radius` around them), the "environment perception" the
+        thesis system wanted (docs/thesis-system.md); off, the planner sees the static cell
+        only.
     """
 
     update_period: float = 0.01
-    planning_time_budget: float = 2.0
+    ik_attempts: int = 16
+    search_nodes: int = 2500
     clearance: float = 0.01
     linear_tolerance: float = 0.005
     tool_speed_limit: float = 1.0

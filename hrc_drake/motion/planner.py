@@ -2,12 +2,14 @@
 
 `MotionPlanner.plan(command, q_start)` turns a move command into a TimedPath at nominal
 speed, or raises PlanningFailed with a reason a person can act on. Planning is deterministic:
-its random sampling draws from a Generator seeded afresh for every plan.
+its random sampling draws from a Generator seeded afresh for every plan, and its budgets are
+counts (inverse-kinematics starts, search-tree nodes, TOPP-RA grid points), never wall time,
+so a plan comes out the same on a busy machine or a loaded sweep worker.
 """
 
 import numpy as np
 
-from hrc_drake.motion.deadline import Deadline, PlanningFailed
+from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.ik import ToolTargetSolver
 from hrc_drake.motion.linear import linear_waypoints
 from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
@@ -54,24 +56,27 @@ class MotionPlanner:
 
     def _plan(self, command, q_start) -> TimedPath | None:
         q_start = np.asarray(q_start, dtype=float)
-        deadline = Deadline(self.options.planning_time_budget)
         rng = np.random.default_rng(self.options.seed)
         if isinstance(command, MoveLinear):
-            waypoints = self._linear(command, q_start, deadline)
+            waypoints = self._linear(command, q_start)
             return self._timed(spline_path(waypoints)) if len(waypoints) > 1 else None
-        q_goal = self._goal(command, q_start, deadline, rng)
+        q_goal = self._goal(command, q_start, rng)
         if np.linalg.norm(q_goal - q_start) < ARRIVED:
             return None
-        waypoints = collision_free_waypoints(self.model, q_start, q_goal, rng, deadline)
+        waypoints = collision_free_waypoints(
+            self.model, q_start, q_goal, rng, self.options.search_nodes
+        )
         if waypoints is None:
             raise PlanningFailed("no collision-free path to the target was found")
         return self._timed(self._smoothest_safe_path(waypoints))
 
-    def _goal(self, command, q_start, deadline, rng) -> np.ndarray:
+    def _goal(self, command, q_start, rng) -> np.ndarray:
         if isinstance(command, MoveJoints):
             return self._joint_goal(command)
         if isinstance(command, MoveTo):
-            return self.ik.solve(command.pose, q_start, command.free_tool_rotation, rng, deadline)
+            return self.ik.solve(
+                command.pose, q_start, command.free_tool_rotation, rng, self.options.ik_attempts
+            )
         raise PlanningFailed(f"not a move command: {type(command).__name__}")
 
     def _joint_goal(self, command: MoveJoints) -> np.ndarray:
@@ -95,9 +100,9 @@ class MotionPlanner:
             )
         return self.scenario.configuration(name)
 
-    def _linear(self, command: MoveLinear, q_start, deadline) -> list[np.ndarray]:
+    def _linear(self, command: MoveLinear, q_start) -> list[np.ndarray]:
         return linear_waypoints(
-            self.model, self.ik, q_start, command.pose, self.options.linear_tolerance, deadline
+            self.model, self.ik, q_start, command.pose, self.options.linear_tolerance
         )
 
     def _smoothest_safe_path(self, waypoints: list[np.ndarray]):

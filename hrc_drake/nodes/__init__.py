@@ -1,5 +1,6 @@
-"""The HRC node library: the original system's nodes (same names and ports) and the nodes
-the scenarios need, registered on top of the behavior tree engine's built-ins."""
+"""The HRC node library: the nodes of the thesis system this project re-creates (same names and
+ports, docs/thesis-system.md) and the nodes the scenarios need, registered on top of the behavior
+tree engine's built-ins."""
 
 from hrc_drake.bt import NodeRegistry, default_registry
 from hrc_drake.bt.ports import type_name as port_type_name

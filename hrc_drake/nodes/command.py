@@ -24,9 +24,14 @@ class CommandNode(StatefulActionNode):
     def command(self, seq: int):
         """The command to send, numbered `seq`."""
 
-    def outcome(self) -> str | None:
+    def result(self):
+        """The actor's CommandResult for this node's command (None until it has one)."""
         status = self.context.statuses[self.actor]
-        return status.outcome_of(self.seq) if status is not None else None
+        return status.result_of(self.seq) if status is not None else None
+
+    def outcome(self) -> str | None:
+        result = self.result()
+        return result.outcome if result is not None else None
 
     def succeeded(self) -> Status:
         """Called once the command succeeded; nodes with outputs write them here."""
@@ -40,7 +45,11 @@ class CommandNode(StatefulActionNode):
         outcome = self.outcome()
         if outcome is None or outcome == RUNNING:
             return Status.RUNNING
-        return self.succeeded() if outcome == SUCCEEDED else Status.FAILURE
+        if outcome == SUCCEEDED:
+            return self.succeeded()
+        result = self.result()
+        self.failure_reason = f"{outcome}: {result.reason}" if result and result.reason else outcome
+        return Status.FAILURE
 
     def on_halted(self) -> None:
         if self.cancel_command is not None:

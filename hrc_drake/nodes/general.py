@@ -1,4 +1,4 @@
-"""The original system's general nodes, same names and ports, plus Emit.
+"""The thesis system's general nodes (docs/thesis-system.md), same names and ports, plus Emit.
 
 GenerateXYPose, InAreaTest, OffsetPose, InterruptableSequence, WeightedRandom,
 RandomFailure; Emit records a task event (a part finished, a box handed over, ...) that the

@@ -140,11 +140,11 @@ class WorkpiecesCommandNode(CommandNode):
 
     actor = WORKPIECES
 
-    def outcome(self) -> str | None:
+    def result(self):
         status = self.context.workpieces
         if status is None:
             return None
-        return status.outcome_of(self.context.workpieces_issuer, self.seq)
+        return status.result_of(self.context.workpieces_issuer, self.seq)
 
 
 class SpawnObject(WorkpiecesCommandNode):

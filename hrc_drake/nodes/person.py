@@ -1,25 +1,30 @@
-"""Person nodes: the original's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
+"""Person nodes: the thesis system's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
 the targeted actions the scenarios need (pick, place, reach, hand over, carry).
 
 Targeted actions play a clip aimed at a point; at the clip's contact event (`grasp`,
 `release`, `extended`) they tell the Workpieces system to attach, release or transfer the
-object, so the object changes hands at the moment the hand is there.
+object, so the object changes hands at the moment the hand is there. Which hands take an
+object follows from its size, mass and attributes (hrc_drake.human.grasp); every command
+tells the person what the hands hold, so they carry it in the carry posture.
 """
 
 from abc import abstractmethod
 
 from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
 from hrc_drake.human import messages as human
+from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
 from hrc_drake.nodes.command import CommandNode
 from hrc_drake.nodes.context import HUMAN, WORKPIECES
 from hrc_drake.tree_types import Pose
 from hrc_drake.workpieces import messages as wp
+from hrc_drake.workpieces.geometry import yaw_of
 
 TABLE_HEIGHT = 0.5
 """Targets below this height are picked or placed with the floor clips (a squat)."""
 
-HANDS = {"left": wp.LEFT_HAND, "right": wp.RIGHT_HAND, "both": wp.BOTH_HANDS}
+HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
+HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
 
 
 class PersonCommandNode(CommandNode):
@@ -27,6 +32,31 @@ class PersonCommandNode(CommandNode):
 
     actor = HUMAN
     cancel_command = human.CancelCommand
+
+    def held(self) -> wp.ObjectStatus | None:
+        """The object in the person's hands, if any."""
+        status = self.context.workpieces
+        if status is None:
+            return None
+        return next((o for o in status.objects if o.holder in HANDS_OF), None)
+
+    def hold(self) -> human.Hold | None:
+        """What the person's hands hold, as the person needs to know it."""
+        obj = self.held()
+        if obj is None:
+            return None
+        return hold_of(grasp_of(obj, HANDS_OF[obj.holder]), self._heading())
+
+    def _heading(self) -> float:
+        status = self.context.human
+        return status.base_pose[2] if status is not None else 0.0
+
+
+def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
+    """How `hands` take `obj` (a cylinder is taken like the box around it)."""
+    size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
+    yaw = yaw_of(obj.pose.rotation())
+    return human.Grasp(hands, tuple(obj.pose.translation()), yaw, tuple(size))
 
 
 class ActorAnimation(PersonCommandNode):
@@ -40,7 +70,10 @@ class ActorAnimation(PersonCommandNode):
 
     def command(self, seq: int):
         return human.AnimateCommand(
-            seq, self.get_input("animation_name"), self.get_input("animation_speed")
+            seq,
+            self.get_input("animation_name"),
+            self.get_input("animation_speed"),
+            hold=self.hold(),
         )
 
 
@@ -68,6 +101,7 @@ class ActorMovement(PersonCommandNode):
             target_quaternion=target.quaternion or human.NULL_QUATERNION,
             animation_name=self.get_input("animation_name"),
             animation_distance=distance if distance > 0 else None,
+            hold=self.hold(),
         )
 
 
@@ -120,7 +154,13 @@ class TargetedAction(PersonCommandNode):
 
     def command(self, seq: int):
         self.contact_seq = None
-        return human.AnimateCommand(seq, self.clip(), target=self.target_point())
+        return human.AnimateCommand(
+            seq, self.clip(), target=self.target_point(), hold=self.hold(), grasp=self.grasp()
+        )
+
+    def grasp(self) -> human.Grasp | None:
+        """What the clip takes (None: it takes nothing)."""
+        return None
 
     def on_running(self) -> Status:
         if self.contact_seq is None and self._contact_event_fired():
@@ -148,17 +188,36 @@ class TargetedAction(PersonCommandNode):
             return Status.RUNNING
         return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
 
-    def hand(self) -> str:
-        return HANDS[self.get_input("hand")]
-
-    def object_point(self) -> tuple[float, float, float]:
+    def taken(self) -> wp.ObjectStatus:
         obj = self.context.workpieces.object(self.get_input("object_id"))
         if obj is None:
             raise self.error(f"no object {self.get_input('object_id')}", port="object_id")
-        return tuple(obj.pose.translation())
+        return obj
+
+    def object_point(self) -> tuple[float, float, float]:
+        return tuple(self.taken().pose.translation())
+
+    def taking_grasp(self) -> human.Grasp:
+        """Both hands or one, as the port says or (auto) as the object's geometry says."""
+        obj = self.taken()
+        hands = self.get_input("hand")
+        if hands == "auto":
+            hands = grasp_hands(obj.size, obj.mass, obj.attributes)
+        elif hands not in HOLDERS:
+            known = ", ".join(("auto", *HOLDERS))
+            raise self.error(f"unknown hand '{hands}'; known: {known}", port="hand")
+        return grasp_of(obj, hands)
+
+    def holder_and_center(self):
+        """The holder that takes the object and where its centre goes in the holder's frame."""
+        grasp = self.grasp()
+        hold = hold_of(grasp, self._heading())
+        return HOLDERS[grasp.hands], object_center_in_holder(hold)
 
 
-HAND_PORT = InputPort("hand", str, default="both", description="left, right or both")
+HAND_PORT = InputPort(
+    "hand", str, default="auto", description="auto (from the object), right or both"
+)
 
 
 class ActorPick(TargetedAction):
@@ -173,14 +232,19 @@ class ActorPick(TargetedAction):
     def target_point(self):
         return self.object_point()
 
+    def grasp(self) -> human.Grasp:
+        return self.taking_grasp()
+
     def object_command(self, seq: int):
-        return wp.Attach(seq, self.hand(), self.get_input("object_id"))
+        holder, center = self.holder_and_center()
+        return wp.Attach(seq, holder, self.get_input("object_id"), center=center)
 
 
 class ActorPlace(TargetedAction):
-    """Puts what the hand(s) hold down at a target point; it settles on the surface."""
+    """Puts what the hands hold down with its centre at a target point (one hand or both,
+    as they hold it); it settles on the surface."""
 
-    ports = (InputPort("target", Pose, description="where to put it down"), HAND_PORT)
+    ports = (InputPort("target", Pose, description="where the object's centre goes"),)
     contact_event = "release"
 
     def clip(self) -> str:
@@ -190,7 +254,8 @@ class ActorPlace(TargetedAction):
         return tuple(self.context.transform(self.get_input("target")).translation())
 
     def object_command(self, seq: int):
-        return wp.Release(seq, self.hand())
+        held = self.held()
+        return wp.Release(seq, held.holder if held is not None else wp.BOTH_HANDS)
 
 
 class ActorReach(TargetedAction):
@@ -207,7 +272,8 @@ class ActorReach(TargetedAction):
 
 class ActorHandOver(TargetedAction):
     """Hand-over with the robot: extends the hands to the object at the hand-over point
-    and takes it (`take`) or gives what the hands hold to the robot's cup (`give`)."""
+    and takes it (`take`: the palms close on its faces, the robot lets go once they hold
+    it) or gives what the hands hold to the robot's cup (`give`)."""
 
     ports = (
         InputPort("object_id", int),
@@ -222,9 +288,17 @@ class ActorHandOver(TargetedAction):
     def target_point(self):
         return self.object_point()
 
+    def takes(self) -> bool:
+        return self.get_input("direction") == "take"
+
+    def grasp(self) -> human.Grasp | None:
+        return self.taking_grasp() if self.takes() else None
+
     def object_command(self, seq: int):
-        receiver = self.hand() if self.get_input("direction") == "take" else wp.ROBOT
-        return wp.Transfer(seq, self.get_input("object_id"), receiver)
+        if not self.takes():
+            return wp.Transfer(seq, self.get_input("object_id"), wp.ROBOT)
+        holder, center = self.holder_and_center()
+        return wp.Transfer(seq, self.get_input("object_id"), holder, center=center)
 
 
 NODES = (

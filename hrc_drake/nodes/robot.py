@@ -1,7 +1,7 @@
-"""Robot nodes: RobotMove and SetRobotVelocity (the original's), and the moves, grip and
-stop the scenarios need. Asynchronous nodes send their command when they start, stay
-RUNNING until RobotMotion reports *their* sequence number finished, and send Stop when
-they are halted."""
+"""Robot nodes: RobotMove and SetRobotVelocity (the thesis system's, docs/thesis-system.md), and the
+moves, grip and stop the scenarios need. Asynchronous nodes send their command when they start, stay
+RUNNING until RobotMotion reports *their* sequence number finished, and send Stop when they are
+halted."""
 
 import math
 

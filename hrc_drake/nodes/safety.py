@@ -1,6 +1,6 @@
 """Conditions on where the person is and how close they are to the robot, for trees that
-adapt the robot's behaviour (the original's speed rule: slower while someone is near), and
-on what the robot does, for a person who must not reach in while it moves."""
+adapt the robot's behaviour (the thesis system's speed rule, docs/thesis-system.md: slower while
+someone is near), and on what the robot does, for a person who must not reach in while it moves."""
 
 from hrc_drake.areas import Area
 from hrc_drake.bt import ConditionNode, InputPort, Status

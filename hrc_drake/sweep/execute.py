@@ -1,19 +1,29 @@
-"""Running sweep specs: in a local process pool, or on an existing Dask scheduler.
+"""Running sweep specs: on local worker processes, or on an existing Dask scheduler.
 
 Each worker builds its own diagram from the scenario file (nothing of Drake is pickled) and
 runs with one thread, so N workers use N cores. A run that raises becomes a failed row
-inside the worker, so the sweep goes on.
+inside the worker; a worker that dies (killed, out of memory, a crash in Drake) becomes a
+failed row of the run it had, and a fresh worker takes its place: the sweep goes on. Each
+worker is handed one run at a time, so the pool always knows which run a dead worker had,
+and specs are drawn from the plan only as workers free up. Workers die with the sweep's
+main process (Linux: the kernel kills them; elsewhere they notice within a second).
 """
 
+import contextlib
 import os
+import re
+import signal
+import sys
+import threading
 import time
-from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from collections.abc import Callable, Iterator
 from functools import lru_cache
 from multiprocessing import get_context
+from multiprocessing.connection import wait
 
 from hrc_drake.sweep.overrides import apply
 from hrc_drake.sweep.rows import RunSpec, make_row
+from hrc_drake.yaml_check import InputError
 
 THREAD_VARIABLES = (
     "OMP_NUM_THREADS",
@@ -21,12 +31,21 @@ THREAD_VARIABLES = (
     "MKL_NUM_THREADS",
     "DRAKE_NUM_THREADS",
 )
+DASK_CONNECT_TIMEOUT = 5.0
+"""Seconds to wait for a Dask scheduler to answer before giving up with one line."""
+DASK_IN_FLIGHT = 64
+"""Runs handed to Dask at once; more are submitted as these finish."""
+PR_SET_PDEATHSIG = 1
 
 
-def limit_threads() -> None:
-    """One compute thread per worker process (set before Drake and numpy start theirs)."""
+def prepare_worker() -> None:
+    """One compute thread per worker process (set before Drake and numpy start theirs), and
+    Drake's logging as quiet as in the CLI."""
     for name in THREAD_VARIABLES:
         os.environ[name] = "1"
+    from hrc_drake.drake_logging import quiet_drake_logging
+
+    quiet_drake_logging()
 
 
 @lru_cache(maxsize=4)
@@ -50,27 +69,150 @@ def run_spec(spec: RunSpec) -> dict:
     return make_row(spec, metrics, wall_time=time.perf_counter() - start)
 
 
-def run_in_pool(specs: Iterable[RunSpec], workers: int, on_row: Callable[[dict], None]) -> None:
-    """Runs on `workers` local processes (spawned, so each starts clean)."""
-    pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"), initializer=limit_threads)
+def run_in_pool(specs: Iterator[RunSpec], workers: int, on_row: Callable[[dict], None]) -> None:
+    """Runs on up to `workers` local processes (spawned, so each starts clean)."""
+    context = get_context("spawn")
+    idle: list[_Worker] = []
+    busy: list[_Worker] = []
     try:
-        futures = [pool.submit(run_spec, spec) for spec in specs]
-        for future in as_completed(futures):
-            on_row(future.result())
+        for spec in specs:
+            if not idle and len(busy) < workers:
+                idle.append(_Worker(context))
+            while not idle:
+                idle += _finished(busy, on_row, context)
+            worker = idle.pop()
+            worker.start(spec)
+            busy.append(worker)
+        while busy:
+            idle += _finished(busy, on_row, context)
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        for worker in idle + busy:
+            worker.stop()
 
 
-def run_on_dask(specs: Iterable[RunSpec], address: str, on_row: Callable[[dict], None]) -> None:
-    """Runs on the workers of the Dask scheduler at `address` (hrc_drake installed there)."""
+def _finished(busy: list["_Worker"], on_row, context) -> list["_Worker"]:
+    """Waits for runs to end; reports their rows and returns the workers free again."""
+    ready = set(wait([w.connection for w in busy] + [w.process.sentinel for w in busy]))
+    free = []
+    for worker in [w for w in busy if {w.connection, w.process.sentinel} & ready]:
+        busy.remove(worker)
+        row = worker.result()
+        if row is None:  # the worker died with the run
+            row = make_row(worker.spec, None, error=worker.death())
+            worker.stop()
+            worker = _Worker(context)
+        on_row(row)
+        free.append(worker)
+    return free
+
+
+class _Worker:
+    """One worker process and the pipe that hands it one run at a time."""
+
+    def __init__(self, context):
+        self.connection, theirs = context.Pipe()
+        self.process = context.Process(target=_serve, args=(theirs, os.getpid()), daemon=True)
+        self.process.start()
+        theirs.close()
+        self.spec: RunSpec | None = None
+
+    def start(self, spec: RunSpec) -> None:
+        self.spec = spec
+        self.connection.send(spec)
+
+    def result(self) -> dict | None:
+        try:
+            return self.connection.recv()
+        except (EOFError, OSError):
+            return None
+
+    def death(self) -> str:
+        self.process.join(timeout=5)
+        code = self.process.exitcode
+        if code is not None and code < 0:
+            how = f"killed by {signal.Signals(-code).name}"
+        else:
+            how = f"exit status {code}"
+        return f"WorkerDied: the worker process running this run died ({how})"
+
+    def stop(self) -> None:
+        with contextlib.suppress(OSError):  # a dead worker's pipe is closed
+            self.connection.send(None)
+        self.connection.close()
+        self.process.join(timeout=5)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+
+
+def _serve(connection, parent: int) -> None:
+    """A worker's life: runs until told to stop, its parent dies, or Ctrl-C."""
+    _die_with(parent)
+    prepare_worker()
+    try:
+        while (spec := connection.recv()) is not None:
+            connection.send(run_spec(spec))
+    except (EOFError, KeyboardInterrupt, BrokenPipeError):
+        pass
+
+
+def _die_with(parent: int) -> None:
+    """No worker outlives the sweep's main process, however that process ends."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    else:
+        threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    if os.getppid() != parent:  # it died before we asked to follow it
+        os._exit(1)
+
+
+def _watch_parent(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(1)
+
+
+ADDRESS = re.compile(r"^(inproc://\S+|((tcp|tls|ws|wss|ucx)://)?(\[[0-9a-fA-F:.]+\]|[\w.-]+):\d+)$")
+
+
+def connect_dask(address: str):
+    """A client of the Dask scheduler at `address`; InputError (one line) when the address
+    is malformed or nothing answers within DASK_CONNECT_TIMEOUT seconds."""
     from distributed import Client
-    from distributed import as_completed as dask_completed
 
-    with Client(address) as client:
-        client.run(limit_threads)
-        futures = {client.submit(run_spec, spec, pure=False): spec for spec in specs}
-        for future in dask_completed(futures):
-            on_row(_dask_row(future, futures[future]))
+    if not ADDRESS.match(address):
+        raise InputError(f"--dask {address}: expected a scheduler address like tcp://HOST:PORT")
+    try:
+        client = Client(address, timeout=DASK_CONNECT_TIMEOUT)
+    except (OSError, TimeoutError, ValueError) as e:
+        reason = " ".join(str(e).split()) or type(e).__name__
+        raise InputError(f"--dask {address}: no Dask scheduler answered ({reason})") from None
+    client.run(prepare_worker)
+    return client
+
+
+def run_on_dask(specs: Iterator[RunSpec], client, on_row: Callable[[dict], None]) -> None:
+    """Runs on the client's cluster (hrc_drake installed on its workers), a window of
+    DASK_IN_FLIGHT runs at a time; a lost worker's run is a failed row (Dask retries a
+    task whose worker died a few times first)."""
+    from distributed import as_completed
+
+    spec_of = {}
+
+    def submit(spec):
+        future = client.submit(run_spec, spec, pure=False)
+        spec_of[future] = spec
+        return future
+
+    first = [submit(spec) for _, spec in zip(range(DASK_IN_FLIGHT), specs, strict=False)]
+    running = as_completed(first)
+    for future in running:
+        on_row(_dask_row(future, spec_of.pop(future)))
+        spec = next(specs, None)
+        if spec is not None:
+            running.add(submit(spec))
 
 
 def _dask_row(future, spec: RunSpec) -> dict:

@@ -5,6 +5,7 @@ a typo is one clear line (InputError) before any run starts. Several values make
 axis; several `--set` options make the Cartesian product.
 """
 
+import contextlib
 import dataclasses
 import difflib
 import itertools
@@ -13,7 +14,7 @@ import typing
 
 import yaml
 
-from hrc_drake.yaml_check import InputError, schema_fields
+from hrc_drake.yaml_check import InputError, a_kind, schema_fields
 
 SCALARS = (bool, int, float, str)
 Overrides = tuple[tuple[str, typing.Any], ...]
@@ -45,7 +46,7 @@ def field_type(schema, path: str):
     """The type of the scalar field at dotted `path`; InputError naming the bad part."""
     kind = schema
     for depth, name in enumerate(path.split(".")):
-        fields = schema_fields(kind)
+        fields = schema_fields(_options(kind)[0])
         if fields is None:
             done = ".".join(path.split(".")[:depth])
             raise InputError(f"--set {path}: '{done}' has no fields")
@@ -65,17 +66,20 @@ def convert(path: str, kind, text: str):
         return None
     scalar = _scalar(kind)
     value = yaml.safe_load(text) if scalar is not str else text
+    if scalar is float and isinstance(value, str):
+        with contextlib.suppress(ValueError):  # 1e3 is text to YAML 1.1, a number to people
+            value = float(value)
     if scalar is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if not isinstance(value, scalar) or (scalar is int and isinstance(value, bool)):
-        raise InputError(f"--set {path}: '{text}' is not a {scalar.__name__}")
+        raise InputError(f"--set {path}: '{text}' is not {a_kind(scalar)}")
     return value
 
 
 def apply(scenario, overrides: Overrides):
     """A copy of the scenario dataclass with the dotted fields replaced."""
     for path, value in overrides:
-        scenario = _replace(scenario, path.split("."), value)
+        scenario = _replace(scenario, path.split("."), value, path)
     return scenario
 
 
@@ -84,9 +88,11 @@ def label(overrides: Overrides) -> str:
     return " ".join(f"{path}={value}" for path, value in overrides)
 
 
-def _replace(obj, names: list[str], value):
+def _replace(obj, names: list[str], value, path: str):
     head, rest = names[0], names[1:]
-    new = _replace(getattr(obj, head), rest, value) if rest else value
+    if rest and getattr(obj, head) is None:
+        raise InputError(f"--set {path}: the scenario has no '{head}' section to change")
+    new = _replace(getattr(obj, head), rest, value, path) if rest else value
     return dataclasses.replace(obj, **{head: new})
 
 

@@ -51,12 +51,17 @@ class Solid:
 
     def distance_to(self, p_O: np.ndarray) -> float:
         """Distance from a point (object frame) to the solid; zero inside."""
+        return max(self.signed_distance_to(p_O), 0.0)
+
+    def signed_distance_to(self, p_O: np.ndarray) -> float:
+        """Distance from a point (object frame) to the solid's surface, negative inside."""
         if self.shape == BOX:
-            outside = np.maximum(np.abs(p_O) - np.asarray(self.size) / 2, 0.0)
-            return float(np.linalg.norm(outside))
-        radial = max(math.hypot(p_O[0], p_O[1]) - self.size[0], 0.0)
-        axial = max(abs(p_O[2]) - self.size[1] / 2, 0.0)
-        return math.hypot(radial, axial)
+            beyond = np.abs(p_O) - np.asarray(self.size) / 2
+        else:
+            radial = math.hypot(p_O[0], p_O[1]) - self.size[0]
+            beyond = np.array([radial, abs(p_O[2]) - self.size[1] / 2])
+        outside = float(np.linalg.norm(np.maximum(beyond, 0.0)))
+        return outside + min(float(beyond.max()), 0.0)
 
     def on_top_face(self, p_O: np.ndarray, tolerance: float) -> bool:
         """Whether a point (object frame) lies on the top face, within `tolerance` of it."""

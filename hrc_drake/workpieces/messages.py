@@ -8,7 +8,9 @@ too far, too heavy) or `rejected` (meaningless: unknown type, holder or area), f
 vocabulary of `hrc_drake.messages`.
 
 Holders are the robot's vacuum cup (grasp frame: the tool's `tcp`, z out of the cup) and the
-person's hands. An object's frame is at its centre; its grasp surface is its top face.
+person's hands: one hand holds in a level frame at its grasp point turned with the person,
+both hands in a level frame at their grasp points' midpoint, y from the right hand to the
+left. An object's frame is at its centre; the cup's grasp surface is its top face.
 """
 
 import math
@@ -35,7 +37,8 @@ Attributes = dict[str, float | bool | str]
 
 @dataclass(frozen=True)
 class HandPoses:
-    """The person's hand grasp frames in the world and when they were sampled (None: now).
+    """The person's hand grasp frames in the world, when they were sampled (None: now) and
+    which way the person faces (yaw, rad).
 
     A person updated at a lower rate than Workpieces gives its sample time, so that held
     objects are extrapolated from the right instant instead of moving in steps."""
@@ -43,6 +46,7 @@ class HandPoses:
     left: RigidTransform
     right: RigidTransform
     time: float | None = None
+    heading: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -78,6 +82,8 @@ class Attach:
     holder: str
     object_id: int | None = None
     max_mass: float = math.inf
+    center: tuple[float, float, float] | None = None
+    """Where the object's centre goes in the holder's frame (None: where it is now)."""
 
 
 @dataclass(frozen=True)
@@ -101,6 +107,8 @@ class Transfer:
     object_id: int
     to_holder: str
     max_mass: float = math.inf
+    center: tuple[float, float, float] | None = None
+    """Where the object's centre goes in the receiver's frame (None: where it is now)."""
 
 
 WorkpiecesCommand = Spawn | Despawn | Attach | Release | Transfer
@@ -139,6 +147,9 @@ class ObjectStatus:
     attributes: Attributes
     mass: float = 0.0
     geometry_id: GeometryId | None = None
+    size: tuple[float, ...] = ()
+    """Box extents (x, y, z) or cylinder (radius, length), as the object type gives them."""
+    shape: str = "box"
 
     @property
     def supporting_object(self) -> int | None:

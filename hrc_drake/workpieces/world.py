@@ -147,13 +147,18 @@ class World:
         return self
 
 
-def holder_frames(tool: RigidTransform | None, hands: HandPoses | None) -> dict[str, Sampled]:
-    """Grasp frame of every present holder; both hands hold at their midpoint, facing away
-    from the body (x), y from the right hand to the left, z up. The poses are copied: an
-    input port's value may be overwritten in place when it is evaluated again."""
+def holder_frames(
+    tool: RigidTransform | None, hands: HandPoses | tuple | None
+) -> dict[str, Sampled]:
+    """Grasp frame of every present holder. The person's frames are level (objects in the
+    hands stay upright): one hand's at its grasp point facing the person's heading, both
+    hands' at their midpoint, facing away from the body (x), y from the right hand to the
+    left, z up. `hands` is empty or None while the person has none. The poses are copied:
+    an input port's value may be overwritten in place when it is evaluated again."""
     frames = {} if tool is None else {ROBOT: (RigidTransform(tool), None)}
-    if hands is not None:
-        left, right = RigidTransform(hands.left), RigidTransform(hands.right)
+    if hands:
+        facing = RotationMatrix.MakeZRotation(hands.heading)
+        left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
         both = _between(left, right)
         frames |= {
             h: (X, hands.time) for h, X in zip(PERSON_HOLDERS, (left, right, both), strict=True)
@@ -195,6 +200,10 @@ class Workcell:
         self.belts = {name: Belt.of(name, c) for name, c in config.conveyors.items()}
         belts = [belt.surface for belt in self.belts.values()]
         self.supports = Supports([*surfaces, *belts], belts=set(self.belts))
+
+    def solids(self) -> dict[str, Solid]:
+        """Each object type's shape, by type name."""
+        return {name: kind.solid for name, kind in self.kinds.items()}
 
     def random(self, *key: int) -> np.random.Generator:
         """A Generator of its own for `key` below the workpieces' seed."""
@@ -246,6 +255,8 @@ class Workcell:
                 attributes=p.attributes,
                 mass=self.kinds[p.type].mass,
                 geometry_id=geometry_ids[p.slot] if geometry_ids else None,
+                size=p.solid.size,
+                shape=p.solid.shape,
             )
             for p in world.pieces.values()
         )
@@ -431,7 +442,7 @@ class _Step:
         problem = problem or self._mass_problem(piece, command.max_mass)
         if problem:
             return _result(command, FAILED, problem, command.object_id)
-        self._hold(piece, holder)
+        self._hold(piece, holder, command.center)
         return _result(command, SUCCEEDED, object_id=piece.id)
 
     def _holder_problem(self, holder: str) -> str:
@@ -529,11 +540,17 @@ class _Step:
         solid = self.cell.kinds[piece.type].solid
         return solid.distance_to(piece.pose.inverse() @ self.holders[holder].translation())
 
-    def _hold(self, piece: Piece, holder: str) -> None:
+    def _hold(self, piece: Piece, holder: str, center=None) -> None:
+        """The holder takes the piece: it keeps its orientation to the holder's frame from
+        now on, its centre where it is or at `center` (holder frame) when given."""
         X_WH = self.holders[holder]
-        V = velocity_at(self.twists[holder], X_WH.translation(), piece.pose.translation())
+        grip = X_WH.inverse() @ piece.pose
+        if center is not None:
+            grip = RigidTransform(grip.rotation(), np.asarray(center, dtype=float))
+        X_WO = X_WH @ grip
+        V = velocity_at(self.twists[holder], X_WH.translation(), X_WO.translation())
         self.pieces[piece.id] = dataclasses.replace(
-            piece, holder=holder, grip=X_WH.inverse() @ piece.pose, support=None, velocity=V
+            piece, pose=X_WO, holder=holder, grip=grip, support=None, velocity=V
         )
 
     # --- motion of free pieces ------------------------------------------------------------

@@ -42,6 +42,27 @@ def test_expressions(code, expected):
     assert run(code)[0] == expected
 
 
+@pytest.mark.parametrize(
+    ("code", "expected"),
+    [
+        ("10 - 4 + 2", 8),  # left-associative: (10 - 4) + 2 (BT.CPP 4.8: 10 - (4 + 2))
+        ("8 / 4 * 2", 4),
+        ("1 || 0 && 0", True),  # && binds tighter than || (BT.CPP 4.8: left to right)
+        ("0 && 1 || 1", True),
+        ("1 | 2 == 3", True),  # comparisons bind looser than bitwise operators
+        ("6 & 3 == 2", True),
+        ("1 | 6 ^ 4", 3),  # | and ^ on one level, left to right: (1 | 6) ^ 4
+    ],
+)
+def test_operator_precedence_and_associativity_as_btcpp_4_9(code, expected):
+    assert run(code)[0] == expected
+
+
+def test_concatenation_binds_like_addition():
+    with pytest.raises(BTError, match="operator '\\+' not permitted on 'a1' and 1"):
+        run("'a' .. 1 + 1")  # ('a' .. 1) + 1, as BT.CPP 4.9
+
+
 def test_assignments_create_and_update_entries():
     result, blackboard = run("a := 1; b := a + 1; a += 10; b *= 2; s := 'x'; s += 'y'")
     assert (blackboard.get("a"), blackboard.get("b"), blackboard.get("s")) == (11, 4, "xy")

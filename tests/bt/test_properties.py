@@ -19,6 +19,15 @@ LEAVES = st.sampled_from(
     ]
 )
 
+CONDITIONS = st.sampled_from(
+    [
+        "<AlwaysFailure/>",
+        "<RandomResult/>",
+        '<ScriptCondition code="n == 1"/>',
+        '<AsyncMock duration="1" result="FAILURE"/>',
+    ]
+)
+
 DECORATORS = st.sampled_from(
     [
         "Inverter",
@@ -59,9 +68,10 @@ def _extend(children):
     composite = st.builds(_element, CONTROLS, st.lists(children, min_size=2, max_size=4))
     decorated = st.builds(lambda tag, child: _element(tag, [child]), DECORATORS, children)
     branching = st.builds(
-        _element,
+        lambda tag, condition, branches: _element(tag, [condition, *branches]),
         st.sampled_from(["IfThenElse", "WhileDoElse"]),
-        st.lists(children, min_size=2, max_size=3),
+        CONDITIONS,  # a skipped condition is an error, as in BT.CPP
+        st.lists(children, min_size=1, max_size=2),
     )
     switch = st.builds(
         lambda kids: _element('Switch2 variable="{n}" case_1="1" case_2="2"', kids),

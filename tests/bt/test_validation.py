@@ -123,5 +123,6 @@ def test_malformed_xml_and_unknown_main_tree(tmp_path):
     assert messages(path) == [f"{path}:4: malformed XML: mismatched tag"]
     good = write(tmp_path, "<AlwaysSuccess/>")
     assert [e.message for e in validate(good, registry(), tree_id="Mian")] == [
-        "<unknown>:0: tree 'Mian': no BehaviorTree with ID 'Mian' (did you mean 'Main'?)"
+        f"{good}:1: tree 'Mian': no BehaviorTree with ID 'Mian' (trees: Main) "
+        "(did you mean 'Main'?)"
     ]

@@ -4,7 +4,6 @@ import itertools
 
 import numpy as np
 import pytest
-from pydrake.common.value import AbstractValue
 from pydrake.geometry import SceneGraph
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
@@ -20,6 +19,8 @@ from hrc_drake.human.messages import (
 )
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at
 from hrc_drake.human.skeleton import REGIONS
+from hrc_drake.messages import NO_COMMANDS
+from hrc_drake.ports import message_value
 
 SAMPLE = 1.0 / 60.0
 
@@ -30,10 +31,10 @@ class ScriptedCommands(LeafSystem):
     def __init__(self, schedule):
         LeafSystem.__init__(self)
         self._schedule = sorted(schedule, key=lambda item: item[0])
-        self.DeclareAbstractOutputPort("command", lambda: AbstractValue.Make(None), self._calc)
+        self.DeclareAbstractOutputPort("command", message_value, self._calc)
 
     def _calc(self, context, output):
-        latest = None
+        latest = NO_COMMANDS
         for time, command in self._schedule:
             if context.get_time() >= time:
                 latest = command

@@ -104,7 +104,7 @@ PUBLISHED_GAIT = {
     "hip_flexion": [(0, 25), (50, -10), (60, 0), (85, 30)],
     "knee_flexion": [(0, 0), (12, 17.5), (60, 40), (72, 65)],
 }
-"""Key points from facts/human.md (% of the cycle from heel strike, degrees)."""
+"""Key points from docs/human-body.md (% of the cycle from heel strike, degrees)."""
 
 
 @pytest.mark.parametrize("joint", sorted(PUBLISHED_GAIT))

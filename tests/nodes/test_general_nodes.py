@@ -1,5 +1,5 @@
-"""The original's general nodes: random poses over areas, weighted choices, random failure,
-resumable sequences — checked statistically and tick by tick."""
+"""The thesis system's general nodes (docs/thesis-system.md): random poses over areas, weighted
+choices, random failure, resumable sequences — checked statistically and tick by tick."""
 
 import numpy as np
 import pytest

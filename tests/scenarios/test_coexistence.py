@@ -10,9 +10,11 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
+from realism_checks import assert_holds_what_it_carries
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
@@ -50,6 +52,8 @@ class Outcome:
     events: list[TaskEvent]
     """Both trees' task events in time order."""
     safety: SafetyTotals
+    realism: dict
+    """The run's realism audit (report.json's `realism`)."""
 
     def named(self, *names: str) -> list[TaskEvent]:
         return [e for e in self.events if e.name in names]
@@ -90,6 +94,7 @@ def simulate(seed: int, duration: float) -> Outcome:
         samples=samples,
         events=sorted(events, key=lambda e: e.time),
         safety=status("safety_status").totals,
+        realism=realism_metrics(status("realism")),
     )
 
 
@@ -187,6 +192,10 @@ def test_short_run_person_adds_a_part_the_robot_then_takes(short_run):
         if sample.time > added[0].time
         for o in sample.objects
     ), "the robot never took the part the person added"
+
+
+def test_short_run_person_holds_what_they_carry(short_run):
+    assert_holds_what_it_carries(short_run.realism)
 
 
 def test_short_run_is_safe(short_run):

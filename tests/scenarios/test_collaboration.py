@@ -11,9 +11,11 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
+from realism_checks import assert_holds_what_it_carries
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
@@ -45,6 +47,8 @@ class Outcome:
     safety: SafetyTotals
     called: bool
     pallet: Area
+    realism: dict
+    """The run's realism audit (report.json's `realism`)."""
 
     def named(self, *names: str) -> list[TaskEvent]:
         return [e for e in self.events if e.name in names]
@@ -89,6 +93,7 @@ def simulate(seed: int, duration: float) -> Outcome:
         safety=diagram.GetOutputPort("safety_status").Eval(context).totals,
         called=diagram.GetOutputPort("human_status").Eval(context).called,
         pallet=scenario.area("pallet"),
+        realism=realism_metrics(diagram.GetOutputPort("realism").Eval(context)),
     )
 
 
@@ -191,6 +196,10 @@ def test_short_run_person_straightens_the_box_whose_grip_failed_and_robot_retrie
     assert failed.time < regrip_call.time < straightened.time
     retry = next(e for e in short_run.events if e.agent == "robot" and e.time > straightened.time)
     assert (retry.name, int(retry.value)) in {("grip_failed", third.id), ("box_unloaded", third.id)}
+
+
+def test_short_run_person_holds_what_they_carry(short_run):
+    assert_holds_what_it_carries(short_run.realism)
 
 
 def test_short_run_is_consistent_and_safe(short_run):

@@ -12,9 +12,11 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
+from realism_checks import assert_holds_what_it_carries
 
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.builder import build_diagram
+from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import Scenario, load_scenario
@@ -45,6 +47,8 @@ class Outcome:
     max_in_reject_zone: int = 0
     events: list[TaskEvent] = field(default_factory=list)
     safety: SafetyTotals | None = None
+    realism: dict = field(default_factory=dict)
+    """The run's realism audit (report.json's `realism`)."""
 
     def count(self, name: str) -> int:
         return sum(e.name == name for e in self.events)
@@ -93,6 +97,7 @@ def simulate(duration: float, seed: int) -> Outcome:
         key=lambda e: e.time,
     )
     outcome.safety = diagram.GetOutputPort("safety_status").Eval(context).totals
+    outcome.realism = realism_metrics(diagram.GetOutputPort("realism").Eval(context))
     return outcome
 
 
@@ -151,6 +156,7 @@ def test_short_run_sorts_parts_and_fills_the_reject_zone():
     assert outcome.count("part_scrapped") >= 1
     assert outcome.count("speed_reduced") >= 1
     assert outcome.count("sort_failed") == 0
+    assert_holds_what_it_carries(outcome.realism)
 
 
 @pytest.mark.long

@@ -14,7 +14,7 @@ from workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
-from hrc_drake.messages import SUCCEEDED
+from hrc_drake.messages import NO_COMMANDS, SUCCEEDED
 from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import RobotConfig
 from hrc_drake.station_models import TOOL_MODEL, add_robot
@@ -39,10 +39,10 @@ def station():
     X_WT = tcp.CalcPoseInWorld(plant.CreateDefaultContext())
     under_cup = RigidTransform(X_WT.translation() - [0.0, 0.0, PART_HEIGHT / 2])
     workpieces = add_workpieces(builder, scene_graph, plant, config_with(), tool_frame=tcp)
-    spawn = builder.AddSystem(TimedValue(script([(0.0, Spawn(1, "part", under_cup))]), None))
+    spawn = builder.AddSystem(TimedValue(script([(0.0, Spawn(1, "part", under_cup))]), NO_COMMANDS))
     builder.Connect(spawn.get_output_port(), workpieces.GetInputPort("robot_tree_command"))
     grip = Attach(seq=5, holder=ROBOT, max_mass=3.0)
-    vacuum = builder.AddSystem(TimedValue(script([(0.005, grip)]), None))
+    vacuum = builder.AddSystem(TimedValue(script([(0.005, grip)]), NO_COMMANDS))
     builder.Connect(vacuum.get_output_port(), workpieces.GetInputPort("robot_gripper_command"))
     diagram = builder.Build()
     simulator = Simulator(diagram)

@@ -20,6 +20,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
+from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
 from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
@@ -54,11 +55,11 @@ class TimedValue(LeafSystem):
 
 
 def script(timed_commands: list[tuple[float, object]]) -> Callable[[float], object]:
-    """The latest command whose time has come, or None."""
+    """The latest command whose time has come, or none yet."""
 
     def latest(t: float):
         sent = [command for time, command in timed_commands if time <= t]
-        return sent[-1] if sent else None
+        return sent[-1] if sent else NO_COMMANDS
 
     return latest
 
@@ -158,7 +159,7 @@ def build_rig(
     plant.Finalize()
     workpieces = add_workpieces(builder, scene_graph, plant, config, seed, areas=areas)
     for issuer, timed in (commands or {}).items():
-        source = builder.AddSystem(TimedValue(script(timed), None))
+        source = builder.AddSystem(TimedValue(script(timed), NO_COMMANDS))
         builder.Connect(source.get_output_port(), workpieces.GetInputPort(f"{issuer}_command"))
     holders = {"tool_pose": (tool, RigidTransform()), "human_hands": (hands, None)}
     for port, (value_at, model) in holders.items():

@@ -1,0 +1,189 @@
+"""Grasps from an object's geometry: which hands, where the palms go, how it is carried.
+
+A part that fits in one hand and is light is taken with the right hand, the palm on its
+right-hand face and the fingers round it; anything else with both hands, the palms on the
+two faces that face the person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
+overrides the choice; a `fragile` object always gets both hands. While held, the arms keep
+a carry posture solved for the object's size: forearms forward, the object in front of the
+belly clear of the trunk and the swinging thighs (docs/realism.md).
+
+Hand frames: the grasp frame lies just off the palm (skeleton `_frames`), so a grasp frame
+put on a face is a palm touching it, not sinking in. With the arms hanging every hand frame
+has x forward, y to the left and z up; the fingers point along -z; the left palm faces -y
+and the right palm +y (both towards the body's midline).
+"""
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from pydrake.math import RotationMatrix
+
+from hrc_drake.human.authoring import HOLD, pose_vector
+from hrc_drake.human.body import FrameTask, HumanBody
+from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Grasp, Hold
+from hrc_drake.human.skeleton import SIDES
+
+ONE_HAND_WIDTH = 0.09
+"""m: the widest a part may be across to be held in one hand, fingers round it."""
+ONE_HAND_MASS = 1.0
+"""kg: heavier parts are taken with both hands."""
+GRASP_ATTRIBUTE = "grasp"
+CARRY_HEIGHT = 1.0
+"""m: height of the palms while carrying (forearms about level for the default adult)."""
+TRUNK_CLEARANCE = 0.2
+"""m: from the pelvis axis to the near face of a carried object (the chest reaches 0.16)."""
+ONE_HAND_CARRY = (0.3, -0.12, 0.98)
+"""Where the right palm carries a part, in the standing body's frame (x forward, y left)."""
+ARM_JOINTS = ("shoulder", "elbow", "wrist")
+ORIENTATION_WEIGHT = 0.3
+"""The hands' orientation counts less than their position in the IK."""
+
+
+def grasp_hands(size, mass: float, attributes: dict) -> str:
+    """One hand or both, from the object's box extents (x, y, z), mass and attributes."""
+    chosen = attributes.get(GRASP_ATTRIBUTE)
+    if chosen in ("one_hand", "both_hands"):
+        return ONE_HAND if chosen == "one_hand" else BOTH_HANDS
+    small = min(size[0], size[1]) <= ONE_HAND_WIDTH and mass <= ONE_HAND_MASS
+    return ONE_HAND if small and not attributes.get("fragile", False) else BOTH_HANDS
+
+
+def _across(grasp: Grasp, heading: float) -> tuple[np.ndarray, float, float]:
+    """The object's horizontal axis that points most to the person's left (a unit vector
+    in the world) and the object's extents across it and along the other axis."""
+    turn = grasp.yaw - heading
+    x_is_forward = abs(math.cos(turn)) >= abs(math.sin(turn))
+    axis_yaw = grasp.yaw + (math.pi / 2 if x_is_forward else 0.0)
+    axis = np.array([math.cos(axis_yaw), math.sin(axis_yaw), 0.0])
+    left = np.array([-math.sin(heading), math.cos(heading), 0.0])
+    axis = axis if axis @ left >= 0 else -axis
+    width, depth = (grasp.size[1], grasp.size[0]) if x_is_forward else grasp.size[:2]
+    return axis, width, depth
+
+
+def hold_of(grasp: Grasp, heading: float) -> Hold:
+    """What the hands hold once they have taken `grasp` facing `heading`."""
+    _, width, depth = _across(grasp, heading)
+    return Hold(grasp.hands, (depth, width, grasp.size[2]))
+
+
+HAND_AXES = {
+    "sides_fingers_down": np.eye(3),
+    "sides_fingers_forward": np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], dtype=float),
+}
+"""Hand orientations in the person's heading frame (columns: the hand frame's x, y, z):
+palms on an object's sides, reaching down to it or holding it in front."""
+
+
+def _facing(heading: float, hand: str) -> RotationMatrix:
+    return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(HAND_AXES[hand])
+
+
+def palm_targets(grasp: Grasp, heading: float) -> dict:
+    """Where each taking hand's grasp frame goes (position, orientation) to take `grasp`:
+    on the faces that face the person's sides (one hand: the right one only)."""
+    center = np.array(grasp.center, dtype=float)
+    axis, width, _ = _across(grasp, heading)
+    return _on_sides(grasp.hands, center, axis, width, _facing(heading, "sides_fingers_down"))
+
+
+def release_targets(hold: Hold, center, heading: float) -> dict:
+    """Where each holding hand's grasp frame goes to put the held object's centre at
+    `center` (facing `heading`)."""
+    left = np.array([-math.sin(heading), math.cos(heading), 0.0])
+    R = _facing(heading, "sides_fingers_down")
+    return _on_sides(hold.hands, np.asarray(center, dtype=float), left, hold.size[1], R)
+
+
+def reach_target(body: HumanBody, point, heading: float) -> dict:
+    """The right hand reaching to `point` on a surface: the hand level, fingers forward,
+    its little-finger edge resting on the point rather than the fingers sinking in."""
+    position = np.asarray(point, dtype=float) + [0.0, 0.0, hand_half_breadth(body)]
+    return {"right": (position, _facing(heading, "sides_fingers_forward"))}
+
+
+def hand_half_breadth(body: HumanBody) -> float:
+    """Half the hand's breadth (its collision box across the palm), from the skeleton."""
+    (hand,) = body.skeleton.body("right_hand").collisions
+    return hand.shape.size[0] / 2
+
+
+def _on_sides(hands: str, center, left, width: float, R) -> dict:
+    right = {"right": (center - left * width / 2, R)}
+    return right if hands == ONE_HAND else {"left": (center + left * width / 2, R), **right}
+
+
+def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
+    """Where the held object's centre sits in its holder's frame (hrc_drake.workpieces: the
+    palms' midpoint for both hands, a level frame at the palm for one)."""
+    return (0.0, hold.size[1] / 2, 0.0) if hold.hands == ONE_HAND else (0.0, 0.0, 0.0)
+
+
+def arm_indices(body: HumanBody, sides) -> np.ndarray:
+    return np.array(
+        [
+            i
+            for i, name in enumerate(body.joint_names)
+            if any(name.startswith(f"{side}_{joint}") for side in sides for joint in ARM_JOINTS)
+        ]
+    )
+
+
+def holding_sides(hold: Hold) -> tuple[str, ...]:
+    return SIDES if hold.hands == BOTH_HANDS else ("right",)
+
+
+@dataclass(frozen=True, eq=False)
+class CarryArms:
+    """The arm joints of a carry posture: laid over any pose, they keep the held object in
+    front of the chest whatever the legs and trunk do."""
+
+    indices: np.ndarray
+    values: np.ndarray
+
+    def over(self, q: np.ndarray, weight: float = 1.0) -> np.ndarray:
+        """`q` with its arms moved `weight` of the way to the carry posture."""
+        if weight <= 0.0:
+            return q
+        held = q.copy()
+        held[self.indices] += weight * (self.values - q[self.indices])
+        return held
+
+
+def carry_arms(body: HumanBody, hold: Hold) -> CarryArms:
+    return _carry_arms(body, hold.hands, tuple(round(v, 4) for v in hold.size))
+
+
+@lru_cache(maxsize=64)
+def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
+    """Solved once per object size: palms on the object's faces in front of the belly."""
+    depth, width, height = size
+    if hands == ONE_HAND:
+        targets = {"right": (np.array(ONE_HAND_CARRY), _facing(0.0, "sides_fingers_forward"))}
+    else:
+        forward = TRUNK_CLEARANCE + depth / 2
+        z = max(CARRY_HEIGHT, 0.8 + height / 2)
+        R = _facing(0.0, "sides_fingers_forward")
+        targets = {
+            "left": (np.array([forward, width / 2, z]), R),
+            "right": (np.array([forward, -width / 2, z]), R),
+        }
+    q = pose_vector(body, HOLD)
+    free = arm_indices(body, tuple(targets))
+    solved = body.solve(q, hand_tasks(targets), free, iterations=100, posture_weight=1e-4)
+    return CarryArms(free, solved[free])
+
+
+def hand_tasks(targets: dict) -> list[FrameTask]:
+    """IK tasks putting each side's grasp frame at its (position, orientation) target."""
+    return [
+        FrameTask(
+            f"{side}_hand_grasp",
+            position,
+            rotation,
+            rotation_weights=(ORIENTATION_WEIGHT,) * 3,
+        )
+        for side, (position, rotation) in targets.items()
+    ]

@@ -1,0 +1,527 @@
+"""Bad scenario files: `hrc-drake validate` answers each with one line naming the file,
+the line and the field, and exit status 2 (none of these cases simulates)."""
+
+import pytest
+from corpus_helpers import (
+    Case,
+    assert_one_line_error,
+    expected_place,
+    hrc_drake,
+    write_workspace,
+)
+
+DIRECTIVES_LOOP = """\
+directives:
+  - add_directives: {file: "file://{dir}/loop.yaml"}
+"""
+DIRECTIVES_UNKNOWN_WELD = """\
+directives:
+  - add_model: {name: bin, file: package://hrc_drake_models/cell/bin.sdf}
+  - add_weld: {parent: world, child: bni::body}
+"""
+
+S = "scenario.yaml"
+CASES = {
+    # --- the schema: fields, types, YAML ---
+    "missing name": Case(
+        S, "name: corpus\n", "", ("name: required field is missing",), "description"
+    ),
+    "wrong type": Case(
+        S, "duration: 0.2", "duration: five", ("duration: 'five' is not a float",), "five"
+    ),
+    "unknown field": Case(S, "time_step:", "timestep:", ("did you mean 'time_step'?",), "timestep"),
+    "unknown nested field": Case(
+        S, "  v_h: 1.6", "  vh: 1.6", ("safety.vh: unknown field",), "vh:"
+    ),
+    "malformed yaml": Case(S, "seed: 0", "seed: [0", ("malformed YAML",)),
+    "tab indentation": Case(S, "  height: 1.75", "\theight: 1.75", ("malformed YAML",)),
+    "list for mapping": Case(S, "human:\n  height", "human:\n  - height", ("malformed YAML",)),
+    "document is a list": Case(S, "name: corpus\n", "- name: corpus\n", ("malformed YAML",)),
+    "scalar for mapping": Case(
+        S,
+        "  ready: [0, -45",
+        "  ready: 0\n  x: [0, -45",
+        ("configurations_deg.ready: expected a list",),
+        "ready: 0",
+    ),
+    "mapping for number": Case(
+        S, "seed: 0", "seed: {a: 1}", ("seed: expected a single int",), "seed:"
+    ),
+    "bool word for float": Case(
+        S, "  mass: 75.0", "  mass: yes", ("human.mass: 'yes' is not a float",), "mass: yes"
+    ),
+    "duplicate key": Case(
+        S, "seed: 0\n", "seed: 0\nseed: 3\n", ("seed: given twice (first on line 3)",), "seed: 3"
+    ),
+    "duplicate nested key": Case(
+        S, "  v_h: 1.6\n", "  v_h: 1.6\n  v_h: 2.0\n", ("safety.v_h: given twice",), "v_h: 2.0"
+    ),
+    "location defined twice": Case(
+        S,
+        "  door:",
+        "  pick_spot: {translation: [0, 0, 0]}\n  door:",
+        ("locations.pick_spot: given twice",),
+        "pick_spot: {translation: [0, 0, 0]}",
+    ),
+    "area defined twice": Case(
+        S,
+        "  table: [[-0.6",
+        "  table: [[0, 0], [1, 0], [0, 1]]\n  table: [[-0.6",
+        ("areas.table: given twice",),
+        "table: [[-0.6",
+    ),
+    # --- numbers: finite, in range ---
+    "time_step inf": Case(
+        S,
+        "time_step: 0.001",
+        "time_step: .inf",
+        ("time_step: must be a finite number",),
+        "time_step",
+    ),
+    "time_step 10 s": Case(
+        S, "time_step: 0.001", "time_step: 10", ("time_step: must lie within",), "time_step"
+    ),
+    "time_step zero": Case(
+        S, "time_step: 0.001", "time_step: 0", ("time_step: must lie within",), "time_step"
+    ),
+    "time_step negative": Case(
+        S, "time_step: 0.001", "time_step: -0.001", ("time_step: must lie within",), "time_step"
+    ),
+    "duration zero": Case(
+        S, "duration: 0.2", "duration: 0", ("duration: must be positive",), "duration"
+    ),
+    "duration negative": Case(
+        S, "duration: 0.2", "duration: -5", ("duration: must be positive",), "duration"
+    ),
+    "duration nan": Case(
+        S, "duration: 0.2", "duration: .nan", ("duration: must be a finite number",), "duration"
+    ),
+    "duration inf": Case(
+        S, "duration: 0.2", "duration: .inf", ("duration: must be a finite number",), "duration"
+    ),
+    "seed negative": Case(S, "seed: 0", "seed: -1", ("seed: must lie within 0..",), "seed"),
+    "seed too large": Case(
+        S, "seed: 0", "seed: 99999999999999999999999", ("seed: must lie within",), "seed"
+    ),
+    "seed fraction": Case(S, "seed: 0", "seed: 1.5", ("seed: '1.5' is not an int",), "seed"),
+    "update_period zero": Case(
+        S,
+        "update_period: 0.01",
+        "update_period: 0",
+        ("robot.motion.update_period: must be positive",),
+        "update_period",
+    ),
+    "tool speed negative": Case(
+        S,
+        "tool_speed_limit: 1.0",
+        "tool_speed_limit: -1",
+        ("robot.motion.tool_speed_limit: must be positive",),
+        "tool_speed_limit",
+    ),
+    "safety period zero": Case(
+        S, "  period: 0.01", "  period: 0", ("safety.period: must be positive",), "  period: 0"
+    ),
+    "safety v_h negative": Case(
+        S, "  v_h: 1.6", "  v_h: -1", ("safety.v_h: must not be negative",), "v_h"
+    ),
+    "safety v_h rule unknown": Case(
+        S,
+        "  v_h: 1.6",
+        "  v_h_rule: iso13856\n  v_h: 1.6",
+        ("safety.v_h_rule: unknown value 'iso13856' (did you mean 'iso13855'?)",),
+        "v_h_rule",
+    ),
+    "safety min_scale above 1": Case(
+        S,
+        "  min_scale: 0.05",
+        "  min_scale: 2",
+        ("safety.min_scale: must lie within 0..1",),
+        "min_scale",
+    ),
+    "sensing time inf": Case(
+        S,
+        "  sensing_time: 0.08",
+        "  sensing_time: .inf",
+        ("safety.sensing_time: must be a finite number",),
+        "sensing_time",
+    ),
+    "tree period zero": Case(
+        S, "period: 0.05}", "period: 0}", ("trees.robot.period: must be positive",), "period: 0}"
+    ),
+    "publish period negative": Case(
+        S,
+        "publish_period: 0.05",
+        "publish_period: -1",
+        ("visualization.publish_period: must be positive",),
+        "publish_period",
+    ),
+    "translation inf": Case(
+        S,
+        "translation: [2.0, 3.0, 0.0]",
+        "translation: [2.0, .inf, 0.0]",
+        ("locations.door.translation[1]: must be a finite number",),
+        ".inf",
+    ),
+    "configuration nan": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [0, -45, .nan, 0, 45, 0]",
+        ("robot.configurations_deg.ready[2]: must be a finite number",),
+        ".nan",
+    ),
+    # --- Drake's schema: transforms and tags ---
+    "translation of two": Case(
+        S,
+        "translation: [-0.2, 0.42, 0.93]",
+        "translation: [-0.2, 0.42]",
+        ("locations.pick_spot.translation: needs 3 numbers, got 2",),
+        "[-0.2, 0.42]",
+    ),
+    "translation of four": Case(
+        S,
+        "translation: [0.0, 0.0, 0.8]",
+        "translation: [0.0, 0.0, 0.8, 1]",
+        ("robot.base_pose.translation: needs 3 numbers, got 4",),
+        "0.8, 1",
+    ),
+    "rpy of two": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: [0, -90]",
+        ("locations.door.rotation.deg: needs 3 numbers, got 2",),
+        "deg: [0, -90]",
+    ),
+    "mistyped rpy tag": Case(
+        S,
+        "!Rpy {deg",
+        "!Rpyy {deg",
+        ("locations.door.rotation: unknown tag '!Rpyy'", "!Rpy"),
+        "!Rpyy",
+    ),
+    "text in translation": Case(
+        S,
+        "translation: [0.0, 0.0, 0.8]",
+        "translation: [0.0, a, 0.8]",
+        ("robot.base_pose.translation[1]: 'a' is not a float",),
+        "[0.0, a, 0.8]",
+    ),
+    "unknown field in rpy": Case(
+        S,
+        "!Rpy {deg: [0, 0, -90]}",
+        "!Rpy {deg: [0, 0, -90], yaw: 1}",
+        ("locations.door.rotation.yaw: unknown field",),
+        "yaw: 1",
+    ),
+    "random location": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: !UniformVector {min: [0, 0, 0], max: [0, 0, 90]}",
+        ("locations.door: must be a fixed pose",),
+        "  door:",
+    ),
+    "random vector of two": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: !UniformVector {min: [0, 0], max: [0, 0, 90]}",
+        ("locations.door.rotation.deg.min: needs 3 numbers, got 2",),
+        "UniformVector",
+    ),
+    "unknown vector tag": Case(
+        S,
+        "translation: [2.0, 3.0, 0.0]",
+        "translation: !Vector [2.0, 3.0, 0.0]",
+        ("locations.door.translation: unknown tag '!Vector' (!DeterministicVector, ",),
+        "!Vector",
+    ),
+    # --- names the scenario refers to ---
+    "unknown variant": Case(
+        S,
+        "variant: lbr_iisy3_r760",
+        "variant: lbr_iisy3_r770",
+        ("robot.variant: unknown robot variant 'lbr_iisy3_r770' (did you mean 'lbr_iisy3_r760'?)",),
+        "variant",
+    ),
+    "unknown tool": Case(
+        S,
+        "  base_pose:",
+        "  tool: hammer\n  base_pose:",
+        ("robot.tool: unknown tool 'hammer'",),
+        "hammer",
+    ),
+    "unknown initial configuration": Case(
+        S,
+        "  base_pose:",
+        "  initial_configuration: raedy\n  base_pose:",
+        ("robot.initial_configuration: unknown configuration 'raedy' (did you mean 'ready'?)",),
+        "raedy",
+    ),
+    "configuration of three joints": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [0, -45, 90]",
+        ("robot.configurations_deg.ready: needs 6 joint angles, got 3",),
+        "ready:",
+    ),
+    "location named like an area": Case(
+        S,
+        "  door:",
+        "  table: {translation: [0, 0, 0]}\n  door:",
+        ("areas.table: 'table' is already a name in locations",),
+        "  table: [[",
+    ),
+    "parameter named like a location": Case(
+        S,
+        '  speed: "0.5"',
+        '  speed: "0.5"\n  door: "x"',
+        ("parameters.door: 'door' is already a name in locations",),
+        'door: "x"',
+    ),
+    "parameter the tree cannot read": Case(
+        S,
+        'speed: "0.5"',
+        'speed: "fast"',
+        ("parameters.speed: a tree cannot read it: cannot convert 'fast'",),
+        "fast",
+    ),
+    "parameter not quoted": Case(
+        S,
+        'speed: "0.5"',
+        "speed: 0.5",
+        ("parameters.speed: '0.5' is not text: put it in quotes",),
+        "speed: 0.5",
+    ),
+    "name as a number": Case(
+        S, "name: corpus", "name: 42", ("name: '42' is not text: put it in quotes",), "name: 42"
+    ),
+    "parameter as mapping": Case(
+        S,
+        'speed: "0.5"',
+        "speed: {a: 1}",
+        ("parameters.speed: expected a single str",),
+        "speed: {a: 1}",
+    ),
+    # --- areas ---
+    "self-intersecting area": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3], [0.6, 1.1], [-0.6, 1.1]]",
+        "table: [[-0.6, 0.3], [0.6, 1.1], [0.6, 0.3], [-0.6, 1.1]]",
+        ("areas.table: not a valid polygon: its edges cross",),
+        "  table: [[",
+    ),
+    "area with 3-D points": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3]",
+        "table: [[-0.6, 0.3, 0], [0.6, 0.3]",
+        ("areas.table[0]: a point needs exactly [x, y]",),
+        "0.3, 0]",
+    ),
+    "area of two points": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3], [0.6, 1.1], [-0.6, 1.1]]",
+        "table: [[-0.6, 0.3], [0.6, 0.3]]",
+        ("areas.table: not a valid polygon: a polygon needs at least 3 points",),
+        "  table: [[",
+    ),
+    "area of zero size": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3], [0.6, 1.1], [-0.6, 1.1]]",
+        "table: [[0, 0], [1, 0], [2, 0]]",
+        ("areas.table: not a valid polygon: the polygon has zero area",),
+        "  table: [[",
+    ),
+    "area with a short point": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3]",
+        "table: [[-0.6], [0.6, 0.3]",
+        ("areas.table[0]: a point needs exactly [x, y]",),
+        "[-0.6]",
+    ),
+    # --- the person ---
+    "person too tall": Case(
+        S, "  height: 1.75", "  height: 3.0", ("human.height: must lie within",), "height"
+    ),
+    "person without mass": Case(
+        S, "  mass: 75.0", "  mass: 0", ("human.mass: must be positive",), "mass: 0"
+    ),
+    "start of two values": Case(
+        S,
+        "start: [2.0, 2.0, 180.0]",
+        "start: [2.0, 2.0]",
+        ("human.start: needs [x, y, yaw_deg]",),
+        "start:",
+    ),
+    # --- the cell's model directives ---
+    "model file not found": Case(
+        S,
+        "cell/work_table.sdf",
+        "cell/work_tabel.sdf",
+        (
+            "cell[2].add_model.file: model file ",
+            "'package://hrc_drake_models/cell/work_tabel.sdf' not found",
+        ),
+        "work_tabel",
+    ),
+    "unknown package": Case(
+        S,
+        "package://hrc_drake_models/cell/floor.sdf",
+        "package://nowhere/floor.sdf",
+        ("cell[0].add_model.file: model file 'package://nowhere/floor.sdf' not found",),
+        "nowhere",
+    ),
+    "weld to unknown model": Case(
+        S,
+        "child: floor::body",
+        "child: flor::body",
+        ("cell[1].add_weld.child: unknown model 'flor'",),
+        "flor::body",
+    ),
+    "weld to unscoped frame": Case(
+        S,
+        "child: floor::body",
+        "child: floor",
+        ("cell[1].add_weld.child: 'floor' is not a scoped frame name",),
+        "child: floor}",
+    ),
+    "weld to missing frame": Case(
+        S,
+        "child: floor::body",
+        "child: floor::nobody",
+        ("cell[1]: GetFrameByName(): There is no Frame named 'nobody' anywhere in the model",),
+        "floor::nobody",
+    ),
+    "random weld pose": Case(
+        S,
+        "X_PC: {translation: [0.0, 0.7, 0.0]}",
+        "X_PC: {translation: !UniformVector {min: [0, 0, 0], max: [1, 1, 0]}}",
+        ("cell[3].add_weld.X_PC: must be a fixed pose",),
+        "X_PC",
+    ),
+    "model name used twice": Case(
+        S,
+        "{name: work_table,",
+        "{name: floor,",
+        ("cell[2].add_model.name: model name 'floor' is used twice",),
+        "name: floor, file: package://hrc_drake_models/cell/work",
+    ),
+    "model named like the robot": Case(
+        S,
+        "{name: work_table,",
+        "{name: iisy,",
+        ("cell[2].add_model.name: model name 'iisy' is used twice",),
+        "name: iisy",
+    ),
+    "model without a name": Case(
+        S,
+        "{name: work_table, file",
+        "{file",
+        ("cell[2].add_model.name: a model needs a name",),
+        "- add_model: {file",
+    ),
+    "directives file not found": Case(
+        S,
+        "cell:\n",
+        'cell:\n  - add_directives: {file: "file://{dir}/missing.yaml"}\n',
+        ("cell[0].add_directives.file: directives file", "not found"),
+        "missing.yaml",
+    ),
+    "directives file includes itself": Case(
+        S,
+        "cell:\n",
+        'cell:\n  - add_directives: {file: "file://{dir}/loop.yaml"}\n',
+        (
+            "{dir}/loop.yaml:2: directives[0].add_directives.file: ",
+            "directives files include each other in a loop: loop.yaml -> loop.yaml",
+        ),
+        None,
+        {"loop.yaml": DIRECTIVES_LOOP},
+    ),
+    "included directives weld to unknown model": Case(
+        S,
+        "cell:\n",
+        'cell:\n  - add_directives: {file: "file://{dir}/inner.yaml"}\n',
+        ("{dir}/inner.yaml:3: directives[1].add_weld.child: unknown model 'bni'",),
+        None,
+        {"inner.yaml": DIRECTIVES_UNKNOWN_WELD},
+    ),
+    "unknown directive": Case(
+        S,
+        "  - add_weld: {parent: world, child: floor::body}",
+        "  - add_wled: {parent: world, child: floor::body}",
+        ("cell[1].add_wled: unknown field (did you mean 'add_weld'?)",),
+        "add_wled",
+    ),
+    # --- workpieces and trees ---
+    "unknown shape": Case(
+        S,
+        "{shape: box,",
+        "{shape: cube,",
+        ("workpieces.types.part.shape: unknown shape 'cube'",),
+        "cube",
+    ),
+    "unknown agent": Case(
+        S,
+        "  robot: {file: robot.xml",
+        "  robott: {file: robot.xml",
+        ("trees.robott: unknown agent 'robott' (did you mean 'robot'?)",),
+        "robott",
+    ),
+    "tree file not found": Case(
+        S,
+        "{file: robot.xml",
+        "{file: robto.xml",
+        ("trees.robot.file: tree file 'robto.xml' not found",),
+        "robto",
+    ),
+    "tree file is a directory": Case(
+        S, "{file: robot.xml", "{file: .", ("trees.robot.file: tree file '.' not found",), "file: ."
+    ),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_bad_scenario_is_one_located_line(name, tmp_path, capsys):
+    case = CASES[name]
+    scenario = write_workspace(tmp_path, case)
+    status, _, err = hrc_drake(capsys, "validate", scenario)
+    where = expected_place(tmp_path, case) if case.at else str(tmp_path)
+    assert_one_line_error(
+        status, err, where, *(s.replace("{dir}", str(tmp_path)) for s in case.says)
+    )
+
+
+def test_the_good_scenario_validates(tmp_path, capsys):
+    status, out, err = hrc_drake(capsys, "validate", write_workspace(tmp_path))
+    assert status == 0, err
+    assert "ok (corpus; trees robot: robot.xml)" in out
+
+
+UNREADABLE = {
+    "binary": (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe", "is not UTF-8 text"),
+    "UTF-16": ("name: corpus\n".encode("utf-16"), "is not UTF-8 text"),
+    "NUL bytes": (b"name: corpus\n\x00\x00\n", "malformed YAML"),
+    "empty": (b"", "the file is empty"),
+    "only a comment": (b"# nothing here\n", "the file is empty"),
+}
+
+
+@pytest.mark.parametrize("kind", UNREADABLE)
+def test_unreadable_scenario_file(kind, tmp_path, capsys):
+    data, says = UNREADABLE[kind]
+    path = tmp_path / "scenario.yaml"
+    path.write_bytes(data)
+    status, _, err = hrc_drake(capsys, "validate", path)
+    assert_one_line_error(status, err, str(path), says)
+
+
+def test_a_file_that_cannot_be_read(capsys):
+    """/proc/self/mem is a file no plain read succeeds on (an I/O error, as for a file
+    without read permission: the same OSError path)."""
+    status, _, err = hrc_drake(capsys, "validate", "/proc/self/mem")
+    assert_one_line_error(status, err, "/proc/self/mem: cannot read the scenario file")
+
+
+def test_a_scenario_that_is_a_directory_or_missing(tmp_path, capsys):
+    status, _, err = hrc_drake(capsys, "validate", tmp_path)
+    assert_one_line_error(status, err, f"{tmp_path}: no such scenario file")
+    status, _, err = hrc_drake(capsys, "validate", "bsae")
+    assert_one_line_error(status, err, "did you mean 'base'?")

@@ -1,0 +1,255 @@
+"""Bad behavior trees: `hrc-drake validate` names the tree file, the line, the node and the
+port in one line; a fault only the run can find (a blackboard entry nobody wrote, weights
+that do not fit) ends the run cleanly with that line, keeping what the run wrote."""
+
+import json
+
+import pytest
+from corpus_helpers import (
+    GOOD_TREE,
+    Case,
+    assert_one_line_error,
+    expected_place,
+    hrc_drake,
+    write_workspace,
+)
+
+from hrc_drake.agent_trees import tree_errors
+from hrc_drake.scenario import load_scenario
+
+T = "robot.xml"
+S = "scenario.yaml"
+MOVE = '<RobotMove target="{above}"/>'
+CASES = {
+    "unknown node": Case(
+        T,
+        MOVE,
+        '<RobotMvoe target="{above}"/>',
+        ("unknown node type 'RobotMvoe' (did you mean 'RobotMove'?)",),
+        "RobotMvoe",
+    ),
+    "unknown port": Case(
+        T,
+        MOVE,
+        '<RobotMove traget="{above}"/>',
+        ("port 'traget' is not declared by 'RobotMove' (did you mean 'target'?)",),
+        "traget",
+    ),
+    "missing port": Case(
+        T, MOVE, "<RobotMove/>", ("port 'target': missing required port",), "<RobotMove/>"
+    ),
+    "unknown location": Case(
+        T,
+        MOVE,
+        '<RobotMove target="pick_spto"/>',
+        ("port 'target': unknown location 'pick_spto'",),
+        "pick_spto",
+    ),
+    "unknown area": Case(
+        T,
+        MOVE,
+        f'{MOVE}<InAreaTest pose="{{above}}" area="tabel"/>',
+        ("port 'area': unknown area 'tabel'",),
+        "tabel",
+    ),
+    "port value of the wrong type": Case(
+        T, 'velocity="{speed}"', 'velocity="fast"', ("port 'velocity'", "fast"), "fast"
+    ),
+    "output port given a literal": Case(
+        T,
+        'output="{above}"',
+        'output="above"',
+        ("port 'output': output port needs a blackboard entry",),
+        'output="above"',
+    ),
+    "wrong number of children": Case(
+        T,
+        MOVE,
+        f"<Inverter>{MOVE}<AlwaysSuccess/></Inverter>",
+        ("'Inverter' needs exactly 1 children, has 2",),
+        "<Inverter>",
+    ),
+    "bad script": Case(T, MOVE, f'<Script code="x := ("/>{MOVE}', ("port 'code'",), "Script"),
+    "bad precondition": Case(
+        T, MOVE, '<RobotMove target="{above}" _skipIf="(("/>', ("port '_skipIf'",), "_skipIf"
+    ),
+    "entry of two types": Case(
+        T,
+        '<SetRobotVelocity velocity="{speed}"/>',
+        '<SetRobotVelocity velocity="{speed}"/>'
+        '<OffsetPose input="door" offset="0;0;0" output="{speed}"/>',
+        ("blackboard entry 'speed' has type",),
+        'output="{speed}"',
+    ),
+    "malformed XML": Case(
+        T,
+        '    </Sequence>\n  </BehaviorTree>\n  <BehaviorTree ID="Reach">',
+        '  </BehaviorTree>\n  <BehaviorTree ID="Reach">',
+        ("malformed XML: mismatched tag",),
+        None,
+    ),
+    "not a root element": Case(
+        T,
+        GOOD_TREE,
+        GOOD_TREE.replace("root", "tree"),
+        ("the top element must be <root>, not <tree>",),
+        "<tree",
+    ),
+    "main tree missing": Case(
+        T,
+        'main_tree_to_execute="Robot"',
+        'main_tree_to_execute="Robto"',
+        ("no BehaviorTree with ID 'Robto'", "did you mean 'Robot'?"),
+        "main_tree_to_execute",
+    ),
+    "main tree not named": Case(
+        T,
+        ' main_tree_to_execute="Robot"',
+        "",
+        ("several BehaviorTrees and no main_tree_to_execute: choose one of Robot, Reach",),
+        "<root",
+    ),
+    "scenario names a missing tree": Case(
+        S,
+        "{file: robot.xml,",
+        "{file: robot.xml, tree_id: Robto,",
+        ("tree 'Robto': no BehaviorTree with ID 'Robto'",),
+        None,
+    ),
+    "unknown SubTree": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>',
+        '<SubTree ID="Raech" at="pick_spot"/>\n    </Sequence>',
+        ("unknown SubTree ID 'Raech' (did you mean 'Reach'?)",),
+        "Raech",
+    ),
+    "SubTree cycle": Case(
+        T,
+        MOVE,
+        f'{MOVE}<SubTree ID="Reach" at="{{at}}"/>',
+        ("SubTree cycle: Robot -> Reach -> Reach",),
+        'at="{at}"/>',
+    ),
+    "tree defined twice": Case(
+        T,
+        '<BehaviorTree ID="Reach">',
+        '<BehaviorTree ID="Robot" _description="again">',
+        ("BehaviorTree 'Robot' is already defined",),
+        "again",
+    ),
+    "tree without ID": Case(
+        T,
+        '<BehaviorTree ID="Reach">',
+        "<BehaviorTree>",
+        ("<BehaviorTree> without an ID",),
+        "<BehaviorTree>",
+    ),
+    "tree with two roots": Case(
+        T,
+        "    </Sequence>\n  </BehaviorTree>\n</root>",
+        "    </Sequence>\n    <AlwaysSuccess/>\n  </BehaviorTree>\n</root>",
+        ("a BehaviorTree must have exactly one root node, has 2",),
+        '<BehaviorTree ID="Reach">',
+    ),
+    "missing include": Case(
+        T,
+        '  <BehaviorTree ID="Robot">',
+        '  <include path="lib.xml"/>\n  <BehaviorTree ID="Robot">',
+        ("included file 'lib.xml' not found",),
+        "include",
+    ),
+    "bad SubTree remap flag": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>',
+        '<SubTree ID="Reach" at="pick_spot" _autoremap="maybe"/>\n    </Sequence>',
+        ("port '_autoremap'",),
+        "maybe",
+    ),
+    "empty tree file": Case(T, GOOD_TREE, "", ("malformed XML",), None),
+    "binary tree file": Case(
+        S,
+        "{file: robot.xml,",
+        "{file: tree.bin,",
+        ("the tree file is not UTF-8 text",),
+        None,
+        {"tree.bin": b"\xff\xfe<\x00r\x00"},
+    ),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_bad_tree_is_one_located_line(name, tmp_path, capsys):
+    case = CASES[name]
+    scenario = write_workspace(tmp_path, case)
+    status, _, err = hrc_drake(capsys, "validate", scenario)
+    where = expected_place(tmp_path, case) if case.at else str(tmp_path / "")
+    line = assert_one_line_error(status, err, where, *case.says)
+    assert "<unknown>" not in line
+
+
+@pytest.mark.parametrize("name", ["unknown node", "unknown port", "missing port"])
+def test_a_mistake_in_a_shared_subtree_is_reported_once(name, tmp_path):
+    """Reach is used twice; each of its mistakes is one message, not one per instance."""
+    scenario = load_scenario(write_workspace(tmp_path))
+    write_workspace(tmp_path, CASES[name])  # the loaded scenario now names a bad tree
+    errors = [str(error) for error in tree_errors(scenario)]
+    problems = [error.split(": ", 2)[-1] for error in errors]
+    assert errors and len(set(problems)) == len(problems), errors
+    assert all(error.startswith(f"{tmp_path / 'robot.xml'}:12:") for error in errors)
+
+
+RUN_FAULTS = {
+    "blackboard key typo": (
+        'velocity="{speed}"',
+        'velocity="{sped}"',
+        "port 'velocity'",
+        "blackboard entry 'sped' is not set",
+    ),
+    "weights that do not fit": (
+        MOVE,
+        f'<WeightedRandom weights="1;2;3">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        "port 'weights'",
+        "needs 2 non-negative weights",
+    ),
+    "weight out of range": (
+        MOVE,
+        f'<WeightedRandom weights="1;-1">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        "port 'weights'",
+        "needs 2 non-negative weights",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", RUN_FAULTS)
+def test_a_tree_fault_during_a_run_ends_it_cleanly(name, tmp_path, capsys):
+    old, new, port, problem = RUN_FAULTS[name]
+    scenario = write_workspace(tmp_path, Case(T, old, new, ()))
+    out = tmp_path / "run"
+    status, stdout, err = hrc_drake(capsys, "run", scenario, "--out", out)
+    line = assert_one_line_error(status, err, f"{tmp_path / 'robot.xml'}:", port, problem)
+    assert f"the run stopped at 0.00 s; what it recorded is in {out}" in line
+    report = json.loads((out / "report.json").read_text())
+    assert report["stopped"]["error"] in line
+    for kept in ("bt_robot.btlog", "bt_robot.jsonl", "diagram.svg", "report.html"):
+        assert (out / kept).is_file(), kept
+
+
+def test_node_failures_are_summarised_after_a_run(tmp_path, capsys):
+    """The robot is sent somewhere it cannot reach: the run succeeds, and the command line
+    says which node failed, how often and why."""
+    far = Case(
+        "scenario.yaml",
+        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
+        "pick_spot: {translation: [3.0, 3.0, 0.93]}",
+        (),
+    )
+    scenario = write_workspace(tmp_path, far)
+    status, stdout, err = hrc_drake(
+        capsys, "run", scenario, "--out", tmp_path / "run", "--duration", "0.3"
+    )
+    assert status == 0, err
+    assert "tree nodes that failed:" in stdout
+    summary = stdout.split("tree nodes that failed:")[1].splitlines()[1].strip()
+    assert summary.startswith("robot Reach::")
+    assert "/RobotMove::" in summary
+    assert "first: failed: target unreachable" in summary

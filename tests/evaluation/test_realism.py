@@ -1,0 +1,125 @@
+"""The realism audit: what it measures of the person, step by step and in a diagram."""
+
+import math
+
+import numpy as np
+import pytest
+from pydrake.systems.analysis import Simulator
+
+from hrc_drake.builder import build_diagram
+from hrc_drake.evaluation.realism import (
+    AuditState,
+    Sample,
+    audited,
+    realism_metrics,
+    realism_rows,
+)
+from hrc_drake.scenario import HumanConfig, load_scenario
+from hrc_drake.workpieces.geometry import Solid
+
+STRIDE = 1.0
+DT = 1.0 / 60.0
+
+
+def _sample(t, soles=None, pelvis=None, walking=False, **worst) -> Sample:
+    return Sample(
+        time=t,
+        static_depths=worst.get("static", ()),
+        object_depths=worst.get("objects", ()),
+        hand_gaps=worst.get("gaps", ()),
+        tilts=worst.get("tilts", ()),
+        sole_points=soles or {},
+        pelvis=pelvis,
+        walking=walking,
+    )
+
+
+def _run(samples) -> AuditState:
+    state = AuditState()
+    for sample in samples:
+        state = audited(state, sample, STRIDE)
+    return state
+
+
+def test_a_standing_sole_point_that_moves_slides():
+    track = [np.array([0.05 * k / 10, 0.0, 0.0]) for k in range(11)]
+    state = _run(_sample(k * DT, {"left_heel": p}) for k, p in enumerate(track))
+    assert state.foot_slip.value == pytest.approx(0.05)
+    assert state.foot_slip.what == "left_heel"
+
+
+def test_a_foot_lifted_and_put_down_elsewhere_does_not_slide():
+    down, up, elsewhere = np.zeros(3), np.array([0.2, 0.0, 0.05]), np.array([0.4, 0.0, 0.0])
+    state = _run(_sample(k * DT, {"right_toe": p}) for k, p in enumerate([down, up, elsewhere]))
+    assert state.foot_slip.value == 0.0
+
+
+def _walk(speed_at, duration, walking=True):
+    """Samples of a pelvis walking along x with speed `speed_at(t)`."""
+    x, samples = 0.0, []
+    for k in range(round(duration / DT) + 1):
+        t = k * DT
+        samples.append(_sample(t, pelvis=(t, x, 0.0), walking=walking))
+        x += speed_at(t + DT / 2) * DT
+    return samples
+
+
+def test_pelvis_speed_swing_is_measured_per_steady_stride():
+    state = _run(_walk(lambda t: 1.3 * (1 + 0.12 * math.sin(4 * math.pi * t / STRIDE)), 5.0))
+    assert len(state.stride_variations) >= 3
+    assert max(state.stride_variations) == pytest.approx(0.12, abs=0.01)
+    assert np.mean(state.stride_speeds) == pytest.approx(1.3, abs=0.02)
+
+
+def test_speeding_up_and_standing_are_no_strides():
+    speeding_up = _run(_walk(lambda t: 0.3 + 0.5 * t, 3.0))
+    assert speeding_up.stride_variations == ()
+    standing = _run(_walk(lambda t: 1.3, 3.0, walking=False))
+    assert standing.stride_variations == ()
+
+
+def test_the_worst_of_each_measure_is_kept_with_when_and_where():
+    state = _run(
+        [
+            _sample(1.0, static=((0.02, "thigh in pallet"),), tilts=((math.radians(5), "box"),)),
+            _sample(2.0, static=((0.05, "hand in table"), (0.01, "pelvis in belt"))),
+            _sample(3.0, gaps=((0.03, "carton 4"),), tilts=((math.radians(2), "box"),)),
+        ]
+    )
+    metrics = realism_metrics(state)
+    assert metrics["penetration_static"] == {"max": 0.05, "time": 2.0, "where": "hand in table"}
+    assert metrics["hand_object_gap"]["max"] == 0.03
+    assert metrics["carried_tilt_deg"]["max"] == pytest.approx(5.0)
+
+
+def test_signed_distance_is_negative_inside_a_box():
+    box = Solid("box", (0.3, 0.2, 0.1))
+    assert box.signed_distance_to(np.zeros(3)) == pytest.approx(-0.05)
+    assert box.signed_distance_to(np.array([0.25, 0.0, 0.0])) == pytest.approx(0.1)
+    assert box.distance_to(np.zeros(3)) == 0.0
+
+
+def _audit_of_person_standing_at(x, y) -> dict:
+    scenario = load_scenario("base")
+    scenario.human = HumanConfig(start=[x, y, 90.0])
+    diagram = build_diagram(scenario.with_overrides(duration=0.3))
+    simulator = Simulator(diagram)
+    simulator.AdvanceTo(0.3)
+    return realism_metrics(diagram.GetOutputPort("realism").Eval(simulator.get_context()))
+
+
+def test_a_person_standing_in_the_table_is_found_inside_it():
+    """The base scenario's work table stands at (0, 0.9); its top is 1.2 m by 0.8 m."""
+    inside = _audit_of_person_standing_at(0.0, 0.9)
+    assert inside["penetration_static"]["max"] > 0.1
+    assert inside["penetration_static"]["where"].endswith("in work_table")
+    clear = _audit_of_person_standing_at(0.0, -1.5)
+    assert clear["penetration_static"]["max"] < 0.005
+    assert clear["foot_slip"]["max"] < 0.01
+
+
+def test_the_report_page_marks_what_is_beyond_its_limit():
+    state = _run([_sample(1.0, static=((0.05, "hand in table"),), gaps=((0.01, "box 1"),))])
+    rows = {row[0]: row for row in realism_rows(realism_metrics(state))}
+    assert rows["penetration_static"][1:] == [0.05, 0.01, "hand in table at 1.0 s", False]
+    assert rows["hand_object_gap"][-1] is True

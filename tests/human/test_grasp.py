@@ -1,0 +1,87 @@
+"""Grasps from an object's geometry, and the carry posture that keeps hold of it."""
+
+import math
+
+import numpy as np
+import pytest
+
+from hrc_drake.human.body import human_body
+from hrc_drake.human.clip import load_clips
+from hrc_drake.human.grasp import carry_arms, grasp_hands, hold_of, palm_targets
+from hrc_drake.human.messages import AnimateCommand, Grasp, Hold, MoveCommand
+from hrc_drake.human.motion import ActorState, Context, advance
+from hrc_drake.workpieces.geometry import Solid
+
+CARTON = (0.3, 0.3, 0.2)
+
+
+@pytest.mark.parametrize(
+    ("size", "mass", "attributes", "hands"),
+    [
+        ((0.08, 0.08, 0.06), 0.3, {}, "right"),
+        ((0.07, 0.05, 0.04), 0.2, {}, "right"),
+        ((0.16, 0.12, 0.08), 0.8, {}, "both"),
+        (CARTON, 3.0, {}, "both"),
+        ((0.08, 0.08, 0.06), 2.5, {}, "both"),
+        ((0.08, 0.08, 0.06), 0.3, {"fragile": True}, "both"),
+        (CARTON, 3.0, {"grasp": "one_hand"}, "right"),
+    ],
+)
+def test_hands_follow_from_size_mass_and_attributes(size, mass, attributes, hands):
+    assert grasp_hands(size, mass, attributes) == hands
+
+
+@pytest.mark.parametrize("yaw", [0.0, 0.5, math.pi / 2 + 0.3])
+def test_palms_go_on_the_two_faces_that_face_the_persons_sides(yaw):
+    grasp = Grasp("both", (0.6, 0.1, 0.8), yaw, (0.34, 0.3, 0.24))
+    targets = palm_targets(grasp, heading=0.0)
+    box = Solid("box", grasp.size)
+    X_inverse = np.array([[math.cos(yaw), math.sin(yaw)], [-math.sin(yaw), math.cos(yaw)]])
+    for side, sign in (("left", 1), ("right", -1)):
+        position, _ = targets[side]
+        local = np.array([*X_inverse @ (position[:2] - grasp.center[:2]), 0.0])
+        assert box.signed_distance_to(local) == pytest.approx(0.0, abs=1e-9)
+        assert sign * (position[1] - grasp.center[1]) > 0  # on the person's own side
+
+
+def test_the_carry_posture_holds_the_object_in_front_between_the_palms():
+    body = human_body()
+    for hold in (Hold("both", (0.3, 0.3, 0.2)), Hold("both", (0.34, 0.34, 0.24))):
+        q = carry_arms(body, hold).over(body.standing_pose())
+        left, right = (
+            body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right")
+        )
+        assert np.linalg.norm(left - right) == pytest.approx(hold.size[1], abs=0.01)
+        near_face = (left[0] + right[0]) / 2 - hold.size[0] / 2
+        assert near_face > 0.16  # in front of the chest
+
+
+def _palm_spacing(ctx, state, t):
+    body = ctx.body
+    left, right = (
+        body.frame_pose(f"{s}_hand_grasp", state.pose).translation() for s in ("left", "right")
+    )
+    return float(np.linalg.norm(left - right))
+
+
+def test_the_palms_keep_hold_through_pick_turn_walk_and_standing():
+    """After the grasp the palms stay as far apart as the carton is wide, however the
+    person moves: lifting, turning round, walking, standing."""
+    ctx = Context(human_body(), load_clips())
+    grasp = Grasp("both", (0.55, 0.0, 0.85), 0.0, CARTON)
+    hold = hold_of(grasp, 0.0)
+    state = advance(ctx, ActorState(), 0.0, {})
+    schedule = {
+        0.1: AnimateCommand(1, "pick_table", grasp=grasp),
+        3.0: MoveCommand(2, (-1.5, 1.0, 0.0), hold=hold),
+    }
+    grasped = 0.1 + load_clips()["pick_table"].events["grasp"]
+    spacings = []
+    for k in range(1, int(9.0 * 60)):
+        t = k / 60
+        command = schedule.get(round(t, 2)) if round(t * 60) % 6 == 0 else None
+        state = advance(ctx, state, t, {"human": command} if command else {})
+        if t > grasped + 0.05:
+            spacings.append(_palm_spacing(ctx, state, t))
+    assert state.state == "IDLE" and state.results[-1].outcome == "succeeded"
+    assert max(abs(s - CARTON[1]) for s in spacings) < 0.02
