@@ -27,7 +27,7 @@ from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir
-from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.config import V_H_RULES, SafetyConfig
 from hrc_drake.sweep.overrides import NEW_ENTRIES, Overrides, apply, field_type
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.yaml_check import (
@@ -236,6 +236,10 @@ def within(low: float, high: float, unit: str = "", why: str = "") -> Rule:
     return rule
 
 
+def one_of(known: Iterable[str]) -> Rule:
+    return lambda value: "" if value in known else _unknown("value", value, known)
+
+
 MAX_SEED = 2**63 - 1
 FIELD_RULES: dict[str, Rule] = {
     "seed": within(0, MAX_SEED),
@@ -257,6 +261,7 @@ FIELD_RULES: dict[str, Rule] = {
     "human.mass": positive,
     "trees.*.period": positive,
     "safety.period": positive,
+    "safety.v_h_rule": one_of(V_H_RULES),
     "safety.v_h": not_negative,
     "safety.v_h_near": not_negative,
     "safety.near_distance": not_negative,

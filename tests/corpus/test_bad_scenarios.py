@@ -124,6 +124,13 @@ CASES = {
     "safety v_h negative": Case(
         S, "  v_h: 1.6", "  v_h: -1", ("safety.v_h: must not be negative",), "v_h"
     ),
+    "safety v_h rule unknown": Case(
+        S,
+        "  v_h: 1.6",
+        "  v_h_rule: iso13856\n  v_h: 1.6",
+        ("safety.v_h_rule: unknown value 'iso13856' (did you mean 'iso13855'?)",),
+        "v_h_rule",
+    ),
     "safety min_scale above 1": Case(
         S,
         "  min_scale: 0.05",

@@ -3,7 +3,8 @@ robot at 1.6 m/s while it sweeps at full speed, and reaches in with a hand at 2.
 
 With SSM, in every case the robot stands still before anything touches it, it never moves
 while the separation is below S_p, and it resumes once the person has left. Without SSM the
-same walk-ins end in contacts with the moving robot and SSM violations. An independent
+same walk-ins (the hand held in for a whole sweep) end in contacts with the moving robot
+and SSM violations. An independent
 recomputation from the logged trajectories (tests/safety/recompute.py) agrees with the log
 and the report.
 
@@ -16,12 +17,13 @@ import itertools
 import numpy as np
 import pytest
 from recompute import episodes, recompute
-from walk_in import STAND, Case, simulate
+from walk_in import STAND, SWEEP_TIME, Case, simulate
 
 from hrc_drake.iisy import VARIANTS
 
 BEARINGS = tuple(range(0, 360, 45))
-STARTS = (2.0, 3.5)
+GAPS = (1.25, 2.75)
+"""m beyond the variant's reach where the person starts (2.0 and 3.5 m out for the R760)"""
 DELAYS = (0.3, 1.7)
 """s: the person sets off early in one sweep and late in it (a sweep takes about 5 s)"""
 STANDS = (STAND, 1.0)
@@ -33,15 +35,17 @@ SHORT = (
 )
 SHORT_WITHOUT_SSM = Case("lbr_iisy3_r760", 90.0, 3.0, 0.5, ssm=False)
 LONG = [
-    Case(variant, bearing, start, delay, stand=stand)
-    for variant, bearing, start, delay, stand in itertools.product(
-        sorted(VARIANTS), BEARINGS, STARTS, DELAYS, STANDS
+    Case(variant, bearing, VARIANTS[variant].reach + gap, delay, stand=stand)
+    for variant, bearing, gap, delay, stand in itertools.product(
+        sorted(VARIANTS), BEARINGS, GAPS, DELAYS, STANDS
     )
 ]
 LONG_WITHOUT_SSM = [
-    Case(variant, bearing, 2.0, 0.3, ssm=False)
+    Case(variant, bearing, VARIANTS[variant].reach + GAPS[0], 0.3, ssm=False, hold=SWEEP_TIME)
     for variant, bearing in itertools.product(sorted(VARIANTS), BEARINGS)
 ]
+"""The hand stays in for a whole sweep: the arm meets it head-on, not only grazing it (a
+grazing touch has no approach speed along the contact normal, so no force)"""
 
 
 def assert_ssm_holds(outcome) -> None:
@@ -49,9 +53,9 @@ def assert_ssm_holds(outcome) -> None:
     moving = outcome.signals_named("robot_speed") > outcome.config.moving_speed
     separation = outcome.signals_named("separation")
     protective = outcome.signals_named("protective")
-    # the robot was under way as fast as S_p let it, and the person came all the way in
+    # the robot was under way (as fast as S_p let it) before the person came near
     far = separation > 1.0
-    assert outcome.signals_named("robot_speed")[far].max() > 0.4
+    assert outcome.signals_named("robot_speed")[far].max() > 0.1
     reach = 0.05 if outcome.case.stand <= STAND else 0.4
     assert totals.min_separation < reach, "the person did not come as near as planned"
     # never moving closer than S_p: in the report and at every logged update

@@ -42,6 +42,8 @@ STAND = 0.65
 inside the sweep)"""
 HOLD = 1.0
 """s the hand stays reached in"""
+SWEEP_TIME = 5.5
+"""s: one sweep of A1 at full speed, about; a hand held in this long meets the arm head-on"""
 AFTER = 2.5
 """s after the person walked back out, for the robot to resume"""
 ROBOT_SPEED = 1.3
@@ -70,7 +72,7 @@ cell:
 class Case:
     """One walk-in: the robot variant, where the person comes from (bearing from +x,
     degrees; start distance from the base axis, m), when they set off (s), and whether
-    SSM may slow the robot down."""
+    SSM may slow the robot down; how long the hand stays reached in (s)."""
 
     variant: str
     bearing: float
@@ -78,17 +80,19 @@ class Case:
     delay: float
     ssm: bool = True
     stand: float = STAND
+    hold: float = HOLD
 
     @property
     def id(self) -> str:
         name = self.variant.split("_")[2]
         ssm = "ssm" if self.ssm else "no-ssm"
         where = f"{self.start:.1f}-{self.stand:.2f}m"
-        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s-{ssm}"
+        held = "" if self.hold == HOLD else f"-hold{self.hold:.1f}s"
+        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}"
 
     @property
     def person(self) -> PiecewisePolynomial:
-        return person_path(self.bearing, self.start, self.delay, self.stand)
+        return person_path(self.bearing, self.start, self.delay, self.stand, self.hold)
 
 
 @dataclass
@@ -144,10 +148,13 @@ def sweep_goals() -> list[np.ndarray]:
 
 
 @functools.cache
-def person_path(bearing: float, start: float, delay: float, stand: float) -> PiecewisePolynomial:
+def person_path(
+    bearing: float, start: float, delay: float, stand: float, hold: float
+) -> PiecewisePolynomial:
     """The person's plant positions over time: stand at `start` m from the base axis along
     `bearing` (degrees) facing the robot, set off after `delay` s, walk in to `stand` at
-    WALK_SPEED, reach the right hand in at HAND_SPEED, hold, take it back, walk back out."""
+    WALK_SPEED, reach the right hand in at HAND_SPEED, hold it there `hold` s, take it back,
+    walk back out."""
     body = human_body()
     direction = np.array([math.cos(math.radians(bearing)), math.sin(math.radians(bearing))])
 
@@ -170,7 +177,7 @@ def person_path(bearing: float, start: float, delay: float, stand: float) -> Pie
         times.append(t)
         poses.append(pose)
         t += step_time
-    t += HOLD - step_time
+    t += hold - step_time
     for pose in reversed(reach_poses):
         times.append(t)
         poses.append(pose)
