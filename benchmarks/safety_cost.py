@@ -23,7 +23,6 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
-from pydrake.geometry import CollisionFilterDeclaration, GeometrySet
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
@@ -41,7 +40,11 @@ from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "safety"))
-from approach_cell import kinematic, walk  # noqa: E402  (the approach test's cell)
+from approach_cell import (  # noqa: E402  (the approach test's cell)
+    keep_person_out_of_contact,
+    kinematic,
+    walk,
+)
 
 SCENARIOS = ("coexistence", "cooperation", "collaboration")
 SWING = math.radians(60)
@@ -79,7 +82,7 @@ def cell(with_monitor: bool, duration: float):
     human_plant, human, human_pose = kinematic(
         builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
     )
-    _keep_person_out_of_contact(scene_graph, human_plant)
+    keep_person_out_of_contact(scene_graph)
     person = builder.AddSystem(TrajectorySource(walk(0.75, 3.0, 6.0, math.radians(55))))
     builder.Connect(person.get_output_port(), human_pose.get_input_port())
     if with_monitor:
@@ -87,18 +90,6 @@ def cell(with_monitor: bool, duration: float):
         add_safety_monitor(builder, scene_graph, plant, human_plant, human, config, variant.name)
     builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
     return builder.Build()
-
-
-def _keep_person_out_of_contact(scene_graph, human_plant) -> None:
-    """The dynamic plant must not see the kinematic person's geometry in contact."""
-    inspector = scene_graph.model_inspector()
-    person = GeometrySet(
-        [g for g in inspector.GetAllGeometryIds() if inspector.GetName(g).startswith("human::")]
-    )
-    everything = GeometrySet(inspector.GetAllGeometryIds())
-    scene_graph.collision_filter_manager().Apply(
-        CollisionFilterDeclaration().ExcludeBetween(person, everything)
-    )
 
 
 def scenario(name: str, with_monitor: bool):

@@ -185,8 +185,10 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
         scenario.safety,
         scenario.robot.variant,
         carriable=workpieces.geometry_ids if workpieces is not None else (),
+        command_latency=scenario.robot.motion.update_period,
     )
     builder.Connect(safety.GetOutputPort("speed_scale"), motion.GetInputPort("speed_scale"))
+    builder.Connect(motion.GetOutputPort("path_rate"), safety.GetInputPort("robot_path_rate"))
     if workpieces is not None:
         builder.Connect(
             workpieces.GetOutputPort("workpieces_status"),

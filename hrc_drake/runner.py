@@ -2,8 +2,9 @@
 
 A run directory holds `report.json` (deterministic: same scenario and seed give the same
 bytes, so it holds no wall-clock figures), `replay.html` (a standalone Meshcat recording),
-`diagram.svg`, and with a safety monitor in the station `timeline.png`, `heatmap.png`, plus
-`report.html` tying them together. Wall-clock speed is returned to the caller, never
+`diagram.svg`, and with a safety monitor in the station `safety.npz` (its signals at every
+update, `hrc_drake.safety.log`), `timeline.png`, `heatmap.png`, plus `report.html` tying them
+together. Wall-clock speed is returned to the caller, never
 written to the report.
 
 Optional station parts the runner measures when they exist: `safety_signals` and
@@ -44,6 +45,8 @@ from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.log import write_safety_log
+from hrc_drake.safety.margin import log_of, margin_metrics, reference_model
 from hrc_drake.scenario import Scenario
 from hrc_drake.yaml_check import InputError
 
@@ -101,7 +104,7 @@ def run(
     builder = DiagramBuilder()
     builder.AddSystem(station)
     state_log = LogVectorOutput(station.GetOutputPort("robot_state"), builder, LOG_PERIOD)
-    signals_log = _optional_log(station, "safety_signals", builder)
+    signals_log = _optional_log(station, "safety_signals", builder, scenario.safety.period)
     states_log = _add_state_changes(station, scenario, builder)
     diagram = builder.Build()
     servers = serve(station) if serve is not None else None
@@ -168,6 +171,8 @@ class _RunOutputs:
     events: list
     states: dict[str, list[tuple[float, str]]]
     bt_statistics: dict | None
+    safety_parts: tuple[str, ...]
+    """the robot parts the `part` safety signal numbers"""
     realism: object | None
 
     @classmethod
@@ -190,27 +195,40 @@ class _RunOutputs:
                 agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
                 for agent in scenario.trees
             },
+            safety_parts=station.GetSubsystemByName("safety").part_names if log else (),
         )
 
     def metrics(self, scenario: Scenario) -> dict:
         safety = getattr(scenario, "safety", SafetyConfig())
         measured = self.signals is not None
         return {
-            "safety": safety_metrics(self.status),
+            "safety": safety_metrics(self.status, safety.moving_speed),
             "utilisation": {
                 "robot": utilisation_metrics(self.times, self.signals, safety.moving_speed)
                 if measured
                 else {}
             },
             "person": person_metrics(self.times, self.signals) if measured else {},
+            "margin": self._margin(scenario, safety) if measured else {},
             "tasks": task_metrics(self.events, scenario.duration),
             "bt": bt_metrics(self.bt_statistics),
             "realism": realism_metrics(self.realism),
         }
 
+    def _margin(self, scenario: Scenario, safety: SafetyConfig) -> dict:
+        return margin_metrics(
+            log_of(self.signals),
+            reference_model(scenario),
+            safety.moving_speed,
+            self.status.totals.contact_records,
+            self.safety_parts,
+        )
+
     def write_figures(self, out: Path, files: dict[str, Path]) -> None:
         if self.signals is None:
             return
+        parts = self.safety_parts
+        files["safety_log"] = write_safety_log(out / "safety.npz", self.signals, parts)
         files["timeline"] = plot_timeline(
             out / "timeline.png", self.times, self.signals, self.states, self.events
         )
@@ -295,10 +313,10 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
     return logs
 
 
-def _optional_log(station, port: str, builder):
+def _optional_log(station, port: str, builder, period: float):
     if not station.HasOutputPort(port):
         return None
-    return LogVectorOutput(station.GetOutputPort(port), builder, LOG_PERIOD)
+    return LogVectorOutput(station.GetOutputPort(port), builder, period)
 
 
 def _final(station, station_context, port: str):

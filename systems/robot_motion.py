@@ -111,7 +111,8 @@ class RobotMotion(LeafSystem):
     (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
-    Outputs: `desired_state` (q, v), `desired_acceleration`, `robot_status` (RobotStatus),
+    Outputs: `desired_state` (q, v), `desired_acceleration`, `path_rate` (the fraction of
+    full speed it moves along its path now, for the safety monitor), `robot_status`,
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
     """
@@ -147,6 +148,9 @@ class RobotMotion(LeafSystem):
         )
         self.DeclareVectorOutputPort(
             "desired_acceleration", self._n, self._calc_desired_acceleration, motion_ticket
+        )
+        self.DeclareVectorOutputPort(
+            "path_rate", 1, self._calc_path_rate, {self.time_ticket(), self.all_state_ticket()}
         )
         self.DeclareAbstractOutputPort(
             "robot_status",
@@ -185,6 +189,16 @@ class RobotMotion(LeafSystem):
 
     def _calc_desired_acceleration(self, context, output: BasicVector) -> None:
         output.SetFromVector(self._desired_motion.Eval(context)[2 * self._n :])
+
+    def _calc_path_rate(self, context, output: BasicVector) -> None:
+        """The fraction of full speed the robot moves along its path now (0 with no path):
+        the speed the stopping data are tabulated by."""
+        state = self._state(context)
+        rate = 0.0
+        if state.path is not None:
+            progress = state.progress.at(context.get_time(), state.path.duration)
+            rate = 0.0 if progress.finished(state.path.duration) else progress.rate
+        output.SetAtIndex(0, rate)
 
     def _calc_status(self, context, output: AbstractValue) -> None:
         state = self._state(context)
@@ -349,7 +363,7 @@ class RobotMotion(LeafSystem):
         start_rate = state.speed_fraction * state.safety_scale  # the path starts at rest
         return state.replace(
             path=path,
-            progress=Progress(0.0, start_rate, 0.0, t, start_rate),
+            progress=Progress(0.0, start_rate, 0.0, t),
             move_seq=command.seq,
             arrived_since=None,
         )

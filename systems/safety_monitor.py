@@ -5,8 +5,8 @@ signed distance between every body region of the person and every robot part (li
 tool, carried object), the approach speeds at the closest points (from poses over time),
 and judges them (`hrc_drake.safety.judge`). Outputs, all computed from state:
 
-- `speed_scale` (size 1): for RobotMotion; 1 when far, 0 = monitored stop; 1 always when
-  SSM is disabled (the monitor then only measures).
+- `speed_scale` (size 1): for RobotMotion; 1 when far, 0 = monitored stop (also before
+  the first measurement); 1 always when SSM is disabled (the monitor then only measures).
 - `safety_status`: a `hrc_drake.safety.messages.SafetyStatus` for trees and reports.
 - `safety_signals`: the status as a vector (`SIGNALS`) for loggers, timelines, heat maps.
 
@@ -17,6 +17,13 @@ while the robot stands still is a hand-over grasp, not a contact.
 
 Optional input `human_status` (HumanActor's status): its time is when the person's pose was
 sampled, so the person's speeds are measured between their own pose samples.
+
+Input `robot_path_rate` (size 1, RobotMotion's `path_rate`): the fraction of full speed the
+robot moves at along its path, which its stopping time depends on. Unconnected, a moving
+robot is taken to move at full speed.
+
+A contact is quasi-static when the touched body region is pinned against the cell (the
+bodies welded to the world) or another robot part; see `ProximityMeter.pinned`.
 """
 
 import math
@@ -27,6 +34,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import GeometryId, QueryObject
 from pydrake.systems.framework import EventStatus, LeafSystem
 
+from hrc_drake.motion.options import MotionOptions
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import Part, body_parts, human_parts
@@ -34,7 +42,8 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
-from hrc_drake.safety.stopping import ssm_parameters
+from hrc_drake.safety.ssm import SsmModel
+from hrc_drake.safety.stopping import StopModel
 from hrc_drake.workpieces.messages import ROBOT
 
 
@@ -47,6 +56,8 @@ class RobotModel:
     tool_mass: float
     carriable: tuple[GeometryId, ...] = ()
     """Geometries of objects the gripper may hold (the workpieces' slots)."""
+    fixed: tuple[GeometryId, ...] = ()
+    """Geometries of the cell that never move (bodies welded to the world)."""
 
 
 class SafetyMonitor(LeafSystem):
@@ -57,14 +68,21 @@ class SafetyMonitor(LeafSystem):
         robot: RobotModel,
         config: SafetyConfig,
         variant: str,
+        command_latency: float,
     ):
+        """`command_latency`: how long a new speed scale takes to reach the robot (its
+        update period)."""
         super().__init__()
         carried_parts = [Part(g, CARRIED) for g in robot.carriable]
-        self._meter = ProximityMeter(inspector, human, robot.parts + carried_parts)
+        self._meter = ProximityMeter(
+            inspector, human, robot.parts + carried_parts, robot.fixed, config.clamping_gap
+        )
         self._active_parts = _active_parts(self._meter, robot.parts, carried_parts)
+        self.part_names = tuple(dict.fromkeys(part.name for part in self._meter.robot))
+        """What the `part` entry of `safety_signals` numbers."""
         self._judge = Judge(
             config,
-            ssm_parameters(config, variant),
+            SsmModel.from_config(config, StopModel.of_variant(variant), command_latency),
             robot_effective_mass(robot.moving_mass, robot.tool_mass),
         )
         self._query = self.DeclareAbstractInputPort(
@@ -72,8 +90,9 @@ class SafetyMonitor(LeafSystem):
         )
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
-        self._scale = self.DeclareDiscreteState(np.ones(1))
-        self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan)))
+        self._path_rate = self.DeclareVectorInputPort("robot_path_rate", 1)
+        self._scale = self.DeclareDiscreteState(np.zeros(1))  # no motion before a measurement
+        self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
         self._memory = self.DeclareDiscreteState(np.full(self._meter.memory_size, np.nan))
         self.DeclareStateOutputPort("speed_scale", self._scale)
@@ -103,12 +122,20 @@ class SafetyMonitor(LeafSystem):
             self._person_time(context),
         )
         payload = held.mass if held is not None else 0.0
-        status = self._judge.status(time, reading, before, payload)
+        path_rate = self._robot_path_rate(context, reading.robot_speed)
+        status = self._judge.status(time, reading, before, payload, path_rate)
+        part = self.part_names.index(status.link) if status.link else -1
         state.get_mutable_abstract_state(self._status).set_value(status)
         state.get_mutable_discrete_state(self._memory).set_value(reading.memory)
         state.get_mutable_discrete_state(self._scale).set_value([status.scale])
-        state.get_mutable_discrete_state(self._signals).set_value(status.signals(reading.person_xy))
+        signals = status.signals(reading.person_xy, part)
+        state.get_mutable_discrete_state(self._signals).set_value(signals)
         return EventStatus.Succeeded()
+
+    def _robot_path_rate(self, context, robot_speed: float) -> float:
+        if self._path_rate.HasValue(context):
+            return float(self._path_rate.Eval(context)[0])
+        return 1.0 if robot_speed > self._judge.config.moving_speed else 0.0
 
     def _last_memory(self, context) -> np.ndarray | None:
         """The meter's memory of the last update (None before the first): a vector state, as
@@ -140,14 +167,24 @@ def _active_parts(meter: ProximityMeter, robot: list[Part], carried: list[Part])
 def robot_model(plant, arm, tool=None, carriable=()) -> RobotModel:
     """The arm (and tool) of `plant`: geometry parts and moving mass (bodies not welded to
     the world)."""
-    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
+    welded = plant.GetBodiesWeldedTo(plant.world_body())
+    fixed = {body.index() for body in welded}
     moving = [plant.get_body(b) for b in plant.GetBodyIndices(arm) if b not in fixed]
     tools = [plant.get_body(b) for b in plant.GetBodyIndices(tool)] if tool is not None else []
+    parts = body_parts(plant, [arm] + ([tool] if tool is not None else []))
+    robot_geometries = {part.geometry for part in parts}
+    cell = [
+        geometry
+        for body in welded
+        for geometry in plant.GetCollisionGeometriesForBody(body)
+        if geometry not in robot_geometries
+    ]
     return RobotModel(
-        parts=body_parts(plant, [arm] + ([tool] if tool is not None else [])),
+        parts=parts,
         moving_mass=sum(body.default_mass() for body in moving),
         tool_mass=sum(body.default_mass() for body in tools),
         carriable=tuple(carriable),
+        fixed=tuple(cell),
     )
 
 
@@ -160,13 +197,15 @@ def add_safety_monitor(
     config: SafetyConfig,
     variant: str,
     carriable: tuple = (),
+    command_latency: float = MotionOptions.update_period,
 ) -> SafetyMonitor:
     """Adds the monitor named `safety` and connects its QueryObject input.
 
     `plant` holds the robot as model instances `iisy` and `tool` (if present); the person's
     geometry belongs to `human_instance` of `human_plant`; `carriable` are the geometries of
     objects the gripper may hold. The caller connects `speed_scale` to RobotMotion and, when
-    objects can be carried, the workpieces' status to `workpieces_status`.
+    objects can be carried, the workpieces' status to `workpieces_status`, and RobotMotion's
+    `path_rate` to `robot_path_rate` (`command_latency`: its update period).
     """
     arm = plant.GetModelInstanceByName("iisy")
     tool = plant.GetModelInstanceByName("tool") if plant.HasModelInstanceNamed("tool") else None
@@ -179,6 +218,7 @@ def add_safety_monitor(
             robot_model(plant, arm, tool, carriable),
             config,
             variant,
+            command_latency,
         ),
     )
     builder.Connect(scene_graph.get_query_output_port(), monitor.get_query_object_input_port())

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from hrc_drake.messages import TaskEvent
-from hrc_drake.safety.messages import SIGNALS, SafetyStatus
+from hrc_drake.safety.messages import SIGNALS, ContactRecord, SafetyStatus, ViolationEpisode
 from hrc_drake.safety.ssm import ZONES
 
 WAITING_SPEED = 0.05
@@ -24,10 +24,12 @@ def rounded(x: float, digits: int = 9):
     return round(x, digits) + 0.0 if math.isfinite(x) else None
 
 
-def safety_metrics(status: SafetyStatus | None) -> dict:
+def safety_metrics(status: SafetyStatus | None, moving_speed: float) -> dict:
+    """The monitor's totals; a robot counts as moving above `moving_speed` (m/s)."""
     if status is None:
         return {}
     totals = status.totals
+    records = totals.contact_records
     worst = totals.worst_contact
     return {
         "ssm_enabled": status.ssm_enabled,
@@ -42,18 +44,59 @@ def safety_metrics(status: SafetyStatus | None) -> dict:
         "stops": totals.stops,
         "ssm_violations": {
             "count": totals.violations,
+            "moving_speed": rounded(moving_speed),
             "duration": rounded(totals.violation_time),
             "worst_deficit": rounded(totals.worst_deficit),
+            "episodes": [_episode(e) for e in totals.violation_episodes],
         },
         "contacts": {
             "count": totals.contacts,
+            "robot_moving": totals.robot_contacts,
+            "robot_at_rest": totals.contacts - totals.robot_contacts,
             "duration": rounded(totals.contact_time),
             "violations": totals.contact_violations,
-            "worst_region": worst.region if worst else "",
-            "max_force_ratio": rounded(worst.limit_ratio) if worst else 0.0,
-            "max_force": rounded(worst.force) if worst else 0.0,
-            "max_pressure": rounded(worst.pressure) if worst else 0.0,
+            "worst_region": worst.worst.region if worst else "",
+            "max_force_ratio": rounded(max((r.worst.force_ratio for r in records), default=0)),
+            "max_pressure_ratio": rounded(
+                max((r.worst.pressure_ratio for r in records), default=0)
+            ),
+            "max_force": rounded(max((r.worst.force for r in records), default=0)),
+            "max_pressure": rounded(max((r.worst.pressure for r in records), default=0)),
+            "list": [_contact(r) for r in records],
         },
+    }
+
+
+def _episode(episode: ViolationEpisode) -> dict:
+    return {
+        "start": rounded(episode.start),
+        "end": rounded(episode.end),
+        "region": episode.region,
+        "part": episode.part,
+        "separation": rounded(episode.separation),
+        "protective": rounded(episode.protective),
+        "deficit": rounded(episode.deficit),
+    }
+
+
+def _contact(record: ContactRecord) -> dict:
+    """One contact: when, where, its worst update's figures, and who moved into whom."""
+    c = record.worst
+    return {
+        "start": rounded(record.start),
+        "end": rounded(record.end),
+        "region": c.region,
+        "part": c.part,
+        "kind": c.kind,
+        "relative_speed": rounded(c.relative_speed),
+        "force": rounded(c.force),
+        "pressure": rounded(c.pressure),
+        "force_limit": rounded(c.force_limit),
+        "pressure_limit": rounded(c.pressure_limit),
+        "force_ratio": rounded(c.force_ratio),
+        "pressure_ratio": rounded(c.pressure_ratio),
+        "robot_moving": record.robot_moving,
+        "violation": record.violation,
     }
 
 

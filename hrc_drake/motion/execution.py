@@ -9,7 +9,8 @@ scale, so the robot always stays on the planned path whatever the scale does:
 With 0 ≤ r ≤ 1 the velocities are at most the limits × r, and the first acceleration term at
 most the limits × r². At every update RobotMotion picks ṙ, held until the next update, to
 bring r to the commanded scale within one period where it can, and otherwise as fast as the
-scaled joint acceleration limits allow (the second term uses what the first leaves over).
+joint acceleration limits allow (the second term uses what the first leaves over): scaled
+by the target when speeding up, in full when braking (see `next_progress`).
 """
 
 import dataclasses
@@ -27,14 +28,12 @@ AT_REST_RATE = 1e-9
 
 @dataclass(frozen=True)
 class Progress:
-    """Where execution is on the path: τ, r and ṙ as set by the update at time `since`,
-    and the scale of the acceleration limits that ṙ respects."""
+    """Where execution is on the path: τ, r and ṙ as set by the update at time `since`."""
 
     tau: float
     rate: float
     rate_change: float
     since: float
-    limit_scale: float = 0.0
 
     def at(self, t: float, duration: float) -> "Progress":
         """Extrapolated to time t (ṙ constant, r never below 0, τ never past the end)."""
@@ -48,7 +47,7 @@ class Progress:
     def _moved(self, dt: float, duration: float, t: float, rate_change: float) -> "Progress":
         tau = self.tau + self.rate * dt + 0.5 * self.rate_change * dt * dt
         rate = max(0.0, self.rate + self.rate_change * dt)
-        return Progress(min(tau, duration), rate, rate_change, t, self.limit_scale)
+        return Progress(min(tau, duration), rate, rate_change, t)
 
     @property
     def at_rest(self) -> bool:
@@ -74,15 +73,17 @@ def next_progress(
 ) -> Progress:
     """`progress` with ṙ for the next period: reaches `target` in one period if it can.
 
-    The acceleration limits are scaled by `limit_scale`: the target when speeding up, and
-    while slowing down the scale the motion had when it began to slow down (so a stop
-    brakes as hard as the motion it stops was allowed to, and takes the same time from any
-    speed). The feasible range of ṙ is the intersection, over the joints and over τ now and
-    one period ahead, and over r now and target (the extremes of r in the period), of
-    |q''(τ) r² + q'(τ) ṙ| ≤ scaled limit.
+    Speeding up, the acceleration limits are scaled by the target, so a slow motion also
+    speeds up gently. Slowing down (a SetSpeed, a protective slow-down or stop) brakes the
+    way a robot controller's category 2 stop does: on the path, with the full acceleration
+    limits. The stop from rate r then takes r times the stop from full speed and travels
+    r² times as far: the stopping data (`hrc_drake.motion.stopping`) and S_p rest on that.
+    The feasible range of ṙ is the intersection, over the joints and over τ now and one
+    period ahead, and over r now and target (the extremes of r in the period), of
+    |q''(τ) r² + q'(τ) ṙ| ≤ limit.
     """
     speeding_up = target >= progress.rate
-    limit_scale = target if speeding_up else max(progress.limit_scale, progress.rate)
+    limit_scale = target if speeding_up else 1.0
     wanted = (target - progress.rate) / period
     slowest, fastest = sorted((progress.rate, target))
     limits = ACCELERATION_MARGIN * limit_scale * acceleration_limits
@@ -98,4 +99,4 @@ def next_progress(
         high = min(high, np.min(np.maximum(bound_a, bound_b), initial=np.inf))
     chosen = min(max(wanted, low), high) if low <= high else 0.5 * (low + high)
     change = min(chosen, wanted) if speeding_up else max(chosen, wanted)
-    return dataclasses.replace(progress, rate_change=change, limit_scale=limit_scale)
+    return dataclasses.replace(progress, rate_change=change)

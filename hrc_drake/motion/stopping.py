@@ -1,20 +1,33 @@
-"""Stopping data of each iisy variant: T_s and S_s of the protective separation distance.
+"""Stopping data of each iisy variant, measured on RobotMotion (ISO 10218-1 Annex B style).
 
-RobotMotion brakes on the planned path when the safety scale drops to 0, within the joint
-acceleration limits (scaled like the speed, so the stopping time does not depend on the
-scale and the stopping distance is proportional to it). This module measures, for each
-variant, the stop from top speed (scale 1 → 0, applied just after an update so the update
-period's latency is included) on standard motions that drive the tool at its collaborative
-speed limit, and stores the worst case in models/iisy/stopping.yaml:
+RobotMotion brakes on its path with the full joint acceleration limits whenever it slows
+down (`hrc_drake.motion.execution.next_progress`). This module measures that stop as Annex B
+tabulates it: for each main axis (A1, A2, A3) moved on its own, at 33, 66 and 100 % of full
+speed (the SetSpeed override) and at 33, 66 and 100 % extension (the tool's horizontal
+distance from the A1 axis over its largest), the robot is stopped at the peak of its speed
+and the stop is measured:
 
-    .venv/bin/python -m hrc_drake.motion.stopping      # re-measure and rewrite the file
+- time: from the update that receives the stop to rest (the monitor's period and the command
+  latency come on top: they are part of T_r);
+- distance: how far the fastest point of the robot travels meanwhile (the ends of the
+  capsules that bound its geometry, the points the safety monitor measures), and that point's
+  speed when the stop was commanded; the axis angle travelled.
+
+Payload: the executor brakes within the joint acceleration limits whatever it carries, and
+the simulated arm does not carry the workpieces' mass (they follow the tool kinematically),
+so the stop does not depend on the payload: the data hold for any payload up to the rated
+one. They are written to models/iisy/stopping/<variant>.yaml:
+
+    .venv/bin/python -m hrc_drake.motion.stopping      # re-measure and rewrite the files
 
 The measurement executes the commanded motion with ideal tracking (RobotMotion's desired
-state fed back as the robot state); the simulated robot's tracking error under the
-inverse-dynamics controller is well below a millimetre (tests/motion check the real stop).
-Read the data with `stopping_data(variant)`.
+state fed back as the robot state); tests/motion check the station's stop (plant and
+controller) against it. Read the data with `load_stops(variant)`.
 """
 
+import functools
+import itertools
+import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -25,44 +38,57 @@ from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import FINISHED, SUCCEEDED
-from hrc_drake.motion.messages import MoveJoints
+from hrc_drake.motion.messages import MoveJoints, SetSpeed
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import resource_dir
+from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.scenario import RobotConfig, Scenario
+from hrc_drake.station_models import ROBOT_MODEL, TOOL_MODEL
 
-STOPPING_FILE = "iisy/stopping.yaml"
-"""Inside the model folder (models/ in a checkout)."""
+STOPPING_DIR = "iisy/stopping"
+"""Inside the model folder (models/ in a checkout): one file per variant."""
 
-STANDARD_MOTIONS_DEG = {
-    "A1 sweep, arm reaching out": ((-120, -60, 60, 0, 60, 0), (120, -60, 60, 0, 60, 0)),
-    "A2 swing forward and down": ((0, -115, 60, 0, 60, 0), (0, -20, 60, 0, 60, 0)),
-    "A3 swing, elbow opening": ((0, -60, 100, 0, 60, 0), (0, -60, -10, 0, 60, 0)),
-}
-"""Start and goal (degrees) of the motions whose stops are measured."""
+AXES = ("A1", "A2", "A3")
+SPEEDS = (0.33, 0.66, 1.0)
+EXTENSIONS = (0.33, 0.66, 1.0)
+SWING_DEG = {"A1": 240.0, "A2": 90.0, "A3": 110.0}
+"""How far each axis turns in its measured motion (about the configuration of the
+extension)."""
 
 SAMPLE = 1e-3
 """s between samples of the desired motion."""
+HALF_SAMPLE = SAMPLE / 2
+AT_REST = 1e-6
+"""rad/s: desired joint speeds below this are rest (braking leaves rounding residues)."""
 
 
 @dataclass(frozen=True)
-class StoppingData:
-    """time: T_s (s) from the scale command to rest; distance: S_s (m) travelled by the tool
-    meanwhile; speed: the tool's speed (m/s) when the stop was commanded."""
+class Stop:
+    """One measured stop (SI units; the angle in degrees)."""
 
-    time: float
-    distance: float
+    axis: str
     speed: float
+    """fraction of full speed the robot moved at (the override)"""
+    extension: float
+    """fraction of the largest horizontal distance of the tool from the A1 axis"""
+    time: float
+    """s from the stop command to rest"""
+    distance: float
+    """m travelled by the fastest point meanwhile"""
+    point_speed: float
+    """m/s of the fastest point when the stop was commanded"""
+    angle: float
+    """degrees the axis turned meanwhile"""
 
 
-def stopping_data(variant: str) -> StoppingData:
-    """The stored worst-case stop of `variant` from top speed."""
-    entry = load_stopping_file()[variant]
-    return StoppingData(entry["time"], entry["distance"], entry["speed"])
+def load_stops(variant: str) -> tuple[Stop, ...]:
+    """The stored stopping data of `variant`."""
+    entries = yaml.safe_load(_stopping_file(variant).read_text())["stops"]
+    return tuple(Stop(**entry) for entry in entries)
 
 
-def load_stopping_file() -> dict:
-    """The whole stopping data file: per variant the worst case and each measured motion."""
-    return yaml.safe_load((resource_dir("models") / STOPPING_FILE).read_text())
+def _stopping_file(variant: str) -> Path:
+    return resource_dir("models") / STOPPING_DIR / f"{variant}.yaml"
 
 
 class _IdealRobot:
@@ -84,23 +110,18 @@ class _IdealRobot:
         self.context = self.simulator.get_mutable_context()
         self.motion_context = self.motion.GetMyContextFromRoot(self.context)
         self.model = self.motion.planner.model
+        self.points = RobotPoints(self.model)
         self.period = options.update_period
         self.set_scale(1.0)
 
     def set_scale(self, scale: float) -> None:
         self.diagram.GetInputPort("speed_scale").FixValue(self.context, [scale])
 
-    def move(self, seq: int, q) -> None:
-        command = MoveJoints(seq=seq, q=tuple(np.radians(q)))
+    def command(self, command) -> None:
         self.diagram.GetInputPort("robot_command").FixValue(self.context, command)
 
-    def tool_speed(self) -> float:
-        x = self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
-        return self.model.tool_speed(x[:6], x[6:])
-
-    def at_rest(self) -> bool:
-        x = self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
-        return bool(np.all(x[6:] == 0.0))
+    def desired(self) -> np.ndarray:
+        return self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
 
     def outcome(self, seq: int) -> str | None:
         return self.motion.GetOutputPort("robot_status").Eval(self.motion_context).outcome_of(seq)
@@ -109,73 +130,179 @@ class _IdealRobot:
         self.simulator.AdvanceTo(self.context.get_time() + SAMPLE)
 
     def run_move(self, seq: int, q) -> list[tuple[float, float]]:
-        """Executes a move to the end; (time, tool speed) samples."""
-        self.move(seq, q)
+        """Executes a move to the end; (time, fastest point speed) samples."""
+        self.command(MoveJoints(seq=seq, q=tuple(q)))
         samples = []
+        before = self.points.world(self.desired()[:6])
         while self.outcome(seq) not in FINISHED:
             self.step()
-            samples.append((self.context.get_time(), self.tool_speed()))
+            now = self.points.world(self.desired()[:6])
+            samples.append((self.context.get_time(), _fastest_step(before, now) / SAMPLE))
+            before = now
         if self.outcome(seq) != SUCCEEDED:
             reason = self.motion.GetOutputPort("robot_status").Eval(self.motion_context).reason
             raise RuntimeError(f"stopping measurement move {seq} did not succeed: {reason}")
         return samples
 
 
-def measure_stop(variant: str, start_deg, goal_deg, options=None) -> StoppingData:
-    """Stops the move start → goal at its peak tool speed (just after an update)."""
-    options = options or MotionOptions()
-    reference = _IdealRobot(variant, options)
-    reference.run_move(1, start_deg)
-    samples = reference.run_move(2, goal_deg)
-    t_move = samples[0][0]
-    t_peak = max(samples, key=lambda sample: sample[1])[0]
-    robot = _IdealRobot(variant, options)
-    robot.run_move(1, start_deg)
-    robot.move(2, goal_deg)
-    period = options.update_period
-    update_before_peak = t_move + np.floor((t_peak - t_move) / period) * period
-    robot.simulator.AdvanceTo(update_before_peak + SAMPLE)
-    speed = robot.tool_speed()
-    robot.set_scale(0.0)
-    t_stop, distance = robot.context.get_time(), 0.0
-    while not robot.at_rest():
+class RobotPoints:
+    """The ends of the capsules that bound the robot's geometry (arm and tool), in world
+    coordinates: the points whose speeds the safety monitor measures."""
+
+    def __init__(self, model):
+        plant = model.plant
+        inspector = model.checker.model().scene_graph().model_inspector()
+        names = [n for n in (ROBOT_MODEL, TOOL_MODEL) if plant.HasModelInstanceNamed(n)]
+        parts = body_parts(plant, [plant.GetModelInstanceByName(n) for n in names])
+        self._plant, self._context = plant, model.plant_context
+        self._bodies, ends = [], []
+        for part in parts:
+            start, end, _ = bounding_segment(inspector.GetShape(part.geometry))
+            X_BG = inspector.GetPoseInFrame(part.geometry)
+            body = plant.GetBodyFromFrameId(inspector.GetFrameId(part.geometry))
+            self._bodies.append(body)
+            ends.append(np.column_stack([X_BG @ start, X_BG @ end]))
+        self._ends = ends
+
+    def world(self, q) -> np.ndarray:
+        """(points × 3) at the arm configuration q."""
+        self._plant.SetPositions(self._context, q)
+        return np.vstack(
+            [
+                (body.EvalPoseInWorld(self._context) @ ends).T
+                for body, ends in zip(self._bodies, self._ends, strict=True)
+            ]
+        )
+
+
+def _fastest_step(before: np.ndarray, after: np.ndarray) -> float:
+    return float(np.linalg.norm(after - before, axis=1).max())
+
+
+def measure_stop(variant: str, axis: str, speed: float, extension: float) -> Stop:
+    """Moves `axis` through its swing at `speed` and stops it at its peak speed."""
+    start, goal = swing(variant, axis, extension)
+    peak = _peak_time(variant, start, goal, speed)
+    robot = _started(variant, start, goal, speed)
+    update = robot.period * math.floor(peak / robot.period + 1e-9)  # the update before the peak
+    robot.simulator.AdvanceTo(update - 2 * HALF_SAMPLE)
+    before = robot.points.world(robot.desired()[:6])
+    robot.simulator.AdvanceTo(update - HALF_SAMPLE)
+    now = robot.points.world(robot.desired()[:6])
+    point_speed = _fastest_step(before, now) / HALF_SAMPLE
+    q_stop = robot.desired()[:6].copy()
+    robot.set_scale(0.0)  # received by the update at `update`, between two samples
+    travelled = np.zeros(len(now))
+    while np.abs(robot.desired()[6:]).max() > AT_REST:
         robot.step()
-        distance += robot.tool_speed() * SAMPLE
-    return StoppingData(robot.context.get_time() - t_stop, distance, speed)
-
-
-def measure_variant(variant: str) -> dict[str, StoppingData]:
-    return {
-        name: measure_stop(variant, start, goal)
-        for name, (start, goal) in STANDARD_MOTIONS_DEG.items()
-    }
-
-
-def write_stopping_file(path: Path | None = None) -> Path:
-    """Measures every variant and writes the stopping data file."""
-    path = path or resource_dir("models") / STOPPING_FILE
-    entries = {}
-    for variant in sorted(VARIANTS):
-        stops = measure_variant(variant)
-        worst = {
-            "time": max(s.time for s in stops.values()),
-            "distance": max(s.distance for s in stops.values()),
-            "speed": max(s.speed for s in stops.values()),
-        }
-        motions = {name: _rounded(asdict(stop)) for name, stop in stops.items()}
-        entries[variant] = {**_rounded(worst), "motions": motions}
-    header = (
-        "# Stopping time (s), stopping distance (m) and tool speed (m/s) at the stop of each\n"
-        "# iisy variant from top speed, speed scale 1 -> 0: T_s and S_s of ISO/TS 15066.\n"
-        "# Worst case of the motions below. Generated by `python -m hrc_drake.motion.stopping`.\n"
+        after = robot.points.world(robot.desired()[:6])
+        travelled += np.linalg.norm(after - now, axis=1)
+        now = after
+    joint = AXES.index(axis)
+    return Stop(
+        axis=axis,
+        speed=speed,
+        extension=extension,
+        time=robot.context.get_time() - update,
+        distance=float(travelled.max()),
+        point_speed=point_speed,
+        angle=math.degrees(abs(robot.desired()[joint] - q_stop[joint])),
     )
-    path.write_text(header + yaml.safe_dump(entries, sort_keys=True))
+
+
+def _started(variant: str, start, goal, speed: float) -> _IdealRobot:
+    """A robot at `start`, its move to `goal` at `speed` just commanded."""
+    robot = _IdealRobot(variant, MotionOptions())
+    robot.run_move(1, start)
+    robot.command((SetSpeed(seq=2, fraction=speed), MoveJoints(seq=3, q=tuple(goal))))
+    return robot
+
+
+def _peak_time(variant: str, start, goal, speed: float) -> float:
+    """When the move start → goal at `speed` moves its fastest point fastest."""
+    robot = _started(variant, start, goal, speed)
+    samples = []
+    before = robot.points.world(robot.desired()[:6])
+    while robot.outcome(3) not in FINISHED:
+        robot.step()
+        now = robot.points.world(robot.desired()[:6])
+        samples.append((robot.context.get_time(), _fastest_step(before, now) / SAMPLE))
+        before = now
+    return max(samples, key=lambda sample: sample[1])[0]
+
+
+def swing(variant: str, axis: str, extension: float) -> tuple[np.ndarray, np.ndarray]:
+    """Start and goal (rad) of the measured motion: `axis` turning through SWING_DEG (inside
+    its limits) about the best fitting configuration of `extension` from which the whole
+    swing is clear of the robot itself."""
+    model = _planning_model(variant)
+    joint = AXES.index(axis)
+    limits = VARIANTS[variant]
+    half = math.radians(SWING_DEG[axis]) / 2
+    for q in _by_extension(variant, extension):
+        low = max(q[joint] - half, limits.position_lower[joint] + 0.05)
+        high = min(q[joint] + half, limits.position_upper[joint] - 0.05)
+        start, goal = q.copy(), q.copy()
+        start[joint], goal[joint] = low, high
+        if model.edge_collision_free(start, goal):
+            return start, goal
+    raise RuntimeError(f"{variant}: no clear {axis} swing at extension {extension}")
+
+
+@functools.cache
+def _by_extension(variant: str, extension: float) -> list[np.ndarray]:
+    """Arm configurations (A1 = 0, wrist straight), the closest to `extension` of the
+    tool's largest horizontal distance from the A1 axis at the height of A2 first."""
+    model = _planning_model(variant)
+    height = model.tool_pose(np.zeros(6)).translation()[2]  # stretched along the upper arm
+    candidates = []
+    for a2, a3 in itertools.product(range(-90, 1, 3), range(-150, 151, 3)):
+        q = np.radians([0.0, a2, a3, 0.0, 0.0, 0.0])
+        p = model.tool_pose(q).translation()
+        candidates.append((q, math.hypot(p[0], p[1]), p[2]))
+    reach = max(r for _, r, _ in candidates)
+
+    def misfit(candidate) -> float:
+        _, r, z = candidate
+        return abs(r / reach - extension) + 0.2 * abs(z - height)
+
+    return [q for q, _, _ in sorted(candidates, key=misfit)]
+
+
+@functools.cache
+def _planning_model(variant: str):
+    from hrc_drake.motion.model import PlanningModel
+
+    return PlanningModel(Scenario(name="stopping", robot=RobotConfig(variant=variant)), 0.0)
+
+
+def measure_variant(variant: str) -> list[Stop]:
+    return [
+        measure_stop(variant, axis, speed, extension)
+        for axis, extension, speed in itertools.product(AXES, EXTENSIONS, SPEEDS)
+    ]
+
+
+def write_stopping_file(variant: str) -> Path:
+    """Measures `variant` and writes its stopping data file."""
+    path = _stopping_file(variant)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rows = [
+        {k: round(v, 4) if isinstance(v, float) else v for k, v in asdict(s).items()}
+        for s in measure_variant(variant)
+    ]
+    header = (
+        f"# Stopping data of the {variant} under RobotMotion (ISO 10218-1 Annex B style):\n"
+        "# each main axis moved alone at 33/66/100 % speed and 33/66/100 % extension, stopped\n"
+        "# at its peak speed. time: s from the stop command to rest; distance: m travelled\n"
+        "# by the robot's fastest point meanwhile; point_speed: that point's speed (m/s) at\n"
+        "# the command; angle: degrees the axis turned. Valid for any payload up to the\n"
+        "# rated one. Generated by `python -m hrc_drake.motion.stopping`.\n"
+    )
+    path.write_text(header + yaml.safe_dump({"variant": variant, "stops": rows}, sort_keys=False))
     return path
 
 
-def _rounded(values: dict) -> dict:
-    return {k: round(float(v), 4) for k, v in values.items()}
-
-
 if __name__ == "__main__":
-    print(f"wrote {write_stopping_file()}")
+    for name in sorted(VARIANTS):
+        print(f"wrote {write_stopping_file(name)}", flush=True)

@@ -3,26 +3,45 @@ has a default, so a scenario without the section gets a monitor with ISO default
 
 from dataclasses import dataclass
 
+ISO_13855 = "iso13855"
+CONSTANT = "constant"
+MEASURED = "measured"
+V_H_RULES = (ISO_13855, CONSTANT, MEASURED)
+
 
 @dataclass
 class SafetyConfig:
-    """Speed and separation monitoring and contact assessment settings (SI units).
+    """Speed and separation monitoring and contact assessment settings (SI units); the
+    figures and their sources are in docs/safety.md.
 
-    `stopping_time` / `stopping_distance` are the robot's stop from full speed; left empty,
-    the measured stop data of the robot variant are used (`hrc_drake.safety.stopping`).
-    `robot_speed` is the highest speed of any robot point towards the person at speed
-    scale 1: the monitor chooses the scale as if the robot moved that fast, which is
-    conservative when the running motion is slower.
+    Person speed v_h: with `v_h_rule` iso13855 (ISO 13855) it is `v_h_near` where the
+    protective distance computed with it is at most `near_distance`, else `v_h` (walking);
+    with `constant`, always `v_h`; with `measured`, the measured speed of the closest body
+    region towards the robot (0 for a person standing still or walking away: it trusts the
+    person not to speed up within the robot's stop).
+
+    T_r, the reaction time, is `sensing_time` (how long the sensing takes to report the
+    person: a safety scanner's response time) plus the monitor's `period` (the person may
+    move just after a measurement) plus the robot's command latency (one RobotMotion update
+    period). The stop itself comes from the robot variant's measured stopping data.
+
+    `robot_speed` is the highest speed of any robot point (with what it carries) at full
+    speed: the monitor chooses the speed scale as if the robot moved that fast. A `moving`
+    robot is one whose fastest point exceeds `moving_speed`: only a moving robot violates
+    SSM or causes a contact.
+
+    A contact is quasi-static (clamping) when the touched body region has cell geometry or
+    another robot part within `clamping_gap` on its far side; otherwise it is transient.
     """
 
     enabled: bool = True
     ssm: bool = True
     period: float = 0.01
+    v_h_rule: str = ISO_13855
     v_h: float = 1.6
-    measured_human_speed: bool = False
-    reaction_time: float = 0.1
-    stopping_time: float | None = None
-    stopping_distance: float | None = None
+    v_h_near: float = 2.0
+    near_distance: float = 0.5
+    sensing_time: float = 0.08
     robot_speed: float = 1.0
     intrusion_distance: float = 0.1
     sensor_uncertainty: float = 0.05
@@ -31,3 +50,4 @@ class SafetyConfig:
     min_scale: float = 0.05
     moving_speed: float = 0.01
     contact_area_cm2: float = 1.0
+    clamping_gap: float = 0.02

@@ -5,13 +5,20 @@ import math
 from dataclasses import dataclass
 
 from hrc_drake.safety.config import SafetyConfig
-from hrc_drake.safety.messages import CARRIED, SafetyStatus, SafetyTotals
-from hrc_drake.safety.pfl import assess_contact
+from hrc_drake.safety.messages import (
+    CARRIED,
+    ContactRecord,
+    SafetyStatus,
+    SafetyTotals,
+    ViolationEpisode,
+)
+from hrc_drake.safety.pfl import QUASI_STATIC, TRANSIENT, assess_contact
 from hrc_drake.safety.proximity import Reading
 from hrc_drake.safety.ssm import (
+    NO_TERMS,
     REDUCED,
     STOPPED,
-    SsmParameters,
+    SsmModel,
     max_safe_scale,
     next_scale,
     protective_separation,
@@ -21,60 +28,70 @@ from hrc_drake.safety.ssm import (
 
 @dataclass(frozen=True)
 class Judge:
-    """The fixed inputs of judging: settings, S_p terms and the robot's effective mass
+    """The fixed inputs of judging: settings, the S_p model and the robot's effective mass
     without a carried object (m_R = M/2 + tool)."""
 
     config: SafetyConfig
-    params: SsmParameters
+    model: SsmModel
     robot_mass: float
 
-    def status(self, time: float, reading: Reading, before: SafetyStatus, payload: float):
+    def status(
+        self,
+        time: float,
+        reading: Reading,
+        before: SafetyStatus,
+        payload: float,
+        path_rate: float,
+    ) -> SafetyStatus:
+        """`path_rate`: the fraction of full speed the robot moves at along its path."""
         config = self.config
         closest = reading.closest
-        separation = closest.distance if closest else math.inf
-        v_r = max(closest.robot_approach, 0.0) if closest else 0.0
-        v_h = self._person_speed(closest)
-        actual_scale = min(1.0, reading.robot_speed / config.robot_speed)
-        protective = protective_separation(v_h, v_r, self.params, actual_scale)
-        safe = max_safe_scale(separation, v_h, config.robot_speed, self.params)
-        safe_with_margin = max_safe_scale(
-            separation - config.hysteresis, v_h, config.robot_speed, self.params
-        )
+        moving = reading.robot_speed > config.moving_speed
+        separation, terms, v_h = math.inf, NO_TERMS, 0.0
+        if closest is not None:
+            separation, v_h = closest.distance, max(closest.human_approach, 0.0)
+            v_r = max(closest.robot_approach, 0.0)
+            terms = protective_separation(self.model, path_rate, reading.robot_speed, v_r, v_h)
+        safe = max_safe_scale(separation, v_h, self.model)
+        safe_with_margin = max_safe_scale(separation - config.hysteresis, v_h, self.model)
         scale = next_scale(before.scale, safe, safe_with_margin, config.min_scale)
         scale = scale if config.ssm else 1.0
-        robot_at_rest = reading.robot_speed <= config.moving_speed
+        robot_mass = self.robot_mass + payload
         contact = tuple(
             assess_contact(
-                c.region, c.relative_speed, self.robot_mass + payload, config.contact_area_cm2
+                c.region,
+                c.part,
+                c.relative_speed,
+                robot_mass,
+                config.contact_area_cm2,
+                QUASI_STATIC if c.pinned else TRANSIENT,
+                depth=-c.distance if moving else 0.0,  # a robot at rest presses nothing
+                robot_moving=moving,
             )
             for c in reading.contacts
-            if not (robot_at_rest and is_handover_grasp(c))
+            if moving or not is_handover_grasp(c)
         )
         now = SafetyStatus(
             time=time,
             separation=separation,
             region=closest.region if closest else "",
             link=closest.part if closest else "",
-            protective=protective,
+            ssm=terms,
             scale=scale,
             safe_scale=safe,
             zone=zone(scale),
             human_speed=reading.human_speed,
             robot_speed=reading.robot_speed,
-            approach_speed=v_r,
-            violation=reading.robot_speed > config.moving_speed and separation < protective,
+            path_rate=path_rate,
+            human_approach=v_h,
+            violation=moving and separation < terms.total,
             contact=contact,
             ssm_enabled=config.ssm,
         )
-        return _replaced(now, totals=updated_totals(before, now))
-
-    def _person_speed(self, closest) -> float:
-        if self.config.measured_human_speed:
-            return max(closest.human_approach, 0.0) if closest else 0.0
-        return self.config.v_h
+        return _replaced(now, totals=updated_totals(before, now, config.moving_speed))
 
 
-def updated_totals(before: SafetyStatus, now: SafetyStatus) -> SafetyTotals:
+def updated_totals(before: SafetyStatus, now: SafetyStatus, moving_speed: float) -> SafetyTotals:
     """Totals after `now`; durations credit the interval since `before` to its state."""
     totals = before.totals
     dt = now.time - before.time
@@ -86,31 +103,50 @@ def updated_totals(before: SafetyStatus, now: SafetyStatus) -> SafetyTotals:
             min_separation_link=now.link,
             min_separation_time=now.time,
         )
+    at_rest = before.robot_speed <= moving_speed
     changes["reduced_time"] = totals.reduced_time + dt * (before.zone == REDUCED)
-    changes["stopped_time"] = totals.stopped_time + dt * (before.zone == STOPPED)
+    changes["stopped_time"] = totals.stopped_time + dt * (before.zone == STOPPED and at_rest)
     changes["stops"] = totals.stops + (now.zone == STOPPED and before.zone != STOPPED)
-    changes["violations"] = totals.violations + (now.violation and not before.violation)
     changes["violation_time"] = totals.violation_time + dt * before.violation
+    changes["contact_time"] = totals.contact_time + dt * bool(before.contact)
     if now.violation:
-        changes["worst_deficit"] = max(totals.worst_deficit, now.protective - now.separation)
-    changes.update(_contact_totals(before, now, dt))
+        changes["violation_episodes"] = _episodes(totals.violation_episodes, before, now)
+    if now.contact:
+        changes["contact_records"] = _contact_records(totals.contact_records, before, now)
     return _replaced(totals, **changes)
 
 
-def _contact_totals(before: SafetyStatus, now: SafetyStatus, dt: float) -> dict:
-    totals = before.totals
-    starts = bool(now.contact) and not before.contact
-    episode_violated = any(c.violation for c in before.contact) and not starts
-    violates = any(c.violation for c in now.contact)
-    worst = max(now.contact, key=lambda c: (c.violation, c.limit_ratio), default=None)
-    if totals.worst_contact is not None and worst is not None:
-        worst = max(totals.worst_contact, worst, key=lambda c: (c.violation, c.limit_ratio))
-    return {
-        "contacts": totals.contacts + starts,
-        "contact_time": totals.contact_time + dt * bool(before.contact),
-        "contact_violations": totals.contact_violations + (violates and not episode_violated),
-        "worst_contact": worst or totals.worst_contact,
-    }
+def _episodes(episodes: tuple, before: SafetyStatus, now: SafetyStatus) -> tuple:
+    """The episodes with `now` (a violation) added: a new one, or the running one grown."""
+    current = ViolationEpisode(
+        now.time, now.time, now.region, now.link, now.separation, now.protective
+    )
+    if not before.violation:
+        return (*episodes, current)
+    running = episodes[-1]
+    worst = current if current.deficit > running.deficit else running
+    grown = _replaced(worst, start=running.start, end=now.time)
+    return (*episodes[:-1], grown)
+
+
+def _contact_records(records: tuple, before: SafetyStatus, now: SafetyStatus) -> tuple:
+    """The records with the contacts of `now`: a touching pair that touched at the last
+    update grows its record (the last one of that pair), any other starts one."""
+    touching_before = {(c.region, c.part) for c in before.contact}
+    records = list(records)
+    for contact in now.contact:
+        pair = (contact.region, contact.part)
+        if pair not in touching_before:
+            records.append(
+                ContactRecord(now.time, now.time, contact, contact.robot_moving, contact.violation)
+            )
+            continue
+        k = max(i for i, r in enumerate(records) if (r.worst.region, r.worst.part) == pair)
+        record = records[k]
+        worst = contact if contact.severity > record.worst.severity else record.worst
+        violation = record.violation or contact.violation
+        records[k] = _replaced(record, end=now.time, worst=worst, violation=violation)
+    return tuple(records)
 
 
 def _replaced(message, **changes):

@@ -1,5 +1,6 @@
 """What the SafetyMonitor reports: an abstract `safety_status` for behavior trees and
-reports, and the vector `safety_signals` that loggers record for timelines and heat maps.
+reports, and the vector `safety_signals` that loggers record for timelines, heat maps and
+the run's safety log (safety.npz).
 
 The status carries the current measurement and the run's running totals, so the status at
 the end of a run is enough for its safety metrics.
@@ -8,14 +9,46 @@ the end of a run is enough for its safety metrics.
 import math
 from dataclasses import dataclass
 
+from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.pfl import ContactAssessment
-from hrc_drake.safety.ssm import FREE, ZONES
+from hrc_drake.safety.ssm import FREE, NO_TERMS, ZONES, SsmTerms
 
 NO_PART = ""
 
 
 CARRIED = "carried object"
 """How reports name the robot part that is the object in its gripper."""
+
+
+@dataclass(frozen=True)
+class ViolationEpisode:
+    """A stretch of updates in which the robot moved while closer than S_p; the pair,
+    separation and S_p are those of its largest deficit."""
+
+    start: float
+    end: float
+    region: str
+    part: str
+    separation: float
+    protective: float
+
+    @property
+    def deficit(self) -> float:
+        return self.protective - self.separation
+
+
+@dataclass(frozen=True)
+class ContactRecord:
+    """One body region touching one robot part, from its first update to its last; the
+    assessment is that of its worst update, `robot_moving` that of its first (who came
+    into whom)."""
+
+    start: float
+    end: float
+    worst: ContactAssessment
+    robot_moving: bool
+    violation: bool
+    """over a limit at any update"""
 
 
 @dataclass(frozen=True)
@@ -27,16 +60,40 @@ class SafetyTotals:
     min_separation_link: str = NO_PART
     min_separation_time: float = 0.0
     reduced_time: float = 0.0
+    """the robot ran at a reduced SSM scale"""
     stopped_time: float = 0.0
+    """the robot stood still in a monitored stop (braking into it not included)"""
     stops: int = 0
-    violations: int = 0
     violation_time: float = 0.0
-    worst_deficit: float = 0.0
-    """largest S_p minus separation while the robot moved (m)"""
-    contacts: int = 0
+    violation_episodes: tuple[ViolationEpisode, ...] = ()
     contact_time: float = 0.0
-    contact_violations: int = 0
-    worst_contact: ContactAssessment | None = None
+    contact_records: tuple[ContactRecord, ...] = ()
+
+    @property
+    def violations(self) -> int:
+        return len(self.violation_episodes)
+
+    @property
+    def worst_deficit(self) -> float:
+        """largest S_p minus separation while the robot moved (m)"""
+        return max((e.deficit for e in self.violation_episodes), default=0.0)
+
+    @property
+    def contacts(self) -> int:
+        return len(self.contact_records)
+
+    @property
+    def robot_contacts(self) -> int:
+        """contacts that began while the robot moved"""
+        return sum(r.robot_moving for r in self.contact_records)
+
+    @property
+    def contact_violations(self) -> int:
+        return sum(r.violation for r in self.contact_records)
+
+    @property
+    def worst_contact(self) -> ContactRecord | None:
+        return max(self.contact_records, key=lambda r: r.worst.severity, default=None)
 
 
 @dataclass(frozen=True)
@@ -44,47 +101,74 @@ class SafetyStatus:
     """The monitor's view at its last update.
 
     `separation` is the smallest signed distance between any body region of the person
-    and any robot part (link, tool, carried object), at `region` and `link`; `protective`
-    is S_p there; `scale` is the speed scale sent to the robot (1 with SSM disabled).
-    `violation` says the robot moves closer than S_p now; `contact` lists the body regions
-    touched now, assessed with the energy-transfer model.
+    and any robot part (link, tool, carried object), at `region` and `link`; `ssm` holds
+    S_p there and its terms; `scale` is the speed scale sent to the robot (1 with SSM
+    disabled). `violation` says the robot moves closer than S_p now; `contact` lists the
+    body regions touched now, assessed with the energy-transfer model.
     """
 
     time: float = 0.0
     separation: float = float("inf")
     region: str = NO_PART
     link: str = NO_PART
-    protective: float = 0.0
+    ssm: SsmTerms = NO_TERMS
     scale: float = 1.0
     safe_scale: float = 1.0
     zone: str = FREE
     human_speed: float = 0.0
+    """fastest point of the person (m/s)"""
     robot_speed: float = 0.0
     """fastest point of the robot (m/s)"""
-    approach_speed: float = 0.0
-    """speed of the robot's closest point towards the person (m/s)"""
+    path_rate: float = 0.0
+    """fraction of full speed the robot moves along its path"""
+    human_approach: float = 0.0
+    """measured speed of the person's closest point towards the robot (m/s)"""
     violation: bool = False
     contact: tuple[ContactAssessment, ...] = ()
     ssm_enabled: bool = True
     totals: SafetyTotals = SafetyTotals()
 
+    @property
+    def protective(self) -> float:
+        """S_p (m)"""
+        return self.ssm.total
+
+    @property
+    def approach_speed(self) -> float:
+        """v_r: the robot's closest point towards the person (m/s)"""
+        return self.ssm.v_r
+
     def __deepcopy__(self, memo):
         return self  # immutable: Drake's state copies may share it
 
-    def signals(self, person_xy: tuple[float, float]) -> list[float]:
-        """The `safety_signals` vector (order of SIGNALS)."""
+    def signals(self, person_xy: tuple[float, float], part_index: int) -> list[float]:
+        """The `safety_signals` vector (order of SIGNALS); `part_index` numbers `link`
+        among the monitor's part names."""
         separation = self.separation if math.isfinite(self.separation) else math.nan
+        terms = self.ssm
         return [
             separation,
-            self.protective,
+            terms.total,
             self.scale,
             self.robot_speed,
-            self.approach_speed,
+            terms.v_r,
             self.human_speed,
             ZONES.index(self.zone),
             float(self.violation),
             float(bool(self.contact)),
             *person_xy,
+            REGIONS.index(self.region) if self.region else -1,
+            part_index,
+            terms.v_h,
+            self.human_approach,
+            terms.stopping_time,
+            terms.s_h,
+            terms.s_r,
+            terms.s_s,
+            terms.margins,
+            self.path_rate,
+            self.safe_scale,
+            self.time,
         ]
 
 
@@ -100,6 +184,22 @@ SIGNALS = (
     "contact",
     "person_x",
     "person_y",
+    "region",
+    "part",
+    "v_h",
+    "human_approach",
+    "stopping_time",
+    "s_h",
+    "s_r",
+    "s_s",
+    "margins",
+    "path_rate",
+    "safe_scale",
+    "time",
 )
-"""Entries of the `safety_signals` vector; `zone` is the index in ZONES, flags are 0/1, and
-an infinite separation (no person) is logged as NaN."""
+"""Entries of the `safety_signals` vector; `zone` is the index in ZONES, `region` in
+REGIONS and `part` in the monitor's part names (-1: no person), flags are 0/1, and an
+infinite separation (no person) is logged as NaN. `approach_speed` is v_r; `protective`
+is S_p = s_h + s_r + s_s + margins (or ISO 13855's least distance). `time` is when the
+update measured them: a logger publishing at the monitor's period records the previous
+update's values."""

@@ -14,9 +14,10 @@ holds, not every workpiece it might hold. Frames of inactive parts are NaN in th
 part that becomes active has no previous pose, so it counts as resting for that update.
 """
 
+import dataclasses
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -26,6 +27,10 @@ BOUND_SLACK = 1e-6
 """m taken off every capsule bound, so that rounding (in the bound or in Drake's distance)
 cannot skip a pair that is closer than the best one found by a hair."""
 
+PIN_COS = 0.5
+"""cos 60°: an obstacle within this angle of the direction the robot pushes a body region
+holds the region against the robot (a clamping, quasi-static contact)."""
+
 REFRESH_DISTANCE = 0.02
 """m any part may move before the capsule gaps are computed afresh. Until then the gaps of
 the reference less both parts' displacements since bound the distances (a capsule moves no
@@ -33,12 +38,14 @@ farther than its segment's ends); farther moves loosen them into more exact quer
 the fresh gaps cost."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class PairReading:
-    """One (body region, robot part) pair: signed distance and approach speeds (m/s).
+    """One (body region, robot part) pair: signed distance and directed speeds (m/s).
 
     `robot_approach` is the speed of the robot's witness point towards the person,
-    `human_approach` that of the person's witness point towards the robot.
+    `human_approach` that of the person's witness point towards the robot; `normal` points
+    from the robot part towards the person (world), `human_point` is the person's witness
+    point (world), whichever order SceneGraph reports the pair in.
     """
 
     region: str
@@ -46,6 +53,14 @@ class PairReading:
     distance: float
     robot_approach: float
     human_approach: float
+    human_part: int = -1
+    """index into the meter's `human`"""
+    robot_part: int = -1
+    """index into the meter's `robot`"""
+    normal: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    human_point: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    pinned: bool = False
+    """a contact whose body region cannot recoil (see `ProximityMeter.pinned`)"""
 
     @property
     def relative_speed(self) -> float:
@@ -86,8 +101,13 @@ class ProximityMeter:
     an `ActiveParts` (`active(indices into robot)`).
     """
 
-    def __init__(self, inspector, human: list[Part], robot: list[Part]):
+    def __init__(
+        self, inspector, human: list[Part], robot: list[Part], fixed=(), clamping_gap=0.02
+    ):
         self.human, self.robot = human, robot
+        self.fixed = tuple(fixed)
+        """Geometries that do not move (the cell): a body region against them is pinned."""
+        self.clamping_gap = clamping_gap
         self.n_human = len(human)
         self.geometries = [p.geometry for p in human + robot]
         part_frames = [inspector.GetFrameId(g) for g in self.geometries]
@@ -103,6 +123,7 @@ class ProximityMeter:
         )
         radius = np.array([r for _, _, r in segments])
         self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
+        self.human_parts = np.arange(self.n_human)
         self.human_frames = np.unique(self.part_frame[: self.n_human])
         sizes = [2, 12 * len(self.frames), 12 * len(self.human_frames)]
         bounds = np.cumsum([0, *sizes, 6 * len(self.geometries), self.radii.size])
@@ -137,16 +158,21 @@ class ProximityMeter:
         gaps, reference = self._gaps(ends, reference, active)
         bound = gaps - self.radii[:, active.robot]
         readings = [
-            self._pair_reading(i, active.rows[j], result, rates)
+            self._pair_reading(i, active.rows[j], result, poses, rates)
             for i, j, result in self._exact_pairs(query_object, bound, active.rows)
         ]
+        contacts = tuple(
+            dataclasses.replace(x, pinned=self.pinned(query_object, x, active))
+            for x in readings
+            if x.distance <= 0.0
+        )
         centre = poses[self.human_frames, :, 3].mean(axis=0)
         memory = [[time, person_time], poses, rates[self.human_frames], *reference]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
-            contacts=tuple(x for x in readings if x.distance <= 0.0),
-            robot_speed=self._robot_speed(rates, active.rows),
-            human_speed=float(np.linalg.norm(rates[self.human_frames, :, 3].mean(axis=0))),
+            contacts=contacts,
+            robot_speed=self._fastest(rates, active.rows),
+            human_speed=self._fastest(rates, self.human_parts),
             person_xy=(float(centre[0]), float(centre[1])),
             memory=np.concatenate([np.ravel(m) for m in memory]),
         )
@@ -198,9 +224,10 @@ class ProximityMeter:
         all_gaps[:, active.robot] = gaps
         return gaps, (ends, all_gaps)
 
-    def _robot_speed(self, rates: np.ndarray, robot_rows: np.ndarray) -> float:
-        """Fastest end of any active robot part's bounding segment (tool tip included)."""
-        velocities = self._ends(rates, robot_rows)
+    def _fastest(self, rates: np.ndarray, parts: np.ndarray) -> float:
+        """Speed of the fastest end of the parts' bounding segments (a robot's tool tip,
+        a person's hand)."""
+        velocities = self._ends(rates, parts)
         return math.sqrt((velocities * velocities).sum(axis=1).max())
 
     def _exact_pairs(self, query_object, bound: np.ndarray, robot_rows: np.ndarray) -> list:
@@ -221,24 +248,52 @@ class ProximityMeter:
             best = min(best, result.distance)
         return [p for p in pairs if p[2].distance <= max(best, 0.0)]
 
-    def _pair_reading(self, i: int, k: int, result, rates: np.ndarray) -> PairReading:
-        """Reading of human part `i` and part `k` (a robot part)."""
-        v_h, v_r = self._point_velocities([i, k], [result.p_ACa, result.p_BCb], rates)
-        towards_human = result.nhat_BA_W
+    def _pair_reading(self, i: int, k: int, result, poses, rates) -> PairReading:
+        """Reading of human part `i` and part `k` (a robot part). SceneGraph orders the pair
+        its own way (`id_A`, `id_B`), so the person's side is looked up, never assumed."""
+        human_is_a = result.id_A == self.geometries[i]
+        p_H, p_R = (result.p_ACa, result.p_BCb) if human_is_a else (result.p_BCb, result.p_ACa)
+        towards_human = result.nhat_BA_W if human_is_a else -result.nhat_BA_W
+        v_h, v_r = self._point_velocities([i, k], [p_H, p_R], rates)
         return PairReading(
             region=self.human[i].name,
             part=self.robot[k - self.n_human].name,
             distance=float(result.distance),
             robot_approach=float(v_r @ towards_human),
             human_approach=float(-v_h @ towards_human),
+            human_part=i,
+            robot_part=k - self.n_human,
+            normal=np.asarray(towards_human, dtype=float),
+            human_point=self._world_points([i], [p_H], poses)[0],
         )
+
+    def pinned(self, query_object, contact: PairReading, active: ActiveParts) -> bool:
+        """Whether the touched body region has fixed cell geometry or another robot part
+        within the clamping gap on its far side (within PIN_CONE of the direction the robot pushes):
+        it cannot recoil, the contact is a clamping one."""
+        human = self.geometries[contact.human_part]
+        others = [self.geometries[self.n_human + j] for j in active.robot]
+        others.remove(self.geometries[self.n_human + contact.robot_part])
+        for obstacle in (*self.fixed, *others):
+            result = query_object.ComputeSignedDistancePairClosestPoints(human, obstacle)
+            if result.distance > self.clamping_gap:
+                continue
+            towards_human = result.nhat_BA_W if result.id_A == human else -result.nhat_BA_W
+            if float(-towards_human @ contact.normal) >= PIN_COS:
+                return True
+        return False
 
     def _point_velocities(self, parts: list, points_G: list, rates: np.ndarray) -> np.ndarray:
         """World velocities (parts × 3) of points fixed in the parts' geometry frames."""
+        return self._world_points(parts, points_G, rates)
+
+    def _world_points(self, parts: list, points_G: list, poses: np.ndarray) -> np.ndarray:
+        """`poses` (or their rates) applied to points fixed in the parts' geometry frames:
+        world positions (or velocities), parts × 3."""
         X_FG = self.X_FG[parts]
         p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
-        rate = rates[self.part_frame[parts]]
-        return (rate[:, :, :3] @ p_F + rate[:, :, 3:])[:, :, 0]
+        pose = poses[self.part_frame[parts]]
+        return (pose[:, :, :3] @ p_F + pose[:, :, 3:])[:, :, 0]
 
 
 def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:

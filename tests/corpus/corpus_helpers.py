@@ -42,7 +42,7 @@ safety:
   period: 0.01
   v_h: 1.6
   min_scale: 0.05
-  stopping_time: 0.3
+  sensing_time: 0.08
 trees:
   robot: {file: robot.xml, period: 0.05}
 parameters:

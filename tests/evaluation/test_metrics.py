@@ -15,8 +15,14 @@ from hrc_drake.evaluation.metrics import (
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline, timeline_figure
 from hrc_drake.messages import TaskEvent
-from hrc_drake.safety.messages import SIGNALS, SafetyStatus, SafetyTotals
-from hrc_drake.safety.pfl import assess_contact
+from hrc_drake.safety.messages import (
+    SIGNALS,
+    ContactRecord,
+    SafetyStatus,
+    SafetyTotals,
+    ViolationEpisode,
+)
+from hrc_drake.safety.pfl import QUASI_STATIC, assess_contact
 from hrc_drake.safety.ssm import ZONES
 
 
@@ -62,36 +68,72 @@ def test_throughput_per_hour():
 
 
 def test_absent_sources_give_empty_sections():
-    assert safety_metrics(None) == {}
+    assert safety_metrics(None, 0.01) == {}
     assert task_metrics([], 10.0) == {"events": {}, "throughput_per_hour": {}}
     assert bt_metrics(None) == {}
     assert utilisation_metrics(np.zeros(0), signals(zone=[]), 0.01) == {}
 
 
 def test_safety_section_from_final_status():
-    contact = assess_contact("chest", 1.0, 9.0, 1.0)
+    # chest hit at 1 m/s by m_R = 9 kg: F = 428.571 N against 280 N (transient), 428.571 N/cm²
+    # against 240 N/cm²; a hand pinned at rest by the person pressing in: no robot force
+    chest = assess_contact("chest", "link_6", 1.0, 9.0, 1.0)
+    hand = assess_contact("hand", "link_2", 0.2, 9.0, 1.0, QUASI_STATIC, robot_moving=False)
     totals = SafetyTotals(
         min_separation=-0.05,
         min_separation_region="chest",
         min_separation_link="link_6",
         stops=2,
-        violations=1,
         violation_time=0.25,
-        worst_deficit=0.3,
-        contacts=1,
-        contact_violations=1,
-        worst_contact=contact,
+        violation_episodes=(ViolationEpisode(1.0, 1.25, "chest", "link_6", 0.2, 0.5),),
+        contact_records=(
+            ContactRecord(1.2, 1.3, chest, robot_moving=True, violation=True),
+            ContactRecord(4.0, 4.5, hand, robot_moving=False, violation=False),
+        ),
     )
-    metrics = safety_metrics(SafetyStatus(totals=totals))
+    metrics = safety_metrics(SafetyStatus(totals=totals), 0.01)
     assert metrics["min_separation"]["region"] == "chest"
-    assert metrics["ssm_violations"] == {"count": 1, "duration": 0.25, "worst_deficit": 0.3}
-    assert metrics["contacts"]["worst_region"] == "chest"
-    assert metrics["contacts"]["max_force_ratio"] == pytest.approx(428.571 / 240, abs=1e-4)
+    violations = metrics["ssm_violations"]
+    assert (violations["count"], violations["duration"], violations["moving_speed"]) == (
+        1,
+        0.25,
+        0.01,
+    )
+    assert violations["worst_deficit"] == pytest.approx(0.3)
+    assert violations["episodes"] == [
+        {
+            "start": 1.0,
+            "end": 1.25,
+            "region": "chest",
+            "part": "link_6",
+            "separation": 0.2,
+            "protective": 0.5,
+            "deficit": 0.3,
+        }
+    ]
+    contacts = metrics["contacts"]
+    assert (contacts["count"], contacts["robot_moving"], contacts["robot_at_rest"]) == (2, 1, 1)
+    assert contacts["violations"] == 1 and contacts["worst_region"] == "chest"
+    assert contacts["max_force_ratio"] == pytest.approx(428.571 / 280, abs=1e-4)
+    assert contacts["max_pressure_ratio"] == pytest.approx(428.571 / 240, abs=1e-4)
+    first, second = contacts["list"]
+    assert (first["region"], first["part"], first["kind"], first["robot_moving"]) == (
+        "chest",
+        "link_6",
+        "transient",
+        True,
+    )
+    assert (first["force_limit"], first["pressure_limit"], first["start"]) == (280, 240, 1.2)
+    assert (second["kind"], second["robot_moving"], second["force_limit"]) == (
+        "quasi-static",
+        False,
+        140,
+    )
     json.dumps(metrics)  # plain JSON, no infinities
 
 
 def test_no_person_seen_is_null_not_infinity():
-    metrics = safety_metrics(SafetyStatus())
+    metrics = safety_metrics(SafetyStatus(), 0.01)
     assert metrics["min_separation"]["distance"] is None
 
 

@@ -78,6 +78,10 @@ class Station:
     def q(self) -> np.ndarray:
         return self.diagram.GetOutputPort("robot_state").Eval(self.context)[:6].copy()
 
+    def velocity_norm(self) -> float:
+        """Largest joint speed (rad/s) of the simulated arm."""
+        return float(np.abs(self.diagram.GetOutputPort("robot_state").Eval(self.context)[6:]).max())
+
     def tool_pose(self) -> RigidTransform:
         return self.motion.planner.model.tool_pose(self.q())
 

@@ -7,7 +7,7 @@ from motion_helpers import build_station, distance_to_polyline, make_scenario, r
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import FINISHED, RUNNING, SUCCEEDED
 from hrc_drake.motion.messages import STOPPED, MoveJoints, SetSpeed
-from hrc_drake.motion.stopping import stopping_data
+from hrc_drake.safety.stopping import StopModel
 
 VARIANT = "lbr_iisy3_r760"
 GOAL = tuple(np.radians([70, -50, 60, 40, 60, 60]))
@@ -71,13 +71,14 @@ def test_safety_stop_holds_on_the_path_and_resumes(reference, safety_stop):
     ref, run_ = reference.arrays(), safety_stop.arrays()
     assert distance_to_polyline(run_["tool"], ref["tool"]).max() < 5e-3
     t = run_["t"]
-    stop = stopping_data(VARIANT)
+    stop = StopModel.of_variant(VARIANT)
+    stop_time = stop.time(1.0) + 0.02  # the next update receives the stop
     at_change = run_["tool"][np.searchsorted(t, CHANGE_AT)]
-    held = run_["tool"][(t > CHANGE_AT + stop.time) & (t < RESUME_AT)]
+    held = run_["tool"][(t > CHANGE_AT + stop_time) & (t < RESUME_AT)]
     assert len(held) > 100
-    assert np.linalg.norm(held - at_change, axis=1).max() < stop.distance
+    assert np.linalg.norm(held - at_change, axis=1).max() < stop.distance(1.0, 1.0)
     assert np.linalg.norm(held - held[0], axis=1).max() < 5e-4
-    assert STOPPED in run_["modes"][(t > CHANGE_AT + stop.time) & (t < RESUME_AT)]
+    assert STOPPED in run_["modes"][(t > CHANGE_AT + stop_time) & (t < RESUME_AT)]
     assert t[-1] > RESUME_AT
 
 

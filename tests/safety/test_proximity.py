@@ -1,6 +1,8 @@
 """The meter's exactness while it reuses capsule gaps across updates: every reading names
-the pair a brute-force query of all pairs finds closest, and every touching pair."""
+the pair a brute-force query of all pairs finds closest, and every touching pair; and its
+readings do not depend on the order the person and the robot were registered in."""
 
+import itertools
 import math
 
 import numpy as np
@@ -20,18 +22,28 @@ PERSON = walk(stand=0.3, arrive=1.0, leave=5.0, bearing=math.radians(55), start=
 
 
 class Cell:
-    """The person and the arm in one SceneGraph, posed by hand."""
+    """The person and the arm in one SceneGraph, posed by hand; the robot's geometry is
+    registered first unless `human_first`."""
 
-    def __init__(self):
+    def __init__(self, human_first: bool = False):
         scenario = load_scenario("base")
         builder = DiagramBuilder()
         scene_graph = builder.AddSystem(SceneGraph())
-        robot_plant, arm, self.robot_pose = kinematic(
-            builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.robot)
-        )
-        human_plant, human, self.human_pose = kinematic(
-            builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0)
-        )
+
+        def add_robot_plant():
+            return kinematic(
+                builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.robot)
+            )
+
+        def add_human_plant():
+            return kinematic(builder, scene_graph, lambda p: parse_human(p, 1.75, 75.0))
+
+        if human_first:
+            human_plant, human, self.human_pose = add_human_plant()
+            robot_plant, arm, self.robot_pose = add_robot_plant()
+        else:
+            robot_plant, arm, self.robot_pose = add_robot_plant()
+            human_plant, human, self.human_pose = add_human_plant()
         self.q_home = scenario.configuration("home")
         self.diagram = builder.Build()
         self.context = self.diagram.CreateDefaultContext()
@@ -122,3 +134,57 @@ def test_person_speed_is_measured_between_their_pose_samples():
         if time > 1.0:  # walking in a straight line since 0.92 s
             readings.append(reading.human_speed)
     np.testing.assert_allclose(readings, speed, rtol=1e-9)
+
+
+def readings_over_the_walk(cell: Cell, person, duration: float):
+    robot = cell.meter.active(np.arange(len(cell.robot)))
+    memory, readings = None, []
+    for time in np.arange(0.0, duration, PERIOD):
+        reading = cell.meter.measure(cell.query_at(time, person), memory, time, robot)
+        memory = reading.memory
+        readings.append(reading)
+    return readings
+
+
+def test_registration_order_gives_the_same_readings_and_the_right_signs():
+    """SceneGraph orders a pair its own way: with the robot registered first it reports the
+    robot as A. Either way the person walking in reads as approaching, at the same speed."""
+    speed = 1.2
+    person = walk(stand=0.3, arrive=2.5, leave=10.0, bearing=math.radians(55), speed=speed)
+    robot_first = readings_over_the_walk(Cell(human_first=False), person, 2.5)
+    human_first = readings_over_the_walk(Cell(human_first=True), person, 2.5)
+    # Drake's distances agree to its solver's tolerance, the witness points' speeds to 1 mm/s
+    tolerances = {"distance": 1e-5, "robot_approach": 1e-3, "human_approach": 1e-3}
+    for a, b in zip(robot_first, human_first, strict=True):
+        assert (a.closest.region, a.closest.part) == (b.closest.region, b.closest.part)
+        for name, tolerance in tolerances.items():
+            assert getattr(a.closest, name) == pytest.approx(
+                getattr(b.closest, name), abs=tolerance
+            )
+        assert a.closest.normal @ b.closest.normal > 0.999  # within 2.6 degrees
+        assert [c.pinned for c in a.contacts] == [c.pinned for c in b.contacts]
+    walking_in = [r.closest for r in robot_first[100:190]]  # straight at the robot, apart
+    assert all(c.distance > 0.05 for c in walking_in)
+    # the closest body point walks in at up to the walking speed, never away
+    approach = np.array([c.human_approach for c in walking_in])
+    assert approach.min() > 0.2 * speed and approach.max() <= speed + 1e-6
+    # the normal points from the robot out to the person, who comes in along the bearing
+    bearing = np.array([math.cos(math.radians(55)), math.sin(math.radians(55)), 0.0])
+    assert all(c.normal @ bearing > 0.5 and c.human_point @ bearing > 0.3 for c in walking_in)
+
+
+def test_robot_swinging_at_the_person_reads_approaching():
+    """The robot's closest point moving towards a person standing still reads positive,
+    away negative, and at the rate the separation changes (whatever the registration)."""
+    person = walk(
+        stand=0.9, arrive=0.5, leave=10.0, bearing=math.radians(55), start=0.95, speed=0.2
+    )
+    for cell in (Cell(human_first=False), Cell(human_first=True)):
+        readings = readings_over_the_walk(cell, person, 2.6)[60:]  # the person stands
+        pairs = [(r.closest.region, r.closest.part) for r in readings]
+        distances = np.array([r.closest.distance for r in readings])
+        approach = np.array([r.closest.robot_approach for r in readings])
+        closing = -np.diff(distances) / PERIOD
+        same_pair = np.array([a == b for a, b in itertools.pairwise(pairs)])
+        np.testing.assert_allclose(approach[1:][same_pair], closing[same_pair], atol=0.01)
+        assert approach.max() > 0.4 and approach.min() < -0.05

@@ -147,10 +147,14 @@ def test_btcpp_and_we_answer_tree_status_and_blackboard_alike(free_ports, groot)
     del publisher
 
 
+RUN_SECONDS = 6.0  # simulated; paced at 0.5 the watched run lasts 12 s of wall time
+ECHO_SECONDS = 5.0  # the robot's nodes change at least every 1.1 s simulated (2.2 s paced)
+
+
 def hrc_drake_run(out: Path, *options) -> subprocess.Popen:
     command = [sys.executable, "-m", "hrc_drake.cli", "run", "getting_started"]
     return subprocess.Popen(
-        [*command, "--duration", "4", "--out", str(out), *map(str, options)],
+        [*command, "--duration", str(RUN_SECONDS), "--out", str(out), *map(str, options)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -175,7 +179,7 @@ def watched_run(tmp_path_factory):
     outputs = {}
     commands = {
         "snapshot": ("snapshot", "--port", port, "--no-color"),
-        "echo": ("echo", "--json", "--port", port, "--duration", "2"),
+        "echo": ("echo", "--json", "--port", port, "--duration", ECHO_SECONDS),
         "blackboard": ("blackboard", "--json", "--port", port, "Robot"),
     }
     threads = [

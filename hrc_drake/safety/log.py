@@ -1,0 +1,36 @@
+"""The run's safety log, safety.npz: the monitor's `safety_signals` at every update, so that
+anyone can check the verdict (numpy: `np.load("safety.npz")`).
+
+Arrays: one per entry of SIGNALS (see `hrc_drake.safety.messages`; `time` is when each
+update measured), plus the names the numbered entries refer to: `regions` (for `region`),
+`parts` (for `part`) and `zones` (for `zone`).
+"""
+
+from pathlib import Path
+
+import numpy as np
+
+from hrc_drake.human.skeleton import REGIONS
+from hrc_drake.safety.messages import SIGNALS
+from hrc_drake.safety.ssm import ZONES
+
+
+def write_safety_log(path: Path, signals: np.ndarray, parts) -> Path:
+    """`signals`: the logged `safety_signals` (SIGNALS × samples). Samples of the same time
+    are written once, the last: a logger faster than the monitor repeats updates, and the
+    first sample (the initial values, time 0) is followed by the update at 0."""
+    times = signals[SIGNALS.index("time")]
+    updates = np.flatnonzero(np.diff(times, append=np.inf) != 0.0)
+    np.savez_compressed(
+        path,
+        **{name: signals[k, updates] for k, name in enumerate(SIGNALS)},
+        regions=np.array(REGIONS),
+        parts=np.array(parts),
+        zones=np.array(ZONES),
+    )
+    return path
+
+
+def read_safety_log(path: Path) -> dict[str, np.ndarray]:
+    with np.load(path) as log:
+        return {name: log[name] for name in log.files}
