@@ -45,6 +45,13 @@ for it (on the floor a foot must be exactly where it stands)."""
 UNROLLING = 0.8
 """Leg phase by which a foot that left the floor pitched as far as a full step's has come
 to the pitch of its own, shorter, step."""
+LANDING = (0.8, 0.9)
+"""Leg phases over which a landing foot comes to keep at least LANDING_SLOPE of its way
+still to go above the floor."""
+LANDING_SLOPE = 0.3
+"""A landing foot comes down onto its step rather than gliding in low: a step that lags
+behind the clip's (the body still speeding up) would skim the last centimetres along the
+floor, which the eye, and the realism audit, read as a sliding foot."""
 FIRST_RISE = 0.1
 """Fraction of a gait cycle over which the first heel of a walk rises to the clip's pitch."""
 LOWEST_LIFT = 0.35
@@ -294,6 +301,9 @@ def sole_target(
     unrolling = minimum_jerk((u - STANCE) / (UNROLLING - STANCE))
     pitch = (scale + (rolled - scale) * (1.0 - unrolling)) * profile.at(profile.pitch, u)
     height = scale * profile.at(profile.height, u)
+    landing_in = minimum_jerk((u - LANDING[0]) / (LANDING[1] - LANDING[0]))
+    remaining = sqrt((land.x - spot.x) ** 2 + (land.y - spot.y) ** 2)
+    height = max(height, LANDING_SLOPE * remaining * landing_in)
     slack = SWING_SLACK * (1.0 - minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0])))
     return (*_sole_on(spot.x, spot.y, height, yaw, pitch, half_foot), slack)
 

@@ -180,6 +180,17 @@ def test_walk_speed_and_planted_feet_in_the_actor():
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
 
+def test_feet_set_down_without_sliding_round_a_corner_from_a_standstill():
+    """The first steps lag behind the clip's (the body still speeds up) and the path turns:
+    each foot still comes down onto its step, not gliding along the floor."""
+    run = Run(
+        [(0.1, MoveCommand(1, (1.2, 3.0, 0.0), waypoints=((-0.06, 0.61),)))],
+        start_pose=(0.0, 0.0, 1.67),
+    )
+    _, poses = run.record(6.0)
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
+
+
 def test_pelvis_speed_within_a_stride_swings_as_published():
     run = Run([(0.1, MoveCommand(1, (8.0, 0.0, 0.0)))])
     statuses, _ = run.record(7.0)
