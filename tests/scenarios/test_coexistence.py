@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
-from realism_checks import assert_holds_what_it_carries
+from realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
@@ -196,6 +196,10 @@ def test_short_run_person_adds_a_part_the_robot_then_takes(short_run):
 
 def test_short_run_person_holds_what_they_carry(short_run):
     assert_holds_what_it_carries(short_run.realism)
+
+
+def test_short_run_person_walks_without_sliding(short_run):
+    assert_walks_like_a_person(short_run.realism)
 
 
 def test_short_run_is_safe(short_run):

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
-from realism_checks import assert_holds_what_it_carries
+from realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
@@ -200,6 +200,10 @@ def test_short_run_person_straightens_the_box_whose_grip_failed_and_robot_retrie
 
 def test_short_run_person_holds_what_they_carry(short_run):
     assert_holds_what_it_carries(short_run.realism)
+
+
+def test_short_run_person_walks_without_sliding(short_run):
+    assert_walks_like_a_person(short_run.realism)
 
 
 def test_short_run_is_consistent_and_safe(short_run):

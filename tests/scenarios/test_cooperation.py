@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
-from realism_checks import assert_holds_what_it_carries
+from realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.builder import build_diagram
@@ -159,6 +159,7 @@ def test_short_run_sorts_parts_and_fills_the_reject_zone():
     assert outcome.count("speed_reduced") >= 1
     assert outcome.count("sort_failed") == 0
     assert_holds_what_it_carries(outcome.realism)
+    assert_walks_like_a_person(outcome.realism)
 
 
 @pytest.mark.long
