@@ -254,12 +254,18 @@ class WalkSegment:
     halt: tuple[float, float, float, float] | None = None
     """(time, distance, speed, ramp): from then on the walk slows to a stop as soon as it
     can (cancelled), covering speed * ramp / 2 more."""
+    final_turn: float = 0.0
+    """How far the heading turns from the last leg's direction over the walk's last steps
+    (`final_room`), so that the person arrives facing the way they are to stand."""
 
     @classmethod
-    def planned(cls, ctx: Context, start, path, clip: Clip, distance, speed, carry=None):
+    def planned(
+        cls, ctx: Context, start, path, clip: Clip, distance, speed, carry=None, final_turn=0.0
+    ):
         """The walk with its footsteps planned: the feet leave their standing places at the
         start and close side by side at the goal."""
-        return cls(start, path, clip.name, distance, speed, carry)._stepped(ctx)
+        walk = cls(start, path, clip.name, distance, speed, carry, final_turn=final_turn)
+        return walk._stepped(ctx)
 
     def halted(self, ctx: Context, t: float) -> "WalkSegment":
         """This walk coming to a stop from t as soon as it can: the feet keep the steps they
@@ -278,6 +284,7 @@ class WalkSegment:
         """This walk with its footsteps planned (after the `kept` ones)."""
         clip = ctx.clips[self.clip]
         arrive = self._arrival()
+        end = self.distance(arrive)
         clip_speed = clip.animation_distance / clip.duration
         stances, over = plan_steps(
             ctx.gait(clip),
@@ -287,8 +294,8 @@ class WalkSegment:
             self.distance,
             lambda t: self.speed_at(t) / clip_speed,
             self.spot,
-            standing_spots(ctx.legs, self.spot, 0.0),
-            standing_spots(ctx.legs, self.spot, self.distance(arrive)),
+            standing_spots(ctx.legs, self._standing_place(0.0), 0.0),
+            standing_spots(ctx.legs, self._standing_place(end), end),
             kept,
         )
         steps = {side: (plan, tuple(s.strike for s in plan)) for side, plan in stances.items()}
@@ -345,6 +352,22 @@ class WalkSegment:
         heading = self.heading(along)
         return Spot(along, lateral, x - sin(heading) * lateral, y + cos(heading) * lateral, heading)
 
+    def _standing_place(self, pelvis: float):
+        """`place` (as `spot`) for feet standing round the pelvis `pelvis` along the path:
+        ahead and to the side of it as it faces there (at the goal it may face otherwise
+        than the path runs)."""
+        x, y = self.point(pelvis)
+        heading = self.heading(pelvis)
+        c, s = cos(heading), sin(heading)
+
+        def place(along: float, lateral: float) -> Spot:
+            ahead = along - pelvis
+            return Spot(
+                along, lateral, x + c * ahead - s * lateral, y + s * ahead + c * lateral, heading
+            )
+
+        return place
+
     @cached_property
     def _corner_radii(self) -> tuple[float, ...]:
         """Per waypoint, the distance before and after it over which the heading turns: at
@@ -361,6 +384,11 @@ class WalkSegment:
             if offset > 0:
                 w = minimum_jerk(offset / (2 * radii[corner])) if radii[corner] > 0 else 1.0
                 heading += w * (directions[corner] - directions[corner - 1])
+        if self.final_turn:
+            room = final_room(self.lengths[-1] - self.lengths[-2])
+            offset = along - self.lengths[-1] + 2 * room
+            if offset > 0:
+                heading += minimum_jerk(offset / (2 * room)) * self.final_turn
         return heading
 
     def speed_at(self, t: float) -> float:
@@ -586,6 +614,18 @@ def _without_short_legs(path: list) -> list:
     return kept
 
 
+def walkable_turn(turn: float, room: float) -> bool:
+    """Whether a walk can turn its heading by `turn` over `2 * room` of its path (the stance
+    foot twisting no further than a hip turns: SHARP_CORNER over 2 * CORNER_RADIUS)."""
+    return abs(turn) <= SHARP_CORNER * room / CORNER_RADIUS
+
+
+def final_room(last_leg: float) -> float:
+    """Half the length of a walk's end over which it turns to face the way it stands: at
+    most CORNER_RADIUS, and a quarter of the last leg (its first half may round a corner)."""
+    return min(CORNER_RADIUS, last_leg / 4)
+
+
 def _stretches(path: list) -> list[list]:
     """The path cut at its sharp corners: walked through round a corner, the stance foot
     would have to twist further than a hip turns, so the person stops there and turns on
@@ -601,7 +641,7 @@ def _stretches(path: list) -> list[list]:
         )
         room = min(CORNER_RADIUS, hypot(*np.subtract(corner, before)) / 2)
         room = min(room, hypot(*np.subtract(after, corner)) / 2)
-        if abs(turn) > SHARP_CORNER * room / CORNER_RADIUS:
+        if not walkable_turn(turn, room):
             stretches.append(current)
             current = [corner]
     current.append(path[-1])
@@ -618,10 +658,11 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     x, y, yaw = pose
     goal = tuple(command.target_position[:2])
     waypoints = command.waypoints
+    standing = _yaw_of(command.target_quaternion)
+    oriented = tuple(command.target_quaternion) != NULL_QUATERNION
     if ctx.navigation is not None:
-        facing = _yaw_of(command.target_quaternion)
-        if tuple(command.target_quaternion) != NULL_QUATERNION:
-            goal = ctx.navigation.clear_spot(*goal, facing)
+        if oriented:
+            goal = ctx.navigation.clear_spot(*goal, standing)
         if not waypoints:
             waypoints = ctx.navigation.path((x, y), goal)
     path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
@@ -631,19 +672,28 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
     carry = _carry(ctx, command.hold)
     distance = command.animation_distance or clip.animation_distance
     speed = distance / clip.duration
-    for stretch in _stretches(path):
+    stretches = _stretches(path)
+    for k, stretch in enumerate(stretches):
         first = atan2(stretch[1][1] - stretch[0][1], stretch[1][0] - stretch[0][0])
         facing = heading + _wrap(first - heading)
         if abs(facing - heading) > MIN_TURN:
             segments.append(TurnSegment.between(ctx, start, stretch[0], heading, facing, carry))
             start = segments[-1].end(ctx)
-        walk = WalkSegment.planned(ctx, start, tuple(stretch), clip, distance, speed, carry)
+        final_turn = 0.0
+        if oriented and k == len(stretches) - 1:
+            (x0, y0), (x1, y1) = stretch[-2], stretch[-1]
+            final_turn = _wrap(standing - atan2(y1 - y0, x1 - x0))
+            if not walkable_turn(final_turn, final_room(hypot(x1 - x0, y1 - y0))):
+                final_turn = 0.0
+        walk = WalkSegment.planned(
+            ctx, start, tuple(stretch), clip, distance, speed, carry, final_turn
+        )
         segments.append(walk)
         start = walk.end(ctx)
         heading = facing + _wrap(walk.heading(walk.lengths[-1]) - facing)
     final_yaw = heading
-    if tuple(command.target_quaternion) != NULL_QUATERNION:
-        final_yaw = heading + _wrap(_yaw_of(command.target_quaternion) - heading)
+    if oriented:
+        final_yaw = heading + _wrap(standing - heading)
         if abs(final_yaw - heading) > MIN_TURN:
             segments.append(TurnSegment.between(ctx, start, path[-1], heading, final_yaw, carry))
     if not segments:

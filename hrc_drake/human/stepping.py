@@ -296,16 +296,19 @@ def sole_target(
     lateral = lift.lateral + p * (land.lateral - lift.lateral)
     lateral += scale * profile.at(profile.sideways, u) * (1 if side == "left" else -1)
     spot = place(along, lateral)
+    off = place(land.along, land.lateral)  # a step placed off the path (facing the goal)
+    x = spot.x + p * (land.x - off.x)
+    y = spot.y + p * (land.y - off.y)
     yaw = lift.yaw + p * _wrap(land.yaw - lift.yaw)
     rolled = stance.leaving if stance.first else 1.0  # how far it rolled leaving the floor
     unrolling = minimum_jerk((u - STANCE) / (UNROLLING - STANCE))
     pitch = (scale + (rolled - scale) * (1.0 - unrolling)) * profile.at(profile.pitch, u)
     height = scale * profile.at(profile.height, u)
     landing_in = minimum_jerk((u - LANDING[0]) / (LANDING[1] - LANDING[0]))
-    remaining = sqrt((land.x - spot.x) ** 2 + (land.y - spot.y) ** 2)
+    remaining = sqrt((land.x - x) ** 2 + (land.y - y) ** 2)
     height = max(height, LANDING_SLOPE * remaining * landing_in)
     slack = SWING_SLACK * (1.0 - minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0])))
-    return (*_sole_on(spot.x, spot.y, height, yaw, pitch, half_foot), slack)
+    return (*_sole_on(x, y, height, yaw, pitch, half_foot), slack)
 
 
 def _sole_on(x: float, y: float, z: float, yaw: float, pitch: float, half_foot: float):

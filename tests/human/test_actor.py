@@ -17,7 +17,7 @@ from hrc_drake.human.messages import (
     MoveCommand,
     SetCalledCommand,
 )
-from hrc_drake.human.motion import ActorState, Context, advance, pose_at
+from hrc_drake.human.motion import ActorState, Context, TurnSegment, advance, pose_at
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.ports import message_value
@@ -188,6 +188,18 @@ def test_feet_set_down_without_sliding_round_a_corner_from_a_standstill():
         start_pose=(0.0, 0.0, 1.67),
     )
     _, poses = run.record(6.0)
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
+
+
+def test_a_walk_turns_to_face_its_place_over_its_last_steps():
+    """Arriving at a place to stand that faces 40 degrees off the way there, the person
+    turns while walking in, without a turn on the spot and without sliding a foot."""
+    run = Run([(0.1, MoveCommand(1, (3.0, 0.0, 0.0), _yaw(np.radians(40))))])
+    statuses, poses = run.record(5.5)
+    segments = run.context.get_abstract_state(0).get_value().activity.segments
+    assert not any(isinstance(s, TurnSegment) and s.cycles for s in segments)
+    assert statuses[-1].outcome_of(1) == "succeeded"
+    assert abs(statuses[-1].base_pose[2] - np.radians(40)) < np.radians(3)
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
 
