@@ -258,14 +258,15 @@ class WalkSegment:
     """How far the heading turns from the last leg's direction over the walk's last steps
     (`final_room`), so that the person arrives facing the way they are to stand."""
 
-    @classmethod
-    def planned(
-        cls, ctx: Context, start, path, clip: Clip, distance, speed, carry=None, final_turn=0.0
-    ):
-        """The walk with its footsteps planned: the feet leave their standing places at the
-        start and close side by side at the goal."""
-        walk = cls(start, path, clip.name, distance, speed, carry, final_turn=final_turn)
-        return walk._stepped(ctx)
+    def facing_at_the_end(self, yaw: float) -> "WalkSegment":
+        """The walk turning to face `yaw` over its last steps where the corner rule allows
+        (else as it is: the person turns on the spot after it)."""
+        turn = _wrap(yaw - self.directions[-1])
+        return (
+            replace(self, final_turn=turn)
+            if walkable_turn(turn, final_room(self.lengths))
+            else self
+        )
 
     def halted(self, ctx: Context, t: float) -> "WalkSegment":
         """This walk coming to a stop from t as soon as it can: the feet keep the steps they
@@ -278,10 +279,11 @@ class WalkSegment:
             side: stances[: bisect_right(strikes, t)]
             for side, (stances, strikes) in self.steps.items()
         }
-        return walk._stepped(ctx, kept)
+        return walk.stepped(ctx, kept)
 
-    def _stepped(self, ctx: Context, kept=None) -> "WalkSegment":
-        """This walk with its footsteps planned (after the `kept` ones)."""
+    def stepped(self, ctx: Context, kept=None) -> "WalkSegment":
+        """This walk with its footsteps planned: the feet leave their standing places at the
+        start (or have taken the `kept` steps) and close side by side at the goal."""
         clip = ctx.clips[self.clip]
         arrive = self._arrival()
         end = self.distance(arrive)
@@ -385,7 +387,7 @@ class WalkSegment:
                 w = minimum_jerk(offset / (2 * radii[corner])) if radii[corner] > 0 else 1.0
                 heading += w * (directions[corner] - directions[corner - 1])
         if self.final_turn:
-            room = final_room(self.lengths[-1] - self.lengths[-2])
+            room = final_room(self.lengths)
             offset = along - self.lengths[-1] + 2 * room
             if offset > 0:
                 heading += minimum_jerk(offset / (2 * room)) * self.final_turn
@@ -620,10 +622,12 @@ def walkable_turn(turn: float, room: float) -> bool:
     return abs(turn) <= SHARP_CORNER * room / CORNER_RADIUS
 
 
-def final_room(last_leg: float) -> float:
+def final_room(lengths) -> float:
     """Half the length of a walk's end over which it turns to face the way it stands: at
-    most CORNER_RADIUS, and a quarter of the last leg (its first half may round a corner)."""
-    return min(CORNER_RADIUS, last_leg / 4)
+    most CORNER_RADIUS and half the last leg, or a quarter of it where the walk rounds a
+    corner into it (the corner may take its first half). `lengths` as WalkSegment's."""
+    last_leg = lengths[-1] - lengths[-2]
+    return min(CORNER_RADIUS, last_leg / (2 if len(lengths) == 2 else 4))
 
 
 def _stretches(path: list) -> list[list]:
@@ -679,15 +683,10 @@ def plan_movement(ctx: Context, command: MoveCommand, pose, t: float) -> Activit
         if abs(facing - heading) > MIN_TURN:
             segments.append(TurnSegment.between(ctx, start, stretch[0], heading, facing, carry))
             start = segments[-1].end(ctx)
-        final_turn = 0.0
+        walk = WalkSegment(start, tuple(stretch), clip.name, distance, speed, carry)
         if oriented and k == len(stretches) - 1:
-            (x0, y0), (x1, y1) = stretch[-2], stretch[-1]
-            final_turn = _wrap(standing - atan2(y1 - y0, x1 - x0))
-            if not walkable_turn(final_turn, final_room(hypot(x1 - x0, y1 - y0))):
-                final_turn = 0.0
-        walk = WalkSegment.planned(
-            ctx, start, tuple(stretch), clip, distance, speed, carry, final_turn
-        )
+            walk = walk.facing_at_the_end(standing)
+        walk = walk.stepped(ctx)
         segments.append(walk)
         start = walk.end(ctx)
         heading = facing + _wrap(walk.heading(walk.lengths[-1]) - facing)
