@@ -4,8 +4,14 @@ For each scenario: a full run (trees, person, workpieces, safety monitor, RobotM
 the robot's desired state recorded; then the bare plant + inverse-dynamics controller
 replaying that same desired state, in the same process. The ratio full / bare is what the
 behaviour, the person and the measurements cost on top of simulating the robot itself.
+`cell/bare` is the same replay with the scenario's static cell in the plant (as in the
+station's dynamic plant: its contact geometry is part of every step), against the bare one.
 
-    .venv/bin/python benchmarks/scenarios.py [--duration 60] [coexistence cooperation ...]
+The runs alternate over `--repeats` and each keeps its fastest, so load from other
+processes on the machine distorts the ratios less; `spread` is the slowest full run's
+wall time over the fastest's (how noisy the machine was).
+
+    .venv/bin/python benchmarks/scenarios.py [--duration 60] [--repeats 1] [scenario ...]
 """
 
 import argparse
@@ -46,15 +52,24 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scenarios", nargs="*", default=SCENARIOS)
     parser.add_argument("--duration", type=float, default=60.0)
+    parser.add_argument("--repeats", type=int, default=1)
     args = parser.parse_args()
-    print(f"{'scenario':14s} {'RTF':>6s} {'bare RTF':>9s} {'full/bare':>10s}")
+    print(
+        f"{'scenario':14s} {'RTF':>6s} {'bare RTF':>9s} {'full/bare':>10s} "
+        f"{'cell/bare':>10s} {'spread':>7s}"
+    )
     for name in args.scenarios:
         scenario = load_scenario(name)
-        wall, desired = full_run(scenario, args.duration)
-        bare = time_bare(scenario, args.duration, TrajectorySource(desired))
+        fulls, bares, cells = [], [], []
+        for _ in range(args.repeats):
+            wall, desired = full_run(scenario, args.duration)
+            fulls.append(wall)
+            bares.append(time_bare(scenario, args.duration, TrajectorySource(desired)))
+            cells.append(time_bare(scenario, args.duration, TrajectorySource(desired), cell=True))
+        wall, bare, cell = min(fulls), min(bares), min(cells)
         print(
             f"{name:14s} {args.duration / wall:6.2f} {args.duration / bare:9.2f} "
-            f"{wall / bare:10.2f}"
+            f"{wall / bare:10.2f} {cell / bare:10.2f} {max(fulls) / wall:7.2f}"
         )
 
 
