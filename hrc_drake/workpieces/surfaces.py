@@ -123,6 +123,20 @@ class Supports:
     def __init__(self, surfaces: list[Surface], belts: set[str]):
         self.fixed = sorted([FLOOR_SURFACE, *surfaces], key=lambda s: -s.height)
         self.belts = belts
+        unbounded = (np.full(2, -np.inf), np.full(2, np.inf))
+        lows, highs = zip(*(s.bounds or unbounded for s in self.fixed), strict=True)
+        self._lows, self._highs = np.array(lows), np.array(highs)
+        self._heights = np.array([s.height for s in self.fixed])
+
+    def _fixed_candidates(self, low: np.ndarray, high: np.ndarray, below: float) -> list:
+        """The fixed supports (highest first) at most at `below` whose bounding boxes overlap
+        the box from `low` to `high`: what `Surface.may_overlap` would pass, all at once."""
+        passing = (
+            (self._heights <= below)
+            & (self._highs > low).all(axis=1)
+            & (self._lows < high).all(axis=1)
+        )
+        return [self.fixed[k] for k in np.flatnonzero(passing)]
 
     def under(self, outline: np.ndarray, below: float, others: list[Surface]) -> Surface:
         """The highest support overlapping `outline` with its top at most at `below` (a belt
@@ -131,7 +145,8 @@ class Supports:
         own_normals = edge_normals(outline)
         movable = sorted(others, key=lambda s: -s.height)
         level: list[Surface] = []
-        for surface in heapq.merge(self.fixed, movable, key=lambda s: -s.height):
+        fixed = self._fixed_candidates(low, high, below)
+        for surface in heapq.merge(fixed, movable, key=lambda s: -s.height):
             if surface.height > below:
                 continue
             if level and surface.height < level[0].height - TIE_TOLERANCE:
