@@ -7,11 +7,12 @@ behaviour, the person and the measurements cost on top of simulating the robot i
 `cell/bare` is the same replay with the scenario's static cell in the plant (as in the
 station's dynamic plant: its contact geometry is part of every step), against the bare one.
 
-The runs alternate over `--repeats` and each keeps its fastest, so load from other
-processes on the machine distorts the ratios less; `spread` is the slowest full run's
-wall time over the fastest's (how noisy the machine was).
+Times are this process's CPU time (`--wall`: wall-clock time): on a shared machine the
+wall clock also counts the turns of other processes. The runs alternate over `--repeats`
+and each keeps its fastest, so load distorts the ratios less; `spread` is the slowest full
+run's time over the fastest's (how noisy the machine was).
 
-    .venv/bin/python benchmarks/scenarios.py [--duration 60] [--repeats 1] [scenario ...]
+    .venv/bin/python benchmarks/scenarios.py [--duration 60] [--repeats 1] [--wall] [scenario ...]
 """
 
 import argparse
@@ -34,18 +35,18 @@ SCENARIOS = ("coexistence", "cooperation", "collaboration")
 LOG_PERIOD = 0.005
 
 
-def full_run(scenario, duration: float):
-    """Wall time of the whole scenario and the desired robot state it produced."""
+def full_run(scenario, duration: float, clock=time.process_time):
+    """Time of the whole scenario and the desired robot state it produced."""
     builder = DiagramBuilder()
     station = builder.AddSystem(build_diagram(scenario))
     log = LogVectorOutput(station.GetOutputPort("robot_desired_state"), builder, LOG_PERIOD)
     simulator = Simulator(builder.Build())
     simulator.Initialize()
-    start = time.perf_counter()
+    start = clock()
     simulator.AdvanceTo(duration)
-    wall = time.perf_counter() - start
+    spent = clock() - start
     data = log.FindLog(simulator.get_context())
-    return wall, PiecewisePolynomial.FirstOrderHold(data.sample_times(), data.data())
+    return spent, PiecewisePolynomial.FirstOrderHold(data.sample_times(), data.data())
 
 
 def main() -> None:
@@ -53,7 +54,9 @@ def main() -> None:
     parser.add_argument("scenarios", nargs="*", default=SCENARIOS)
     parser.add_argument("--duration", type=float, default=60.0)
     parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--wall", action="store_true", help="wall-clock instead of CPU time")
     args = parser.parse_args()
+    clock = time.perf_counter if args.wall else time.process_time
     print(
         f"{'scenario':14s} {'RTF':>6s} {'bare RTF':>9s} {'full/bare':>10s} "
         f"{'cell/bare':>10s} {'spread':>7s}"
@@ -62,14 +65,15 @@ def main() -> None:
         scenario = load_scenario(name)
         fulls, bares, cells = [], [], []
         for _ in range(args.repeats):
-            wall, desired = full_run(scenario, args.duration)
-            fulls.append(wall)
-            bares.append(time_bare(scenario, args.duration, TrajectorySource(desired)))
-            cells.append(time_bare(scenario, args.duration, TrajectorySource(desired), cell=True))
-        wall, bare, cell = min(fulls), min(bares), min(cells)
+            spent, desired = full_run(scenario, args.duration, clock)
+            fulls.append(spent)
+            for cell, times in ((False, bares), (True, cells)):
+                source = TrajectorySource(desired)
+                times.append(time_bare(scenario, args.duration, source, cell, clock))
+        full, bare, cell = min(fulls), min(bares), min(cells)
         print(
-            f"{name:14s} {args.duration / wall:6.2f} {args.duration / bare:9.2f} "
-            f"{wall / bare:10.2f} {cell / bare:10.2f} {max(fulls) / wall:7.2f}"
+            f"{name:14s} {args.duration / full:6.2f} {args.duration / bare:9.2f} "
+            f"{full / bare:10.2f} {cell / bare:10.2f} {max(fulls) / full:7.2f}"
         )
 
 
