@@ -60,24 +60,29 @@ def shares(stats: pstats.Stats) -> tuple[dict[str, float], dict[str, dict]]:
     memo: dict = {}
 
     def parts_of(function, seen=frozenset()) -> dict[str, float]:
-        """Fractions of `function`'s time per part (its callers' parts, by time)."""
+        """Fractions of `function`'s time per part (its callers' parts, by time); empty
+        when every caller is already on the walk (recursion: the walk's other callers
+        carry it)."""
         if function in memo:
             return memo[function]
         part = own_part(function)
         if part is not None:
             return {part: 1.0}
         callers = table[function][4] if function in table else {}
-        weights = {c: v[3] for c, v in callers.items() if c not in seen}
-        total = sum(weights.values())
-        if total <= 0.0:
-            return {"other": 1.0}
+        found = [
+            (weight, parts_of(caller, seen | {function}))
+            for caller, (_, _, _, weight) in callers.items()
+            if caller not in seen
+        ]
+        found = [(weight, parts) for weight, parts in found if parts and weight > 0.0]
+        total = sum(weight for weight, _ in found)
         result = defaultdict(float)
-        for caller, weight in weights.items():
-            for name, fraction in parts_of(caller, seen | {function}).items():
+        for weight, parts in found:
+            for name, fraction in parts.items():
                 result[name] += fraction * weight / total
         if not seen:
-            memo[function] = dict(result)
-        return dict(result)
+            memo[function] = dict(result) or {"other": 1.0}
+        return dict(result) if seen else memo[function]
 
     seconds: dict[str, float] = defaultdict(float)
     functions: dict[str, dict] = defaultdict(lambda: defaultdict(float))
