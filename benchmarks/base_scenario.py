@@ -52,13 +52,11 @@ def bare_diagram(scenario, desired=None, cell: bool = False):
     return builder.Build()
 
 
-def time_bare(
-    scenario, duration: float, desired=None, cell: bool = False, clock=time.perf_counter
-) -> float:
-    simulator = Simulator(bare_diagram(scenario, desired, cell))
-    start = clock()
+def time_bare(scenario, duration: float, desired=None) -> float:
+    simulator = Simulator(bare_diagram(scenario, desired))
+    start = time.perf_counter()
     simulator.AdvanceTo(duration)
-    return clock() - start
+    return time.perf_counter() - start
 
 
 def time_base(scenario, duration: float) -> float:

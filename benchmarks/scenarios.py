@@ -7,10 +7,12 @@ behaviour, the person and the measurements cost on top of simulating the robot i
 `cell/bare` is the same replay with the scenario's static cell in the plant (as in the
 station's dynamic plant: its contact geometry is part of every step), against the bare one.
 
-Times are this process's CPU time (`--wall`: wall-clock time): on a shared machine the
-wall clock also counts the turns of other processes. The runs alternate over `--repeats`
-and each keeps its fastest, so load distorts the ratios less; `spread` is the slowest full
-run's time over the fastest's (how noisy the machine was).
+The machine is shared, so the simulations are timed in turns: after a first full run that
+records the desired state, a second full run, the bare replay and the cell replay advance
+`SLICE` simulated seconds each in turn, each timed by this process's CPU time (`--wall`:
+wall-clock time), so a burst of load from other processes falls on all three alike.
+`--repeats` runs the turns again and keeps each one's fastest; `spread` is the slowest full
+run's time over the fastest's.
 
     .venv/bin/python benchmarks/scenarios.py [--duration 60] [--repeats 1] [--wall] [scenario ...]
 """
@@ -29,24 +31,53 @@ from hrc_drake.builder import build_diagram
 from hrc_drake.scenario import load_scenario
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from base_scenario import time_bare  # noqa: E402
+from base_scenario import bare_diagram  # noqa: E402
 
 SCENARIOS = ("coexistence", "cooperation", "collaboration")
 LOG_PERIOD = 0.005
+SLICE = 0.5
+"""Simulated seconds each simulation advances in its turn."""
 
 
-def full_run(scenario, duration: float, clock=time.process_time):
-    """Time of the whole scenario and the desired robot state it produced."""
+def full_simulator(scenario):
+    """The whole scenario, logging the robot's desired state."""
     builder = DiagramBuilder()
     station = builder.AddSystem(build_diagram(scenario))
     log = LogVectorOutput(station.GetOutputPort("robot_desired_state"), builder, LOG_PERIOD)
     simulator = Simulator(builder.Build())
     simulator.Initialize()
-    start = clock()
+    return simulator, log
+
+
+def desired_motion(scenario, duration: float) -> PiecewisePolynomial:
+    """The desired robot state of a full run, to replay on the bare robot."""
+    simulator, log = full_simulator(scenario)
     simulator.AdvanceTo(duration)
-    spent = clock() - start
     data = log.FindLog(simulator.get_context())
-    return spent, PiecewisePolynomial.FirstOrderHold(data.sample_times(), data.data())
+    return PiecewisePolynomial.FirstOrderHold(data.sample_times(), data.data())
+
+
+def timed_in_turns(simulators: list, duration: float, clock) -> list[float]:
+    """Each simulator's time to reach `duration`, advancing `SLICE` each in turn."""
+    spent = [0.0] * len(simulators)
+    t = 0.0
+    while t < duration:
+        t = min(duration, t + SLICE)
+        for k, simulator in enumerate(simulators):
+            start = clock()
+            simulator.AdvanceTo(t)
+            spent[k] += clock() - start
+    return spent
+
+
+def measure(scenario, duration: float, desired, clock) -> list[float]:
+    """Times of the full run, the bare replay and the cell replay, timed in turns."""
+    simulators = [full_simulator(scenario)[0]]
+    for cell in (False, True):
+        simulator = Simulator(bare_diagram(scenario, TrajectorySource(desired), cell))
+        simulator.Initialize()
+        simulators.append(simulator)
+    return timed_in_turns(simulators, duration, clock)
 
 
 def main() -> None:
@@ -63,17 +94,13 @@ def main() -> None:
     )
     for name in args.scenarios:
         scenario = load_scenario(name)
-        fulls, bares, cells = [], [], []
-        for _ in range(args.repeats):
-            spent, desired = full_run(scenario, args.duration, clock)
-            fulls.append(spent)
-            for cell, times in ((False, bares), (True, cells)):
-                source = TrajectorySource(desired)
-                times.append(time_bare(scenario, args.duration, source, cell, clock))
-        full, bare, cell = min(fulls), min(bares), min(cells)
+        desired = desired_motion(scenario, args.duration)
+        runs = [measure(scenario, args.duration, desired, clock) for _ in range(args.repeats)]
+        full, bare, cell = (min(times) for times in zip(*runs, strict=True))
+        spread = max(run[0] for run in runs) / full
         print(
             f"{name:14s} {args.duration / full:6.2f} {args.duration / bare:9.2f} "
-            f"{full / bare:10.2f} {cell / bare:10.2f} {max(fulls) / full:7.2f}"
+            f"{full / bare:10.2f} {cell / bare:10.2f} {spread:7.2f}"
         )
 
 
