@@ -5,12 +5,17 @@ Every tree's root blackboard holds the scenario's locations (as Poses), areas an
 `parameters`, so a tree can write `{table_top}` as well as the literal `table_top`.
 """
 
+import difflib
+from collections.abc import Iterator
+
 from pydrake.common.schema import Rotation
 
 from hrc_drake.bt import BTError, Tree, load_tree, validate
+from hrc_drake.bt.ports import convert_from_string
+from hrc_drake.bt.registry import NodeModel
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.context import AgentContext, Places
-from hrc_drake.scenario import AGENTS, Scenario
+from hrc_drake.scenario import AGENTS, AgentTree, Scenario
 from hrc_drake.tree_types import AreaRef, Pose
 
 
@@ -59,7 +64,13 @@ def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]
         seq_start=AGENTS.index(agent) + 1,
         seq_step=len(AGENTS),
     )
-    tree = load_tree(config.file, hrc_registry(), tree_id=config.tree_id or None, context=context)
+    tree = load_tree(
+        config.file,
+        hrc_registry(),
+        tree_id=config.tree_id or None,
+        context=context,
+        port_values=config.ports,
+    )
     for key, value in blackboard_entries(scenario).items():
         try:
             tree.root_blackboard.set(key, value)
@@ -75,8 +86,8 @@ Problem = tuple[tuple, str]
 def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
     """Everything wrong with the scenario's trees, without running them: the engine's
     checks (unknown nodes, ports, values, scripts, includes, which tree is the main one),
-    names of places that the scenario does not define, and parameters (as a scenario
-    Problem: field names and message) that the trees cannot read."""
+    names of places that the scenario does not define, and parameters and port values
+    (as a scenario Problem: field names and message) that the trees cannot read."""
     errors: list[BTError | Problem] = []
     for agent, config in scenario.trees.items():
         found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
@@ -84,7 +95,10 @@ def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
             errors += found
             continue
         try:
-            errors += _place_errors(scenario, load_agent_tree(scenario, agent)[0])
+            port_problems = list(_port_value_problems(agent, config))
+            errors += port_problems or _place_errors(
+                scenario, agent, load_agent_tree(scenario, agent)[0]
+            )
         except ParameterError as error:
             errors.append((("parameters", error.key), error.problem))
         except BTError as error:  # no main tree to run
@@ -92,13 +106,58 @@ def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
     return errors
 
 
-def _place_errors(scenario: Scenario, tree: Tree) -> list[BTError]:
+def _port_value_problems(agent: str, config: AgentTree) -> Iterator[Problem]:
+    """Port values the scenario gives (`ports`) for nodes and ports the tree has, in text
+    the port's type reads."""
+    if not config.ports:
+        return
+    named = named_nodes(config)
+    for name, values in config.ports.items():
+        for port, text in values.items():
+            problem = port_value_problem(named, agent, name, port, text)
+            if problem:
+                yield ("trees", agent, "ports", name, port), problem
+
+
+def named_nodes(config: AgentTree) -> dict[str, NodeModel]:
+    """The node types of the agent's tree by node name (the first node of each name)."""
+    registry = hrc_registry()
+    named = {}
+    for _, _, node in load_tree(config.file, registry, tree_id=config.tree_id or None).nodes():
+        named.setdefault(node.name, registry[node.config.registration_id])
+    return named
+
+
+def port_value_problem(named: dict, agent: str, name: str, port: str, text: str) -> str:
+    """What is wrong with giving input `port` of the nodes called `name` the value `text`
+    ("" when nothing is)."""
+    model = named.get(name)
+    if model is None:
+        close = difflib.get_close_matches(name, list(named), n=1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        return f"no node named '{name}' in the {agent}'s tree{hint}"
+    inputs = {info.name: info for info in model.ports.values() if info.is_input}
+    if port not in inputs:
+        return f"'{model.id}' has no input port '{port}' (it has: {', '.join(inputs) or 'none'})"
+    try:
+        convert_from_string(text, inputs[port].type)
+    except ValueError as error:
+        return str(error)
+    return ""
+
+
+def _place_errors(scenario: Scenario, agent: str, tree: Tree) -> list[BTError | Problem]:
+    """Places the tree names that the scenario lacks: at the tree's node and port, or at
+    the scenario's `ports` entry that gave the value."""
     errors = []
+    given = scenario.trees[agent].ports
     for _, _, node in tree.nodes():
         for port, binding in node.config.inputs.items():
             value = getattr(binding, "value", None)
             problem = _unknown_place(scenario, value)
-            if problem:
+            if problem and port in given.get(node.name, {}):
+                errors.append((("trees", agent, "ports", node.name, port), problem))
+            elif problem:
                 errors.append(node.error(problem, port=port))
     return errors
 

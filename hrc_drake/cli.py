@@ -88,20 +88,25 @@ def _make_parser() -> argparse.ArgumentParser:
     sweep.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
     sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
     _add_set_option(sweep)
-    sweep.add_argument(
-        "--workers",
-        type=_worker_count,
-        default=os.cpu_count(),
-        help=f"local worker processes (at most {MAX_WORKERS}: each holds a whole simulation)",
-    )
-    sweep.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
-    sweep.add_argument(
-        "--out", type=Path, help="sweep directory, new or an earlier sweep's (sweeps/<scenario>)"
-    )
+    _add_execution_options(sweep, "sweep", "sweeps")
     sweep.add_argument(
         "--retry-failed", action="store_true", help="run the failed runs of an earlier sweep again"
     )
     sweep.set_defaults(command=_sweep)
+
+    falsify = commands.add_parser(
+        "falsify", help="search the person's behaviour for the smallest safety margin"
+    )
+    falsify.add_argument("scenario", help="a scenario with a falsify: section (file or name)")
+    falsify.add_argument("--budget", type=_positive_int, required=True, help="runs to spend")
+    falsify.add_argument("--seed", type=int, help="seed of the runs and the search")
+    falsify.add_argument("--duration", type=float, help="simulated seconds of each run")
+    _add_set_option(falsify)
+    _add_execution_options(falsify, "search", "searches")
+    falsify.add_argument(
+        "--retry-failed", action="store_true", help="run the failed trials of an earlier search"
+    )
+    falsify.set_defaults(command=_falsify)
 
     diagram = commands.add_parser("diagram", help="export the scenario's system diagram")
     diagram.add_argument("scenario")
@@ -146,6 +151,32 @@ def _add_set_option(parser) -> None:
     )
 
 
+def _add_execution_options(parser, what: str, directory: str) -> None:
+    """Where the runs of a sweep or a search go, and where its directory is."""
+    parser.add_argument(
+        "--workers",
+        type=_worker_count,
+        default=os.cpu_count(),
+        help=f"local worker processes (at most {MAX_WORKERS}: each holds a whole simulation)",
+    )
+    parser.add_argument("--dask", metavar="ADDRESS", help="run on this Dask scheduler instead")
+    parser.add_argument(
+        "--out",
+        type=Path,
+        help=f"{what} directory, new or an earlier {what}'s ({directory}/<scenario>)",
+    )
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
+    return value
+
+
 def _worker_count(text: str) -> int:
     try:
         value = int(text)
@@ -180,19 +211,10 @@ def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
     from hrc_drake.runner import RunStopped, run
-    from hrc_drake.scenario import Scenario, load_scenario
-    from hrc_drake.sweep.overrides import parse_sets
+    from hrc_drake.scenario import load_scenario
 
-    axes = parse_sets(args.set, Scenario)
-    if any(len(values) > 1 for _, values in axes):
-        raise InputError("run: --set takes one value per field (use sweep for grids)")
-    overrides = [(path, values[0]) for path, values in axes]
-    options = {}
-    for name in ("seed", "duration"):  # checked like the scenario's own fields
-        if getattr(args, name) is not None:
-            overrides.append((name, getattr(args, name)))
-            options[name] = f"--{name} {getattr(args, name)}"
-    scenario = load_scenario(args.scenario, tuple(overrides), options)
+    overrides, options = _single_sets(args, "run", "use sweep for grids")
+    scenario = load_scenario(args.scenario, overrides, options)
     out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
     if args.groot_host is not None and args.groot is None:
         raise InputError("run: --groot-host goes with --groot")
@@ -222,6 +244,24 @@ def _run(args) -> int:
     _print_node_failures(report.metrics)
     _print_files(report.files)
     return 0
+
+
+def _single_sets(args, command: str, grids: str) -> tuple[tuple, dict]:
+    """`--set`, `--seed` and `--duration` as overrides (checked like the scenario's own
+    fields), and the options that gave them."""
+    from hrc_drake.scenario import Scenario
+    from hrc_drake.sweep.overrides import parse_sets
+
+    axes = parse_sets(args.set, Scenario)
+    if any(len(values) > 1 for _, values in axes):
+        raise InputError(f"{command}: --set takes one value per field ({grids})")
+    overrides = [(path, values[0]) for path, values in axes]
+    options = {}
+    for name in ("seed", "duration"):
+        if getattr(args, name) is not None:
+            overrides.append((name, getattr(args, name)))
+            options[name] = f"--{name} {getattr(args, name)}"
+    return tuple(overrides), options
 
 
 def _serve_groot(port: int, host: str | None, station):
@@ -282,6 +322,51 @@ def _sweep(args) -> int:
     return 0
 
 
+def _falsify(args) -> int:
+    from hrc_drake.falsify import falsify, prepare
+
+    overrides, options = _single_sets(args, "falsify", "a falsify: parameter searches a field")
+    search = prepare(args.scenario, args.seed, overrides, options)
+    name = search.scenario_path.stem
+    out = args.out or Path("searches") / name
+    result = falsify(
+        search,
+        args.budget,
+        out,
+        args.workers,
+        args.dask,
+        progress=True,
+        retry_failed=args.retry_failed,
+    )
+    for warning in result.warnings:
+        print(f"{PROG}: warning: {warning}", file=sys.stderr)
+    for line in falsify_lines(name, result):
+        print(line)
+    _print_files(result.files)
+    return 0
+
+
+def falsify_lines(name: str, result) -> list[str]:
+    """What a search found, in a few lines: the verdict and the worst cases."""
+    verdict = (
+        f"{len(result.violations)} violate ISO/TS 15066" if result.violations else "no violation"
+    )
+    lines = [f"{name}: {len(result.trials)} trials ({len(result.failed)} failed), {verdict}"]
+    for trial in result.worst:
+        margin = trial.margin
+        at = margin.get("at")
+        where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
+        lines.append(f"  trial {trial.number}: margin {_metres(margin.get('value'))}{where}")
+        if trial.number in result.cases:
+            lines.append(f"    {result.cases[trial.number]}")
+        lines.append(f"    {result.search.command(trial.values)}")
+    return lines
+
+
+def _metres(value) -> str:
+    return "none (the robot never moved near the person)" if value is None else f"{value:.3f} m"
+
+
 def key_metrics(metrics: dict) -> list[str]:
     """The figures a user looks at first: output, safety, how much the robot was slowed."""
     lines = [
@@ -299,6 +384,11 @@ def key_metrics(metrics: dict) -> list[str]:
             f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
             f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
         ]
+    margin = metrics.get("margin") or {}
+    if "value" in margin:
+        at = margin.get("at")
+        where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
+        lines.append(f"safety margin: {_metres(margin['value'])}{where}")
     return lines
 
 

@@ -45,6 +45,7 @@ from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.log import write_safety_log
+from hrc_drake.safety.margin import log_of, margin_metrics, reference_model
 from hrc_drake.scenario import Scenario
 from hrc_drake.yaml_check import InputError
 
@@ -210,10 +211,20 @@ class _RunOutputs:
                 else {}
             },
             "person": person_metrics(self.times, self.signals) if measured else {},
+            "margin": self._margin(scenario, safety) if measured else {},
             "tasks": task_metrics(self.events, scenario.duration),
             "bt": bt_metrics(self.bt_statistics),
             "realism": realism_metrics(self.realism),
         }
+
+    def _margin(self, scenario: Scenario, safety: SafetyConfig) -> dict:
+        return margin_metrics(
+            log_of(self.signals),
+            reference_model(scenario),
+            safety.moving_speed,
+            self.status.totals.contact_records,
+            self.safety_parts,
+        )
 
     def write_figures(self, out: Path, files: dict[str, Path]) -> None:
         if self.signals is None:

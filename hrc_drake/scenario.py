@@ -7,6 +7,7 @@ one Diagram. Every problem in a file is reported as one line naming file, line a
 
 import dataclasses
 import difflib
+import itertools
 import math
 import re
 from collections.abc import Callable, Iterable, Iterator
@@ -21,12 +22,13 @@ from pydrake.multibody.parsing import ModelDirective, PackageMap
 
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
+from hrc_drake.falsify.config import FalsifyConfig, search_problems
 from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir
 from hrc_drake.safety.config import V_H_RULES, SafetyConfig
-from hrc_drake.sweep.overrides import Overrides, apply
+from hrc_drake.sweep.overrides import NEW_ENTRIES, Overrides, apply, field_type
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.yaml_check import (
     InputError,
@@ -70,11 +72,17 @@ class VisualizationOptions:
 @dataclass
 class AgentTree:
     """The behavior tree an agent runs: a BehaviorTree.CPP v4 XML file (relative to the
-    scenario file), which of its trees (default: its main tree), and the tick period."""
+    scenario file), which of its trees (default: its main tree), and the tick period.
+
+    `ports` replace port values the XML gives, by node name (every node of that name) and
+    port, e.g. `{walk_in: {animation_distance: "1.9"}}`: a tree exposes a parameter by
+    naming a node, and `--set trees.human.ports.walk_in.animation_distance=1.9` or a
+    `falsify:` parameter can change it without editing the tree."""
 
     file: str = field(default="", metadata=REQUIRED)
     tree_id: str = ""
     period: float = 0.05
+    ports: dict[str, dict[str, str]] = field(default_factory=dict, metadata={NEW_ENTRIES: True})
 
 
 AGENTS = ("robot", "human")
@@ -108,6 +116,8 @@ class Scenario:
     trees: dict[str, AgentTree] = field(default_factory=dict)
     parameters: dict[str, str] = field(default_factory=dict)
     """Root blackboard entries of every tree (converted to each port's type when read)."""
+    falsify: FalsifyConfig | None = None
+    """The behaviour parameters `hrc-drake falsify` searches (hrc_drake.falsify.config)."""
 
     def area(self, name: str) -> Area:
         return Area.from_polygon(self.areas[name])
@@ -265,6 +275,10 @@ FIELD_RULES: dict[str, Rule] = {
     "safety.moving_speed": positive,
     "safety.contact_area_cm2": positive,
     "safety.clamping_gap": not_negative,
+    "falsify.batch": positive,
+    "falsify.startup_trials": not_negative,
+    "falsify.worst": not_negative,
+    "falsify.parameters.*.step": positive,
 }
 """The valid range of every field that has one, by dotted path (`*`: every key of a
 mapping). A new field with a range gets its line here; YAML and `--set` both meet it."""
@@ -287,6 +301,30 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
         yield ("human", "start"), "needs [x, y, yaw_deg]"
     yield from _prefixed("trees", _resolve_tree_files(directory, scenario.trees))
     yield from tree_problems(scenario)
+    if scenario.falsify is not None:
+        yield from _falsify_problems(scenario, directory)
+
+
+def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
+    """The search space's own mistakes, then every range end and choice checked like the
+    bound field's value in the file (with the first problem it causes)."""
+    found = list(_prefixed("falsify", search_problems(scenario.falsify)))
+    yield from found
+    if found:
+        return
+    plain = dataclasses.replace(scenario, falsify=None)
+    for name, parameter in scenario.falsify.parameters.items():
+        kind = field_type(Scenario, parameter.bind)
+        for names, sample in parameter.ends():
+            where = ("falsify", "parameters", name)
+            value = parameter.value(sample, kind)
+            try:
+                changed = apply(plain, ((parameter.bind, value),))
+            except InputError as error:  # the bound field is not in the scenario
+                yield (*where, "bind"), str(error).removeprefix("--set ")
+                break
+            for _, message in itertools.islice(scenario_problems(changed, directory), 1):
+                yield (*where, *names), f"{parameter.bind}={value}: {message}"
 
 
 def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:

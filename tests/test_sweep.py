@@ -107,6 +107,15 @@ def test_killed_sweep_resumes_without_rerunning_finished_seeds(tmp_path):
     assert sorted(json.loads(line)["seed"] for line in after) == list(range(8))
 
 
+def test_a_sweep_is_known_again_whatever_order_its_sets_were_given_in(tmp_path):
+    """runs.jsonl keeps the --set values sorted; a rerun still finds its rows."""
+    specs = plan(BASE, parse_seeds("0:2"), ["safety.v_h=1.6", "duration=0.2"])
+    first = sweep(specs, tmp_path)
+    again = sweep(plan(BASE, parse_seeds("0:2"), ["duration=0.2", "safety.v_h=1.6"]), tmp_path)
+    assert (first.skipped, again.skipped) == (0, 2)
+    assert again.rows == first.rows
+
+
 def test_cli_rejects_unknown_field_with_exit_2(capsys):
     from hrc_drake.cli import main
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -66,6 +67,8 @@ class _Builder:
     collect: bool
     errors: list[BTError] = field(default_factory=list)
     next_uid: int = 1
+    port_values: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
+    """Port attributes that replace the XML's, by node name (every node of that name)."""
 
     def report(self, error: BTError) -> None:
         if not self.collect:
@@ -187,6 +190,7 @@ class _Builder:
     def _config(
         self, model: NodeModel, element: XmlElement, scope: _Scope, uid: int, name: str, path: str
     ) -> NodeConfig:
+        attributes = {**element.attributes, **self.port_values.get(name, {})}
         config = NodeConfig(
             model.id,
             name,
@@ -194,13 +198,13 @@ class _Builder:
             path,
             self.tree,
             scope.blackboard,
-            attributes=element.attributes,
+            attributes=attributes,
             file=element.file,
             line=element.line,
             tree_id=scope.definition.id,
         )
         ports = model.ports
-        for attribute, text in element.attributes.items():
+        for attribute, text in attributes.items():
             if attribute in IGNORED_ATTRIBUTES:
                 continue
             if attribute in PRECONDITIONS or attribute in POSTCONDITIONS:
@@ -218,7 +222,7 @@ class _Builder:
                     )
                 )
         for port in ports.values():
-            if port.name in element.attributes:
+            if port.name in attributes:
                 continue
             if port.has_default:
                 self._bind_default(config, port, element, scope)
@@ -474,14 +478,18 @@ class TreeFactory:
         rng: np.random.Generator | None = None,
         seed: int = 0,
         context: Any = None,
+        port_values: Mapping[str, Mapping[str, str]] | None = None,
     ) -> Tree:
         """Build the tree ``tree_id`` (default: the main tree); randomness comes from
-        ``rng`` or else from a Generator seeded with ``seed``."""
+        ``rng`` or else from a Generator seeded with ``seed``. ``port_values`` replace port
+        attributes of the XML: {node name: {port: text}}."""
         main_id = self._main_id(tree_id)
         tree = Tree(
             main_id, self.registry, rng if rng is not None else np.random.default_rng(seed), context
         )
-        builder = _Builder(self.registry, self.definitions, tree, collect=False)
+        builder = _Builder(
+            self.registry, self.definitions, tree, collect=False, port_values=port_values or {}
+        )
         builder.build_instance(main_id, Blackboard(), "", ())
         for instance in tree.subtrees:
             instance.blackboard.remember_initial_state()
@@ -539,9 +547,14 @@ def load_tree(
     rng: np.random.Generator | None = None,
     seed: int = 0,
     context: Any = None,
+    port_values: Mapping[str, Mapping[str, str]] | None = None,
 ) -> Tree:
-    """Build a tree from an XML file path or an XML string."""
-    return _factory_for(source, registry).create_tree(tree_id, rng=rng, seed=seed, context=context)
+    """Build a tree from an XML file path or an XML string (``port_values``: see
+    `TreeFactory.create_tree`)."""
+    factory = _factory_for(source, registry)
+    return factory.create_tree(
+        tree_id, rng=rng, seed=seed, context=context, port_values=port_values
+    )
 
 
 def validate(

@@ -6,6 +6,7 @@ Writes summary.json, histograms.png and report.html into the sweep directory.
 
 import json
 import math
+import shlex
 from html import escape
 from pathlib import Path
 
@@ -17,6 +18,7 @@ from hrc_drake.sweep.rows import OK, flatten
 
 PERCENTILES = (0, 5, 25, 50, 75, 95, 100)
 WORST_CRITERIA = (
+    ("margin.value", min),
     ("safety.min_separation.distance", min),
     ("safety.ssm_violations.worst_deficit", max),
     ("safety.contacts.max_force_ratio", max),
@@ -86,8 +88,9 @@ def worst_runs(rows: list[dict], scenario_path: str) -> list[dict]:
 
 
 def replay_command(scenario_path: str, row: dict) -> str:
-    sets = "".join(f" --set {path}={value}" for path, value in row["set"].items())
-    return f"hrc-drake run {scenario_path} --seed {row['seed']}{sets}"
+    """The `hrc-drake run` command line of the row's run (quoted for a POSIX shell)."""
+    sets = "".join(f" --set {shlex.quote(f'{path}={value}')}" for path, value in row["set"].items())
+    return f"hrc-drake run {shlex.quote(str(scenario_path))} --seed {row['seed']}{sets}"
 
 
 def write_sweep_report(

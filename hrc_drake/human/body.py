@@ -4,6 +4,7 @@ Joint vectors in hrc_drake.human are in the skeleton's canonical order (`Skeleto
 SI units); `HumanBody.plant_positions` reorders them into the MultibodyPlant's q.
 """
 
+import threading
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -159,7 +160,13 @@ class HumanBody:
         return np.concatenate(errors), np.vstack(rows)
 
 
-@lru_cache(maxsize=8)
 def human_body(height: float = DEFAULT_HEIGHT, mass: float = DEFAULT_MASS) -> HumanBody:
-    """Shared kinematics of a person of this size (building a plant takes ~50 ms)."""
+    """Shared kinematics of a person of this size (building a plant takes ~50 ms), one per
+    thread: its context holds a pose, so two simulations at once (a Dask worker's threads)
+    must not share it."""
+    return _human_body(height, mass, threading.get_ident())
+
+
+@lru_cache(maxsize=16)
+def _human_body(height: float, mass: float, thread: int) -> HumanBody:
     return HumanBody(height, mass)

@@ -62,7 +62,7 @@ def run_spec(spec: RunSpec) -> dict:
     start = time.perf_counter()
     try:
         scenario = apply(_scenario(spec.scenario_path), spec.overrides)
-        metrics = run(scenario, seed=spec.seed).metrics
+        metrics = run(scenario, seed=spec.seed, out_dir=spec.out_dir or None).metrics
     except Exception as e:  # any failure of one run is that run's result, not the sweep's
         message = " ".join(f"{type(e).__name__}: {e}".split())
         return make_row(spec, None, error=message, wall_time=time.perf_counter() - start)
@@ -71,23 +71,47 @@ def run_spec(spec: RunSpec) -> dict:
 
 def run_in_pool(specs: Iterator[RunSpec], workers: int, on_row: Callable[[dict], None]) -> None:
     """Runs on up to `workers` local processes (spawned, so each starts clean)."""
-    context = get_context("spawn")
-    idle: list[_Worker] = []
-    busy: list[_Worker] = []
-    try:
-        for spec in specs:
-            if not idle and len(busy) < workers:
-                idle.append(_Worker(context))
-            while not idle:
-                idle += _finished(busy, on_row, context)
-            worker = idle.pop()
-            worker.start(spec)
-            busy.append(worker)
-        while busy:
-            idle += _finished(busy, on_row, context)
-    finally:
-        for worker in idle + busy:
+    with LocalPool(workers) as pool:
+        pool.run(specs, on_row)
+
+
+class LocalPool:
+    """Up to `workers` local worker processes, kept between `run` calls (a search runs
+    round after round on the same workers); closing it stops them."""
+
+    def __init__(self, workers: int):
+        self.workers = workers
+        self._context = get_context("spawn")
+        self._idle: list[_Worker] = []
+
+    def run(self, specs: Iterator[RunSpec], on_row: Callable[[dict], None]) -> None:
+        """Runs every spec, reporting each row as its run ends; returns when all ended."""
+        busy: list[_Worker] = []
+        try:
+            for spec in specs:
+                if not self._idle and len(busy) < self.workers:
+                    self._idle.append(_Worker(self._context))
+                while not self._idle:
+                    self._idle += _finished(busy, on_row, self._context)
+                worker = self._idle.pop()
+                worker.start(spec)
+                busy.append(worker)
+            while busy:
+                self._idle += _finished(busy, on_row, self._context)
+        finally:
+            for worker in busy:  # interrupted: their runs are lost with them
+                worker.stop()
+
+    def close(self) -> None:
+        for worker in self._idle:
             worker.stop()
+        self._idle = []
+
+    def __enter__(self) -> "LocalPool":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
 
 
 def _finished(busy: list["_Worker"], on_row, context) -> list["_Worker"]:

@@ -43,20 +43,36 @@ def grid(axes: list[tuple[str, list]]) -> list[Overrides]:
 
 
 def field_type(schema, path: str):
-    """The type of the scalar field at dotted `path`; InputError naming the bad part."""
+    """The type of the scalar field at dotted `path` (a mapping's entry is named by its
+    key, e.g. `parameters.robot_speed`); InputError naming the bad part."""
+    kind = _field_type(schema, path)
+    if isinstance(kind, str):
+        raise InputError(f"--set {path}: {kind}")
+    return kind
+
+
+def field_problem(schema, path: str) -> str:
+    """Why `path` is not a field `--set` can change ("" when it is)."""
+    kind = _field_type(schema, path)
+    return f"{path}: {kind}" if isinstance(kind, str) else ""
+
+
+def _field_type(schema, path: str):
+    """The scalar field's type, or what is wrong with `path` (a str)."""
     kind = schema
     for depth, name in enumerate(path.split(".")):
+        if _mapping(kind):
+            kind = typing.get_args(_options(kind)[0])[1]
+            continue
         fields = schema_fields(_options(kind)[0])
         if fields is None:
             done = ".".join(path.split(".")[:depth])
-            raise InputError(f"--set {path}: '{done}' has no fields")
+            return f"'{done}' has no fields"
         if name not in fields:
-            close = difflib.get_close_matches(name, list(fields), n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
-            raise InputError(f"--set {path}: unknown field '{name}'{hint}")
+            return f"unknown field '{name}'{_close_hint(name, fields)}"
         kind = fields[name]
-    if _scalar(kind) is None:
-        raise InputError(f"--set {path}: only number, boolean and text fields can be set")
+    if scalar_of(kind) is None:
+        return "only number, boolean and text fields can be set"
     return kind
 
 
@@ -64,7 +80,7 @@ def convert(path: str, kind, text: str):
     """`text` as a value of the scalar (or optional scalar) type `kind`."""
     if text in ("null", "~") and _optional(kind):
         return None
-    scalar = _scalar(kind)
+    scalar = scalar_of(kind)
     value = yaml.safe_load(text) if scalar is not str else text
     if scalar is float and isinstance(value, str):
         with contextlib.suppress(ValueError):  # 1e3 is text to YAML 1.1, a number to people
@@ -88,15 +104,39 @@ def label(overrides: Overrides) -> str:
     return " ".join(f"{path}={value}" for path, value in overrides)
 
 
-def _replace(obj, names: list[str], value, path: str):
+NEW_ENTRIES = "new_entries"
+"""Field metadata: `--set` may add entries to this mapping (not only change them)."""
+
+
+def _replace(obj, names: list[str], value, path: str, new_entries: bool = False):
     head, rest = names[0], names[1:]
+    if isinstance(obj, dict):
+        if head not in obj and not new_entries:
+            done = path.split(".")[: -len(names)]
+            raise InputError(
+                f"--set {path}: '{'.'.join(done)}' has no entry '{head}'"
+                f"{_close_hint(head, obj)} (it has: {', '.join(obj) or 'none'})"
+            )
+        new = _replace(obj.get(head, {}), rest, value, path, new_entries) if rest else value
+        return {**obj, head: new}
     if rest and getattr(obj, head) is None:
         raise InputError(f"--set {path}: the scenario has no '{head}' section to change")
-    new = _replace(getattr(obj, head), rest, value, path) if rest else value
+    opens = any(f.name == head and f.metadata.get(NEW_ENTRIES) for f in dataclasses.fields(obj))
+    new = _replace(getattr(obj, head), rest, value, path, opens) if rest else value
     return dataclasses.replace(obj, **{head: new})
 
 
-def _scalar(kind):
+def _close_hint(name: str, known) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def _mapping(kind) -> bool:
+    return typing.get_origin(_options(kind)[0]) is dict
+
+
+def scalar_of(kind):
+    """bool, int, float or str for a (possibly optional) scalar field type, else None."""
     options = _options(kind)
     return options[0] if len(options) == 1 and options[0] in SCALARS else None
 

@@ -24,12 +24,14 @@ ROW_FIELDS = {"key": str, "seed": int, "set": dict, "status": str, "error": str,
 @dataclass(frozen=True)
 class RunSpec:
     """One run of a sweep: which scenario file (and its content hash), which seed, which
-    grid point."""
+    grid point (the `--set` values)."""
 
     scenario_path: str
     seed: int
     overrides: Overrides = ()
     scenario_hash: str = ""
+    out_dir: str = ""
+    """where to write the run directory ("": none); not part of what decides the row"""
 
     @property
     def key(self) -> str:
@@ -40,7 +42,7 @@ class RunSpec:
     @property
     def identity(self) -> tuple:
         """Everything that decides the run's row (see `row_identity`)."""
-        return (self.scenario_hash, hrc_drake.__version__, self.seed, label(self.overrides))
+        return (self.scenario_hash, hrc_drake.__version__, self.seed, _fields(self.overrides))
 
 
 def row_identity(row: dict) -> tuple:
@@ -48,8 +50,14 @@ def row_identity(row: dict) -> tuple:
         row.get("scenario_hash"),
         row.get("version"),
         row["seed"],
-        label(tuple(row["set"].items())),
+        _fields(tuple(row["set"].items())),
     )
+
+
+def _fields(overrides: Overrides) -> str:
+    """The `--set` values in field order: runs.jsonl stores them sorted, and the order
+    they were given in changes nothing."""
+    return label(tuple(sorted(overrides)))
 
 
 def make_row(spec: RunSpec, metrics: dict | None, error: str = "", wall_time: float = 0.0):

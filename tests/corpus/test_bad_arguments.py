@@ -236,6 +236,50 @@ CASES = {
         ("run", "base", "--set", "human.height=1.8"),
         ("--set human.height: the scenario has no 'human' section to change",),
     ),
+    "set an entry the mapping lacks": (
+        ("run", "{s}", "--set", "parameters.sped=1"),
+        ("--set parameters.sped: 'parameters' has no entry 'sped' (did you mean 'speed'?)",),
+    ),
+    "set a port of no node": (
+        ("run", "{s}", "--set", "trees.robot.ports.Ofset.offset=0;0;1"),
+        ("--set trees.robot.ports.Ofset.offset=0;0;1: no node named 'Ofset' in the robot's",),
+    ),
+    "set a port value the port cannot read": (
+        ("run", "{s}", "--set", "trees.robot.ports.OffsetPose.offset=0;0"),
+        ("--set trees.robot.ports.OffsetPose.offset=0;0: cannot convert '0;0' to Pose",),
+    ),
+    "falsify without a falsify section": (
+        ("falsify", "{s}", "--budget", "2", "--out", "{tmp}/search"),
+        ("{s}: no 'falsify:' section",),
+    ),
+    "falsify without a budget": (
+        ("falsify", "walk_up"),
+        ("falsify: the following arguments are required: --budget",),
+    ),
+    "falsify budget zero": (
+        ("falsify", "walk_up", "--budget", "0"),
+        ("falsify: argument --budget: must be at least 1, got 0",),
+    ),
+    "falsify with a grid": (
+        ("falsify", "walk_up", "--budget", "2", "--set", "duration=1,2"),
+        ("falsify: --set takes one value per field",),
+    ),
+    "falsify batch zero": (
+        ("falsify", "walk_up", "--budget", "2", "--set", "falsify.batch=0", "--out", "{tmp}/s"),
+        ("--set falsify.batch=0: must be positive, got 0",),
+    ),
+    "falsify duration negative": (
+        ("falsify", "walk_up", "--budget", "2", "--duration", "-3", "--out", "{tmp}/s"),
+        ("--duration -3.0: must be positive",),
+    ),
+    "falsify dask address malformed": (
+        ("falsify", "walk_up", "--budget", "2", "--dask", "tcp://a b", "--out", "{tmp}/s"),
+        ("--dask tcp://a b: expected a scheduler address like tcp://HOST:PORT",),
+    ),
+    "falsify out holds a run": (
+        ("falsify", "walk_up", "--budget", "2", "--out", "{run}"),
+        ("{run}: holds other files but no runs.jsonl",),
+    ),
     "validate without scenario": (
         ("validate",),
         ("validate: the following arguments are required: scenario",),

@@ -475,6 +475,151 @@ CASES = {
     "tree file is a directory": Case(
         S, "{file: robot.xml", "{file: .", ("trees.robot.file: tree file '.' not found",), "file: ."
     ),
+    "tree port value the port cannot read": Case(
+        S,
+        "  robot: {file: robot.xml, period: 0.05}",
+        "  robot: {file: robot.xml, period: 0.05, ports: {OffsetPose: {offset: up}}}",
+        ("trees.robot.ports.OffsetPose.offset: unknown location 'up'",),
+        "ports:",
+    ),
+    "tree port of no node": Case(
+        S,
+        "  robot: {file: robot.xml, period: 0.05}",
+        "  robot: {file: robot.xml, period: 0.05, ports: {Offset: {offset: 0;0;1}}}",
+        ("trees.robot.ports.Offset.offset: no node named 'Offset' in the robot's tree",),
+        "ports:",
+    ),
+    "tree port a node lacks": Case(
+        S,
+        "  robot: {file: robot.xml, period: 0.05}",
+        "  robot: {file: robot.xml, period: 0.05, ports: {OffsetPose: {ofset: 0;0;1}}}",
+        ("'OffsetPose' has no input port 'ofset' (it has: input, offset, orientation)",),
+        "ports:",
+    ),
+    # --- the falsify: search space ---
+    **{
+        name: Case(
+            S, "visualization:\n", f"falsify:\n  parameters:\n{text}\nvisualization:\n", says, at
+        )
+        for name, text, says, at in (
+            (
+                "falsify range reversed",
+                "    s: {bind: parameters.speed,\n        low: 0.5,\n        high: 0.2}",
+                ("falsify.parameters.s.high: must be above low (0.5), got 0.2",),
+                "high: 0.2",
+            ),
+            (
+                "falsify range and choices",
+                "    s: {bind: parameters.speed, low: 0.2, high: 0.5, choices: ['0.3']}",
+                ("falsify.parameters.s: give either low and high or choices, not both",),
+                "s: {",
+            ),
+            (
+                "falsify range without its end",
+                "    s: {bind: parameters.speed, low: 0.2}",
+                ("falsify.parameters.s: give low and high (a range) or choices",),
+                "s: {",
+            ),
+            (
+                "falsify step too long",
+                "    s: {bind: parameters.speed, low: 0.2, high: 0.5,\n        step: 0.4}",
+                ("falsify.parameters.s.step: must fit within low..high, got 0.4",),
+                "step: 0.4",
+            ),
+            (
+                "falsify step not positive",
+                "    s: {bind: parameters.speed, low: 0.2, high: 0.5,\n        step: 0}",
+                ("falsify.parameters.s.step: must be positive, got 0.0",),
+                "step: 0}",
+            ),
+            (
+                "falsify unknown blackboard entry",
+                "    s: {bind: parameters.sped, low: 0.2, high: 0.5}",
+                (
+                    "falsify.parameters.s.bind: parameters.sped: 'parameters' has no entry 'sped' "
+                    "(did you mean 'speed'?)",
+                ),
+                "sped",
+            ),
+            (
+                "falsify unknown field",
+                "    s: {bind: safety.vh, low: 0.2, high: 0.5}",
+                ("falsify.parameters.s.bind: safety.vh: unknown field 'vh' (did you mean 'v_h'?)",),
+                "safety.vh",
+            ),
+            (
+                "falsify binds a section",
+                "    s: {bind: safety, low: 0.2, high: 0.5}",
+                ("falsify.parameters.s.bind: safety: only number, boolean and text fields",),
+                "bind: safety",
+            ),
+            (
+                "falsify binds the seed",
+                "    s: {bind: seed, low: 0, high: 5, step: 1}",
+                ("falsify.parameters.s.bind: cannot search 'seed'",),
+                "bind: seed",
+            ),
+            (
+                "falsify unknown tree node",
+                "    s: {bind: trees.robot.ports.Offset.offset, choices: ['0;0;1']}",
+                (
+                    "falsify.parameters.s.choices[0]: trees.robot.ports.Offset.offset=0;0;1: no "
+                    "node named 'Offset' in the robot's tree (did you mean 'OffsetPose'?)",
+                ),
+                "Offset.offset",
+            ),
+            (
+                "falsify value the tree cannot read",
+                "    s: {bind: parameters.speed,\n        choices: ['0.3',\n          fast]}",
+                ("falsify.parameters.s.choices[1]: parameters.speed=fast: a tree cannot read it",),
+                "fast",
+            ),
+            (
+                "falsify range end out of the field's range",
+                "    tall: {bind: human.height, low: 1.6,\n        high: 2.4}",
+                ("falsify.parameters.tall.high: human.height=2.4: must lie within 1.55..1.95 m",),
+                "high: 2.4",
+            ),
+            (
+                "falsify whole-number field",
+                "    n: {bind: robot.motion.ik_attempts, low: 1, high: 5}",
+                ("falsify.parameters.n.step: 'robot.motion.ik_attempts' is a whole number",),
+                "ik_attempts, low",
+            ),
+            (
+                "falsify choice with a comma",
+                "    s: {bind: parameters.speed, choices: ['0.3,0.4']}",
+                ("falsify.parameters.s.choices[0]: a choice cannot hold ','",),
+                "0.3,0.4",
+            ),
+            (
+                "falsify unknown sampler",
+                "    s: {bind: parameters.speed, low: 0.2, high: 0.5}\n  sampler: grid",
+                ("falsify.sampler: unknown sampler 'grid'; known: tpe, cmaes, random",),
+                "sampler: grid",
+            ),
+            (
+                "falsify batch zero",
+                "    s: {bind: parameters.speed, low: 0.2, high: 0.5}\n  batch: 0",
+                ("falsify.batch: must be positive, got 0",),
+                "batch: 0",
+            ),
+        )
+    },
+    "falsify without parameters": Case(
+        S,
+        "visualization:\n",
+        "falsify: {sampler: tpe}\nvisualization:\n",
+        ("falsify.parameters: required field is missing",),
+        "falsify:",
+    ),
+    "falsify with no parameter": Case(
+        S,
+        "visualization:\n",
+        "falsify: {parameters: {}}\nvisualization:\n",
+        ("falsify.parameters: name at least one parameter to search",),
+        "falsify:",
+    ),
 }
 
 
