@@ -21,14 +21,15 @@ from pydrake.systems.primitives import ConstantVectorSource
 from hrc_drake.paths import add_model_package
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
-from hrc_drake.station_models import add_robot
+from hrc_drake.station_models import add_robot, add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 
 
-def bare_diagram(scenario, desired=None):
+def bare_diagram(scenario, desired=None, cell: bool = False):
     """The arm with its tool, an inverse-dynamics controller and a desired-state source (by
-    default a constant set point at the initial configuration): no cell, no person, no
-    trees, no monitor, no visualizer, no loggers, no runner."""
+    default a constant set point at the initial configuration): no cell (unless `cell`: the
+    scenario's static cell in the plant, as the station's dynamic plant has it), no person,
+    no trees, no monitor, no visualizer, no loggers, no runner."""
     q0 = scenario.configuration(scenario.robot.initial_configuration)
     if desired is None:
         desired = ConstantVectorSource(np.concatenate([q0, 0 * q0]))
@@ -37,9 +38,12 @@ def bare_diagram(scenario, desired=None):
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
         builder,
     )
-    parser = Parser(plant)
-    add_model_package(parser.package_map())
-    arm = add_robot(plant, parser, scenario.robot)
+    if cell:
+        arm, _ = add_station_models(plant, model_parser(plant), scenario)
+    else:
+        parser = Parser(plant)
+        add_model_package(parser.package_map())
+        arm = add_robot(plant, parser, scenario.robot)
     plant.Finalize()
     plant.SetDefaultPositions(arm, q0)
     controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)

@@ -1,5 +1,5 @@
-"""Sweep throughput (runs per minute) with 1 and 2 local workers on the base scenario, and
-the parallel efficiency: (runs/min with 2) / (2 × runs/min with 1).
+"""Sweep throughput (runs per minute) with 1 and 2 local workers on a scenario, and the
+parallel efficiency: (runs/min with 2) / (2 × runs/min with 1).
 
 Worker start-up (spawning, importing Drake) is part of a sweep's cost, so it is included.
 The two settings alternate over the repeats and each keeps its best rate, so load from
@@ -13,12 +13,12 @@ import tempfile
 import time
 from pathlib import Path
 
-from hrc_drake.scenario import resolve_scenario_path
+from hrc_drake.scenario import load_scenario, resolve_scenario_path
 from hrc_drake.sweep import plan, sweep
 
 
-def runs_per_minute(runs: int, duration: float, workers: int) -> float:
-    specs = plan(resolve_scenario_path("base"), list(range(runs)), [f"duration={duration}"])
+def runs_per_minute(scenario: str, runs: int, duration: float, workers: int) -> float:
+    specs = plan(resolve_scenario_path(scenario), list(range(runs)), [f"duration={duration}"])
     with tempfile.TemporaryDirectory() as out:
         start = time.perf_counter()
         result = sweep(specs, Path(out), workers=workers)
@@ -29,6 +29,7 @@ def runs_per_minute(runs: int, duration: float, workers: int) -> float:
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--scenario", default="base")
     parser.add_argument("--runs", type=int, default=16)
     parser.add_argument("--duration", type=float, default=5.0)
     parser.add_argument("--repeats", type=int, default=3)
@@ -36,10 +37,17 @@ def main():
     rates = {1: 0.0, 2: 0.0}
     for _ in range(args.repeats):
         for workers in rates:
-            rates[workers] = max(rates[workers], runs_per_minute(args.runs, args.duration, workers))
+            rate = runs_per_minute(args.scenario, args.runs, args.duration, workers)
+            rates[workers] = max(rates[workers], rate)
     for workers, rate in rates.items():
-        print(f"{workers} worker(s): {rate:7.1f} runs/min ({args.runs} runs of {args.duration} s)")
+        print(
+            f"{args.scenario}: {workers} worker(s): {rate:7.1f} runs/min "
+            f"({args.runs} runs of {args.duration} s)"
+        )
     print(f"parallel efficiency: {100 * rates[2] / (2 * rates[1]):.0f} %")
+    default = load_scenario(args.scenario).duration
+    hours = 1000 / rates[2] * (default / args.duration) / 60
+    print(f"1000 seeds of {default:g} s on 2 workers: at most {hours:.1f} h")
 
 
 if __name__ == "__main__":

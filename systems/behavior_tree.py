@@ -137,8 +137,8 @@ class BehaviorTreeSystem(LeafSystem):
 
     def _running_path(self) -> str:
         """The last running node in pre-order: the leaf the agent is busy with."""
-        running = [path for _, path, node in self.tree.nodes() if node.status is Status.RUNNING]
-        return running[-1] if running else ""
+        running = (node for node in reversed(self.tree.node_list) if node.status is Status.RUNNING)
+        return next((node.path for node in running), "")
 
     def _declare_state_view(self, name: str, model, extract) -> None:
         """An output port publishing one part of the state (never the inputs)."""

@@ -48,6 +48,10 @@ class RealismAudit(LeafSystem):
         self._bounds = {
             part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
         }
+        self._ends = {
+            g: np.column_stack([start, end]) for g, (start, end, _) in self._bounds.items()
+        }
+        """Each region's bounding segment's ends as the columns of a 3 × 2 matrix."""
         self._radii = np.array([radius for _, _, radius in self._bounds.values()])
         self._object_radii = {name: _bounding_radius(solid) for name, solid in self._solids.items()}
         self._soles = {}
@@ -106,14 +110,8 @@ class RealismAudit(LeafSystem):
         if not near:
             return ()
         geometries = list(self._bounds)
-        ends = np.array(
-            [
-                [X @ start, X @ end]
-                for X, (start, end, _) in (
-                    (query.GetPoseInWorld(g), self._bounds[g]) for g in geometries
-                )
-            ]
-        )
+        ends = np.array([query.GetPoseInWorld(g) @ self._ends[g] for g in geometries])
+        ends = ends.transpose(0, 2, 1)  # (geometry, start or end, xyz)
         centers = np.array([o.pose.translation() for o in near])
         reach = self._radii[:, None] + np.array([self._object_radii[o.type] for o in near])
         close = _point_segment_distances(centers, ends[:, 0], ends[:, 1]) <= reach

@@ -15,7 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
-from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem, ValueProducer
+from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
+from pydrake.systems.primitives import Demultiplexer
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import (
@@ -111,7 +112,8 @@ class RobotMotion(LeafSystem):
     (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
-    Outputs: `desired_state` (q, v), `desired_acceleration`, `path_rate` (the fraction of
+    Outputs: `desired_motion` (q, v, vdot stacked), the same as `desired_state` (q, v) and
+    `desired_acceleration`, `path_rate` (the fraction of
     full speed it moves along its path now, for the safety monitor), `robot_status`,
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
@@ -134,20 +136,14 @@ class RobotMotion(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
         from_state_and_time = {self.time_ticket(), self.all_state_ticket()}
-        self._desired_motion = self.DeclareCacheEntry(
-            "desired q, v and vdot",
-            ValueProducer(
-                allocate=lambda: AbstractValue.Make(np.zeros(3 * self._n)),
-                calc=self._calc_desired_motion,
-            ),
-            from_state_and_time,
-        )
-        motion_ticket = {self._desired_motion.ticket()}
-        self.DeclareVectorOutputPort(
-            "desired_state", 2 * self._n, self._calc_desired_state, motion_ticket
+        self._desired_motion = self.DeclareVectorOutputPort(
+            "desired_motion", 3 * self._n, self._calc_desired_motion, from_state_and_time
         )
         self.DeclareVectorOutputPort(
-            "desired_acceleration", self._n, self._calc_desired_acceleration, motion_ticket
+            "desired_state", 2 * self._n, self._calc_desired_state, from_state_and_time
+        )
+        self.DeclareVectorOutputPort(
+            "desired_acceleration", self._n, self._calc_desired_acceleration, from_state_and_time
         )
         self.DeclareVectorOutputPort(
             "path_rate", 1, self._calc_path_rate, {self.time_ticket(), self.all_state_ticket()}
@@ -175,14 +171,14 @@ class RobotMotion(LeafSystem):
     def _state(self, context) -> MotionState:
         return context.get_abstract_state(self._state_index).get_value()
 
-    def _calc_desired_motion(self, context, value: AbstractValue) -> None:
+    def _calc_desired_motion(self, context, output: BasicVector) -> None:
         """q, v and vdot stacked: held still, or on the path at the current time."""
         state = self._state(context)
         if state.path is None:
-            value.set_value(state.hold_motion)
+            output.SetFromVector(state.hold_motion)
             return
         progress = state.progress.at(context.get_time(), state.path.duration)
-        value.set_value(np.concatenate(desired_motion(state.path, progress)))
+        output.SetFromVector(np.concatenate(desired_motion(state.path, progress)))
 
     def _calc_desired_state(self, context, output: BasicVector) -> None:
         output.SetFromVector(self._desired_motion.Eval(context)[: 2 * self._n])
@@ -425,18 +421,20 @@ def add_robot_motion(
 ) -> RobotMotion:
     """Adds RobotMotion as "robot_motion" between the plant and its RobotController.
 
+    The controller reads the desired motion at every plant step: one Python output
+    (`desired_motion`), split into state and acceleration in C++, not three Python calls.
     Feeds the acceleration forward when the controller takes a reference acceleration. With
     `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
     commands and reads its status; without, Grip and Release fail with a reason.
     """
     motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
-    builder.Connect(motion.GetOutputPort("desired_state"), controller.GetInputPort("desired_state"))
+    n = motion.GetOutputPort("desired_acceleration").size()
+    split = builder.AddNamedSystem("robot_desired_motion", Demultiplexer([2 * n, n]))
+    builder.Connect(motion.GetOutputPort("desired_motion"), split.get_input_port())
+    builder.Connect(split.get_output_port(0), controller.GetInputPort("desired_state"))
     if controller.HasInputPort("desired_acceleration"):
-        builder.Connect(
-            motion.GetOutputPort("desired_acceleration"),
-            controller.GetInputPort("desired_acceleration"),
-        )
+        builder.Connect(split.get_output_port(1), controller.GetInputPort("desired_acceleration"))
     if workpieces is not None:
         builder.Connect(
             motion.GetOutputPort("gripper_command"),

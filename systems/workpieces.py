@@ -158,7 +158,7 @@ class Workpieces(LeafSystem):
             for slot, frame_id in enumerate(self.frame_ids):
                 piece = by_slot.get(slot)
                 if piece is not None and piece.velocity.get_coeffs().any():
-                    moving.append((frame_id, self.cell.drift(piece)))
+                    moving.append((frame_id, piece.drift))
                 elif piece is not self._written[slot]:
                     self._poses.set_value(frame_id, self._slot_pose(slot, piece, world))
                 self._written[slot] = piece

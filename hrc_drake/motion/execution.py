@@ -89,9 +89,12 @@ def next_progress(
     limits = ACCELERATION_MARGIN * limit_scale * acceleration_limits
     ahead = min(path.duration, progress.tau + fastest * period)
     low, high = -np.inf, np.inf
+    derivatives = {
+        tau: (path.velocity(tau), path.acceleration(tau)) for tau in (progress.tau, ahead)
+    }
     for tau, rate in itertools.product((progress.tau, ahead), (slowest, fastest)):
-        dq = path.velocity(tau)
-        curvature_term = path.acceleration(tau) * rate * rate
+        dq, ddq = derivatives[tau]
+        curvature_term = ddq * rate * rate
         moving = np.abs(dq) > 1e-9
         bound_a = (-limits - curvature_term)[moving] / dq[moving]
         bound_b = (limits - curvature_term)[moving] / dq[moving]

@@ -92,6 +92,8 @@ class ActiveParts:
     """All watched part numbers: the person's, then `rows`."""
     frames: np.ndarray
     """The frames whose poses the reading looks up."""
+    robot_frames: np.ndarray
+    """Those of them that are the robot's (the person's are looked up only when they moved)."""
 
 
 class ProximityMeter:
@@ -135,7 +137,8 @@ class ProximityMeter:
         robot = np.asarray(robot)
         rows = self.n_human + robot
         parts = np.concatenate([np.arange(self.n_human), rows])
-        return ActiveParts(robot, rows, parts, np.unique(self.part_frame[parts]))
+        frames = np.unique(self.part_frame[parts])
+        return ActiveParts(robot, rows, parts, frames, np.setdiff1d(frames, self.human_frames))
 
     def measure(
         self,
@@ -149,7 +152,7 @@ class ProximityMeter:
         now: carried objects come and go. `person_time` is when the person's pose was
         sampled (None: continuously, at `time`)."""
         person_time = time if person_time is None else person_time
-        poses = self._poses(query_object, active.frames)
+        poses = self._current_poses(query_object, memory, person_time, active)
         if memory is None:
             rates, reference = np.zeros_like(poses), None
         else:
@@ -183,6 +186,16 @@ class ProximityMeter:
         poses = np.full((len(self.frames), 3, 4), np.nan)
         for f in frames:
             poses[f] = query_object.GetPoseInWorld(self.frames[f]).GetAsMatrix34()
+        return poses
+
+    def _current_poses(self, query_object, memory, person_time: float, active: ActiveParts):
+        """`_poses` of the active frames; the person's are the last reading's while the
+        person has no newer pose sample (HumanActor holds its pose between samples)."""
+        if memory is None or person_time != memory[self._memory_parts[0]][1]:
+            return self._poses(query_object, active.frames)
+        poses = self._poses(query_object, active.robot_frames)
+        previous = memory[self._memory_parts[1]].reshape(poses.shape)
+        poses[self.human_frames] = previous[self.human_frames]
         return poses
 
     def _recall(self, memory: np.ndarray, poses: np.ndarray, time: float, person_time: float):

@@ -95,12 +95,19 @@ def with_height(X_WO: RigidTransform, z: float) -> RigidTransform:
     return RigidTransform(X_WO.rotation(), p)
 
 
-def overlaps(a: np.ndarray, b: np.ndarray | None, margin: float = OVERLAP_MARGIN) -> bool:
+def overlaps(
+    a: np.ndarray,
+    b: np.ndarray | None,
+    margin: float = OVERLAP_MARGIN,
+    normals: tuple[np.ndarray, np.ndarray] | None = None,
+) -> bool:
     """Whether two convex outlines overlap by more than `margin` (None is the whole plane):
-    no edge normal of either separates their projections."""
+    no edge normal of either separates their projections. `normals`: both outlines'
+    `edge_normals`, when the caller keeps them (a support is tested against many pieces)."""
     if b is None:
         return True
-    axes = np.vstack([_normals(a), _normals(b)]).T
+    a_normals, b_normals = normals or (edge_normals(a), edge_normals(b))
+    axes = np.vstack([a_normals, b_normals]).T
     along_a, along_b = a @ axes, b @ axes
     apart = (along_a.max(axis=0) < along_b.min(axis=0) + margin) | (
         along_b.max(axis=0) < along_a.min(axis=0) + margin
@@ -108,8 +115,9 @@ def overlaps(a: np.ndarray, b: np.ndarray | None, margin: float = OVERLAP_MARGIN
     return not apart.any()
 
 
-def _normals(polygon: np.ndarray) -> np.ndarray:
-    edges = np.roll(polygon, -1, axis=0) - polygon
+def edge_normals(polygon: np.ndarray) -> np.ndarray:
+    """Unit normals (n, 2) of a polygon's edges, the edge from vertex i to i + 1 first."""
+    edges = np.concatenate([polygon[1:], polygon[:1]]) - polygon
     normals = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
     return normals / np.linalg.norm(normals, axis=1, keepdims=True)
 

@@ -18,7 +18,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import BodyIndex
 
 from hrc_drake.workpieces.config import SurfaceConfig
-from hrc_drake.workpieces.geometry import CIRCLE_SIDES, overlaps
+from hrc_drake.workpieces.geometry import CIRCLE_SIDES, edge_normals, overlaps
 
 FLOOR = "floor"
 VERTICAL = 1.0 - 1e-9
@@ -41,6 +41,11 @@ class Surface:
         if self.outline is None:
             return None
         return self.outline.min(axis=0), self.outline.max(axis=0)
+
+    @cached_property
+    def normals(self) -> np.ndarray | None:
+        """The outline's edge normals (for `overlaps`), None for the whole plane."""
+        return None if self.outline is None else edge_normals(self.outline)
 
     def may_overlap(self, low: np.ndarray, high: np.ndarray) -> bool:
         """A cheap test before the exact one: do the bounding boxes overlap?"""
@@ -118,19 +123,37 @@ class Supports:
     def __init__(self, surfaces: list[Surface], belts: set[str]):
         self.fixed = sorted([FLOOR_SURFACE, *surfaces], key=lambda s: -s.height)
         self.belts = belts
+        unbounded = (np.full(2, -np.inf), np.full(2, np.inf))
+        lows, highs = zip(*(s.bounds or unbounded for s in self.fixed), strict=True)
+        self._lows, self._highs = np.array(lows), np.array(highs)
+        self._heights = np.array([s.height for s in self.fixed])
+
+    def _fixed_candidates(self, low: np.ndarray, high: np.ndarray, below: float) -> list:
+        """The fixed supports (highest first) at most at `below` whose bounding boxes overlap
+        the box from `low` to `high`: what `Surface.may_overlap` would pass, all at once."""
+        passing = (
+            (self._heights <= below)
+            & (self._highs > low).all(axis=1)
+            & (self._lows < high).all(axis=1)
+        )
+        return [self.fixed[k] for k in np.flatnonzero(passing)]
 
     def under(self, outline: np.ndarray, below: float, others: list[Surface]) -> Surface:
         """The highest support overlapping `outline` with its top at most at `below` (a belt
         wins over level fixed surfaces); the floor when nothing is below."""
         low, high = outline.min(axis=0), outline.max(axis=0)
+        own_normals = edge_normals(outline)
         movable = sorted(others, key=lambda s: -s.height)
         level: list[Surface] = []
-        for surface in heapq.merge(self.fixed, movable, key=lambda s: -s.height):
+        fixed = self._fixed_candidates(low, high, below)
+        for surface in heapq.merge(fixed, movable, key=lambda s: -s.height):
             if surface.height > below:
                 continue
             if level and surface.height < level[0].height - TIE_TOLERANCE:
                 break
-            if surface.may_overlap(low, high) and overlaps(outline, surface.outline):
+            if surface.may_overlap(low, high) and overlaps(
+                outline, surface.outline, normals=(own_normals, surface.normals)
+            ):
                 level.append(surface)
         if not level:
             return FLOOR_SURFACE

@@ -112,6 +112,11 @@ class Piece:
         return footprint(self.solid, self.pose)
 
     @cached_property
+    def drift(self) -> Drift:
+        """The piece moving on from its pose at the world's time (see `since`)."""
+        return Drift(self.pose, self.velocity)
+
+    @cached_property
     def top(self) -> Surface:
         """The piece's top face as a support for others."""
         return Surface(object_support(self.id), self.bottom + self.solid.height, self.footprint)
@@ -119,12 +124,22 @@ class Piece:
 
 @dataclass(frozen=True)
 class HolderSample:
-    """A holder's grasp frame as last received: its pose at `time` (when it was sampled) and
-    the velocity estimated from the sample before, to extrapolate between samples."""
+    """A holder's grasp frame as last received: its pose at `time` (when it was sampled),
+    and the sample before it (pose, time), whose difference gives the velocity that
+    extrapolates between samples. The velocity is worked out only when something uses it
+    (a held object, a grasp): most updates none does."""
 
     pose: RigidTransform
     time: float
-    velocity: SpatialVelocity
+    before: tuple[RigidTransform, float] | None = None
+    """The previous sample's pose and time; None for a holder's first sample."""
+
+    @cached_property
+    def velocity(self) -> SpatialVelocity:
+        if self.before is None:
+            return SpatialVelocity.Zero()
+        pose, time = self.before
+        return twist_between(pose, self.pose, self.time - time)
 
 
 Sampled = tuple[RigidTransform, float | None]
@@ -172,8 +187,8 @@ def _between(left: RigidTransform, right: RigidTransform) -> RigidTransform:
     if np.linalg.norm(y) < 1e-9:
         y = left.rotation().col(1) * [1.0, 1.0, 0.0]
     y /= np.linalg.norm(y)
-    z = np.array([0.0, 0.0, 1.0])
-    R = RotationMatrix(np.column_stack([np.cross(y, z), y, z]))
+    x = [y[1] * 1.0 - y[2] * 0.0, y[2] * 0.0 - y[0] * 1.0, y[0] * 0.0 - y[1] * 0.0]  # y × z
+    R = RotationMatrix(np.column_stack([x, y, [0.0, 0.0, 1.0]]))
     return RigidTransform(R, (p_left + p_right) / 2)
 
 
@@ -235,12 +250,7 @@ class Workcell:
         return step.world()
 
     def pose_at(self, piece: Piece, world: World, time: float) -> RigidTransform:
-        return self.drift(piece).after(since(world, time))
-
-    @staticmethod
-    def drift(piece: Piece) -> Drift:
-        """The piece moving on from its pose at the world's time (see `since`)."""
-        return Drift(piece.pose, piece.velocity)
+        return piece.drift.after(since(world, time))
 
     def status(self, world: World, time: float, geometry_ids=()) -> WorkpiecesStatus:
         """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
@@ -297,8 +307,7 @@ class _Step:
             h: _sample(world.holders.get(h), X, now if t is None else t)
             for h, (X, t) in frames.items()
         }
-        self.holders = {h: moved(s.pose, s.velocity, now - s.time) for h, s in self.samples.items()}
-        self.twists = {h: s.velocity for h, s in self.samples.items()}
+        self._holder_poses = {}
         self.changed = False
         dt = now - world.time
         self.pieces = {i: self._followed(p, dt) for i, p in world.pieces.items()}
@@ -306,17 +315,29 @@ class _Step:
     def world(self) -> World:
         return World(self.now, self.pieces, self.next_id, self.samples, self.seen, self.results)
 
+    def holder_pose(self, holder: str) -> RigidTransform | None:
+        """The holder's grasp frame now, extrapolated from its last sample (None: the holder
+        is not there); worked out when first asked for."""
+        if holder not in self._holder_poses:
+            sample = self.samples.get(holder)
+            self._holder_poses[holder] = (
+                None
+                if sample is None
+                else moved(sample.pose, sample.velocity, self.now - sample.time)
+            )
+        return self._holder_poses[holder]
+
     def _followed(self, piece: Piece, dt: float) -> Piece:
         """The piece at `now`: moved on as planned, or carried by its holder."""
         if piece.holder is None:
             if not piece.velocity.get_coeffs().any():
                 return piece
             return dataclasses.replace(piece, pose=moved(piece.pose, piece.velocity, dt))
-        X_WH = self.holders.get(piece.holder)
+        X_WH = self.holder_pose(piece.holder)
         if X_WH is None:  # the holder's pose input has no value any more: wait where it was
             return dataclasses.replace(piece, velocity=SpatialVelocity.Zero())
         X_WO = X_WH @ piece.grip
-        V = velocity_at(self.twists[piece.holder], X_WH.translation(), X_WO.translation())
+        V = velocity_at(self.samples[piece.holder].velocity, X_WH.translation(), X_WO.translation())
         return dataclasses.replace(piece, pose=X_WO, velocity=V)
 
     # --- commands -------------------------------------------------------------------------
@@ -394,7 +415,7 @@ class _Step:
     def attach(self, command: Attach) -> CommandResult:
         holder = command.holder
         piece = self.pieces.get(command.object_id)
-        if piece is not None and holder in self.holders and piece.holder == holder:
+        if piece is not None and holder in self.samples and piece.holder == holder:
             return _result(command, SUCCEEDED, "already held", piece.id)
         problem = self._holder_problem(holder) or self._busy(holder)
         if problem:
@@ -448,7 +469,7 @@ class _Step:
     def _holder_problem(self, holder: str) -> str:
         if holder not in HOLDERS:
             return _unknown_holder(holder)
-        if holder not in self.holders:
+        if holder not in self.samples:
             who = "robot tool" if holder == ROBOT else "person's hands"
             return f"there is no {holder}: the {who} pose is not connected"
         return ""
@@ -525,7 +546,7 @@ class _Step:
 
     def _cup_distance(self, piece: Piece) -> float | None:
         solid = self.cell.kinds[piece.type].solid
-        X_OT = piece.pose.inverse() @ self.holders[ROBOT]
+        X_OT = piece.pose.inverse() @ self.holder_pose(ROBOT)
         facing = -X_OT.rotation().col(2)[2]
         tilt_limit = math.cos(math.radians(self.config.vacuum_max_tilt_deg))
         p_OT = X_OT.translation()
@@ -538,17 +559,17 @@ class _Step:
         midpoint, which is where the person aims them (hands close around a small part
         as much as they span a large box)."""
         solid = self.cell.kinds[piece.type].solid
-        return solid.distance_to(piece.pose.inverse() @ self.holders[holder].translation())
+        return solid.distance_to(piece.pose.inverse() @ self.holder_pose(holder).translation())
 
     def _hold(self, piece: Piece, holder: str, center=None) -> None:
         """The holder takes the piece: it keeps its orientation to the holder's frame from
         now on, its centre where it is or at `center` (holder frame) when given."""
-        X_WH = self.holders[holder]
+        X_WH = self.holder_pose(holder)
         grip = X_WH.inverse() @ piece.pose
         if center is not None:
             grip = RigidTransform(grip.rotation(), np.asarray(center, dtype=float))
         X_WO = X_WH @ grip
-        V = velocity_at(self.twists[holder], X_WH.translation(), X_WO.translation())
+        V = velocity_at(self.samples[holder].velocity, X_WH.translation(), X_WO.translation())
         self.pieces[piece.id] = dataclasses.replace(
             piece, pose=X_WO, holder=holder, grip=grip, support=None, velocity=V
         )
@@ -637,12 +658,12 @@ class _Step:
 
 
 def _sample(previous: HolderSample | None, pose: RigidTransform, time: float) -> HolderSample:
-    """A new sample, its velocity from the previous one (kept while no newer sample came)."""
+    """A new sample after the previous one (kept while no newer sample came)."""
     if previous is None:
-        return HolderSample(pose, time, SpatialVelocity.Zero())
+        return HolderSample(pose, time)
     if time <= previous.time:
-        return HolderSample(previous.pose, previous.time, previous.velocity)
-    return HolderSample(pose, time, twist_between(previous.pose, pose, time - previous.time))
+        return previous
+    return HolderSample(pose, time, (previous.pose, previous.time))
 
 
 def _result(
