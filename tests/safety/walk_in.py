@@ -25,6 +25,7 @@ from pydrake.trajectories import PiecewisePolynomial
 from hrc_drake.human.body import FrameTask, human_body, parse_human
 from hrc_drake.messages import FINISHED
 from hrc_drake.motion.messages import MoveJoints
+from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import Scenario
@@ -127,7 +128,7 @@ class Shuttle(LeafSystem):
     def __init__(self, goals: list[np.ndarray], period: float = 0.05):
         super().__init__()
         self._goals = goals
-        self._status = self.DeclareAbstractInputPort("robot_status", AbstractValue.Make(None))
+        self._status = self.DeclareAbstractInputPort("robot_status", message_value())
         self._command = self.DeclareAbstractState(AbstractValue.Make(self._move(1)))
         self.DeclareStateOutputPort("robot_command", self._command)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
