@@ -22,10 +22,11 @@ from math import atan2, cos, hypot, sin
 import networkx as nx
 import numpy as np
 from pydrake.geometry import Box, Cylinder
-from pydrake.multibody.tree import BodyIndex
 from shapely import prepared
 from shapely.geometry import LineString, MultiPoint, Point, Polygon
 from shapely.ops import nearest_points, unary_union
+
+from hrc_drake.cell_geometry import anchored_collision_shapes
 
 BAND = (0.03, 1.9)
 """m: heights the body occupies (above the soles' clearance, up to the head)."""
@@ -68,23 +69,16 @@ class Obstacle:
 
 def cell_obstacles(plant, inspector) -> list[Obstacle]:
     """Floor outlines of the plant's anchored collision geometry within the body's height."""
-    context = plant.CreateDefaultContext()
     found = []
-    for index in range(plant.num_bodies()):
-        body = plant.get_body(BodyIndex(index))
-        if not plant.IsAnchored(body):
+    for name, shape, X_WG in anchored_collision_shapes(plant, inspector):
+        corners = _corners(shape)
+        if corners is None:
             continue
-        name = plant.GetModelInstanceName(body.model_instance())
-        X_WB = plant.EvalBodyPoseInWorld(context, body)
-        for geometry in plant.GetCollisionGeometriesForBody(body):
-            corners = _corners(inspector.GetShape(geometry))
-            if corners is None:
-                continue
-            world = np.array([(X_WB @ inspector.GetPoseInFrame(geometry)) @ c for c in corners])
-            if world[:, 2].max() < BAND[0] or world[:, 2].min() > BAND[1]:
-                continue
-            outline = MultiPoint(world[:, :2].tolist()).convex_hull
-            found.append(Obstacle(name, outline, world[:, 2].min(), world[:, 2].max()))
+        world = np.array([X_WG @ c for c in corners])
+        if world[:, 2].max() < BAND[0] or world[:, 2].min() > BAND[1]:
+            continue
+        outline = MultiPoint(world[:, :2].tolist()).convex_hull
+        found.append(Obstacle(name, outline, world[:, 2].min(), world[:, 2].max()))
     return found
 
 

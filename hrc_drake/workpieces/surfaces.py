@@ -15,8 +15,8 @@ import numpy as np
 from pydrake.geometry import Box, Cylinder, SceneGraph
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import BodyIndex
 
+from hrc_drake.cell_geometry import anchored_collision_shapes
 from hrc_drake.workpieces.config import SurfaceConfig
 from hrc_drake.workpieces.geometry import CIRCLE_SIDES, edge_normals, overlaps
 
@@ -68,20 +68,11 @@ def named_surfaces(surfaces: dict[str, SurfaceConfig]) -> list[Surface]:
 
 def cell_surfaces(plant: MultibodyPlant, scene_graph: SceneGraph) -> list[Surface]:
     """Top faces of the static (anchored) collision geometry of a finalized plant."""
-    context = plant.CreateDefaultContext()
-    inspector = scene_graph.model_inspector()
     found = []
-    for index in range(plant.num_bodies()):
-        body = plant.get_body(BodyIndex(index))
-        if not plant.IsAnchored(body):
-            continue
-        name = plant.GetModelInstanceName(body.model_instance())
-        X_WB = plant.EvalBodyPoseInWorld(context, body)
-        for geometry in plant.GetCollisionGeometriesForBody(body):
-            X_WG = X_WB @ inspector.GetPoseInFrame(geometry)
-            surface = top_face(name, inspector.GetShape(geometry), X_WG)
-            if surface is not None:
-                found.append(surface)
+    for name, shape, X_WG in anchored_collision_shapes(plant, scene_graph.model_inspector()):
+        surface = top_face(name, shape, X_WG)
+        if surface is not None:
+            found.append(surface)
     return found
 
 
