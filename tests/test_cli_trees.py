@@ -10,7 +10,7 @@ from hrc_drake.nodes import hrc_registry
 from hrc_drake.paths import resource_dir
 
 ROOT = Path(__file__).resolve().parents[1]
-CELL = ROOT / "tests" / "system" / "cell.yaml"
+CELL = ROOT / "tests" / "station" / "cell.yaml"
 ORIGINAL_NODES = {
     "GenerateXYPose": {"area", "pose"},
     "InAreaTest": {"pose", "area"},

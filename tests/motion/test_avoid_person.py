@@ -14,7 +14,7 @@ from hrc_drake.messages import FAILED, SUCCEEDED
 from hrc_drake.motion.messages import MoveTo
 from hrc_drake.scenario import HumanConfig, load_scenario
 
-CELL = Path(__file__).resolve().parents[1] / "system" / "cell.yaml"
+CELL = Path(__file__).resolve().parents[1] / "station" / "cell.yaml"
 PERSON_XY = (0.0, -0.7)
 NEXT_TO_THE_PERSON = RigidTransform(RollPitchYaw(math.pi, 0.0, 0.0), [0.0, -0.4, 1.0])
 
