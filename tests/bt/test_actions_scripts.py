@@ -2,10 +2,10 @@
 and gtest_blackboard.cpp."""
 
 import pytest
-from bt_helpers import F, S, tree_of
 
 from hrc_drake.bt import Blackboard, BTError
 from hrc_drake.bt.script import ScriptEnv, compile_script
+from tests.bt.bt_helpers import F, S, tree_of
 
 
 def run(code, enums=None, **entries):

@@ -5,17 +5,17 @@ against BehaviorTree.CPP itself (behaviortreepy, BT.CPP 4.8), tick by tick."""
 from __future__ import annotations
 
 import pytest
-from bt_helpers import F, R, S, tree_of
-from btcpp_differential import (
+
+from hrc_drake.bt import BTError, decorators
+from tests.bt.bt_helpers import F, R, S, tree_of
+from tests.bt.btcpp_differential import (
     BtcppRunner,
     Vocabulary,
     first_difference,
     random_tree,
     run_ours,
 )
-from conftest import first_free_port
-
-from hrc_drake.bt import BTError, decorators
+from tests.groot_client import first_free_port
 
 TICKS = 12
 

@@ -1,7 +1,7 @@
 """Decorators, modelled on BT.CPP tests/gtest_decorator.cpp, gtest_loop.cpp,
 gtest_updates.cpp and gtest_preconditions.cpp (Precondition node)."""
 
-from bt_helpers import IDLE, F, K, R, S, all_idle, ticks, tree_of
+from tests.bt.bt_helpers import IDLE, F, K, R, S, all_idle, ticks, tree_of
 
 
 def test_inverter_and_force_nodes():

@@ -12,10 +12,10 @@ import xml.etree.ElementTree as ElementTree
 import msgpack
 import pytest
 import zmq
-from bt_helpers import F, R, Recorder, S, ticks, tree_of
 
 from hrc_drake.bt import groot2
 from hrc_drake.bt.groot2 import Groot2Server, ServeError
+from tests.bt.bt_helpers import F, R, Recorder, S, ticks, tree_of
 
 MAIN = """
 <Sequence name="top">

@@ -5,9 +5,9 @@ import struct
 import xml.etree.ElementTree as ElementTree
 
 import pytest
-from bt_helpers import R, Recorder, S, ticks, tree_of
 
 from hrc_drake.bt.observers import BtlogWriter, JsonLinesWriter, NodeCounters
+from tests.bt.bt_helpers import R, Recorder, S, ticks, tree_of
 
 BODY = (
     '<Sequence><Script code="x := 1"/><SubTree ID="Sub"/><AsyncMock name="A" '

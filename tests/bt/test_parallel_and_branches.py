@@ -4,7 +4,7 @@ gtest_switch.cpp and gtest_try_catch.cpp."""
 
 import enum
 
-from bt_helpers import F, K, R, S, all_idle, registry, ticks, tree_of
+from tests.bt.bt_helpers import F, K, R, S, all_idle, registry, ticks, tree_of
 
 
 def test_parallel_default_needs_all_successes_and_fails_on_first_failure():

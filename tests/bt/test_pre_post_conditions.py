@@ -1,7 +1,7 @@
 """Pre- and post-conditions, modelled on BT.CPP tests/gtest_preconditions.cpp,
 gtest_postconditions.cpp and gtest_skipping.cpp."""
 
-from bt_helpers import F, K, R, S, all_idle, ticks, tree_of
+from tests.bt.bt_helpers import F, K, R, S, all_idle, ticks, tree_of
 
 
 def test_failure_success_skip_if_are_checked_only_when_idle():

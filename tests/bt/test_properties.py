@@ -1,8 +1,9 @@
 """Property tests on random trees of built-ins (hypothesis)."""
 
-from bt_helpers import IDLE, R, Recorder, all_idle, tree_of
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
+from tests.bt.bt_helpers import IDLE, R, Recorder, all_idle, tree_of
 
 LEAVES = st.sampled_from(
     [

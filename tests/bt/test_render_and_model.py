@@ -2,8 +2,6 @@
 
 import xml.etree.ElementTree as ElementTree
 
-from bt_helpers import registry, ticks, tree_of
-
 from hrc_drake.bt import (
     InputPort,
     NodeCounters,
@@ -15,6 +13,7 @@ from hrc_drake.bt import (
     tree_graph,
     tree_nodes_model_xml,
 )
+from tests.bt.bt_helpers import registry, ticks, tree_of
 
 
 class Pose2(tuple):

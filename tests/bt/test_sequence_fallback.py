@@ -1,7 +1,7 @@
 """Sequence / Fallback family, modelled on BT.CPP tests/gtest_sequence.cpp,
 gtest_fallback.cpp and gtest_reactive.cpp."""
 
-from bt_helpers import IDLE, F, K, R, S, all_idle, statuses, ticks, tree_of
+from tests.bt.bt_helpers import IDLE, F, K, R, S, all_idle, statuses, ticks, tree_of
 
 
 def test_sequence_resumes_at_running_child_without_reticking_earlier_ones():

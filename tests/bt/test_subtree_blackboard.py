@@ -2,9 +2,9 @@
 BT.CPP tests/gtest_subtree.cpp, gtest_blackboard.cpp and gtest_factory.cpp."""
 
 import pytest
-from bt_helpers import F, R, S, registry, tree_of
 
 from hrc_drake.bt import BTError, InputPort, OutputPort, SyncActionNode, TreeFactory
+from tests.bt.bt_helpers import F, R, S, registry, tree_of
 
 SUB = (
     '<BehaviorTree ID="Sub"><Sequence><Script code="inner := inner + 1"/>'

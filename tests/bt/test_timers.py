@@ -1,7 +1,7 @@
 """Delay, Timeout and Sleep on simulation time (a fake clock: the times passed to tick),
 modelled on BT.CPP tests/gtest_decorator.cpp (timeout) and gtest_async_action_node.cpp."""
 
-from bt_helpers import F, R, S, all_idle, ticks, tree_of
+from tests.bt.bt_helpers import F, R, S, all_idle, ticks, tree_of
 
 
 def test_sleep_succeeds_after_its_duration_of_simulated_time():

@@ -1,9 +1,9 @@
 """Validation without running: every error names file, line, tree, node and port."""
 
 import pytest
-from bt_helpers import registry
 
 from hrc_drake.bt import BTError, load_tree, validate
+from tests.bt.bt_helpers import registry
 
 
 def write(tmp_path, body, extra="", name="trees.xml"):

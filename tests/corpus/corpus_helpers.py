@@ -9,8 +9,6 @@ traceback, with the file, line and field (or node and port, or option) in it.
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from hrc_drake.cli import main
-
 GOOD_SCENARIO = """\
 name: corpus
 description: The bad-input corpus's scenario.
@@ -112,14 +110,6 @@ def expected_place(directory: Path, case: Case) -> str:
     lines = path.read_text().splitlines()
     line = next(i for i, text in enumerate(lines, 1) if case.at in text)
     return f"{path}:{line}:"
-
-
-def hrc_drake(capsys, *args) -> tuple[int, str, str]:
-    """Runs the CLI in this process: (exit status, stdout, stderr)."""
-    capsys.readouterr()
-    status = main([str(arg) for arg in args])
-    out, err = capsys.readouterr()
-    return status, out, err
 
 
 def assert_one_line_error(status: int, err: str, *says: str, exit_status: int = 2) -> str:

@@ -2,7 +2,8 @@
 2, nothing written; values from the command line meet the same checks as the file's."""
 
 import pytest
-from corpus_helpers import assert_one_line_error, hrc_drake, write_workspace
+
+from tests.corpus.corpus_helpers import assert_one_line_error, write_workspace
 
 # (arguments, what the line says); {s} is the good scenario, {tmp} a scratch directory,
 # {file} an existing file, {run} a directory holding a finished run.
@@ -298,32 +299,30 @@ def places(tmp_path):
 
 
 @pytest.mark.parametrize("name", CASES)
-def test_bad_command_line_is_one_line(name, places, capsys):
+def test_bad_command_line_is_one_line(name, places, hrc_drake):
     arguments, says = CASES[name]
     before = sorted(places["tmp"].rglob("*"))
-    status, out, err = hrc_drake(capsys, *(a.format(**places) for a in arguments))
+    status, out, err = hrc_drake(*(a.format(**places) for a in arguments))
     assert_one_line_error(status, err, *(s.format(**places) for s in says))
     assert sorted(places["tmp"].rglob("*")) == before, "a refused command wrote files"
     assert out == ""
 
 
-def test_dask_with_nothing_listening_fails_fast_and_writes_nothing(places, capsys):
+def test_dask_with_nothing_listening_fails_fast_and_writes_nothing(places, hrc_drake):
     """A port nobody listens on: one line within the connect timeout, no empty rows."""
     out = places["tmp"] / "sweep"
-    status, _, err = hrc_drake(
-        capsys, "sweep", places["s"], "--dask", "tcp://127.0.0.1:9", "--out", out
-    )
+    status, _, err = hrc_drake("sweep", places["s"], "--dask", "tcp://127.0.0.1:9", "--out", out)
     assert_one_line_error(status, err, "--dask tcp://127.0.0.1:9: no Dask scheduler answered")
     assert not out.exists()
 
 
-def test_default_run_directory_is_never_mixed_with_an_earlier_run(places, capsys, monkeypatch):
+def test_default_run_directory_is_never_mixed_with_an_earlier_run(places, hrc_drake, monkeypatch):
     """Without --out, a second run of the same scenario and seed goes to a fresh -2."""
     monkeypatch.chdir(places["tmp"])
     first = places["tmp"] / "runs" / "corpus-seed0"
     first.mkdir(parents=True)
     (first / "bt_robot.btlog").write_bytes(b"an earlier run")
-    status, out, err = hrc_drake(capsys, "run", places["s"], "--duration", "0.05")
+    status, out, err = hrc_drake("run", places["s"], "--duration", "0.05")
     assert status == 0, err
     assert "runs/corpus-seed0-2/report.json" in out
     assert sorted(p.name for p in first.iterdir()) == ["bt_robot.btlog"]

@@ -2,11 +2,11 @@
 the line and the field, and exit status 2 (none of these cases simulates)."""
 
 import pytest
-from corpus_helpers import (
+
+from tests.corpus.corpus_helpers import (
     Case,
     assert_one_line_error,
     expected_place,
-    hrc_drake,
     write_workspace,
 )
 
@@ -624,18 +624,18 @@ CASES = {
 
 
 @pytest.mark.parametrize("name", CASES)
-def test_bad_scenario_is_one_located_line(name, tmp_path, capsys):
+def test_bad_scenario_is_one_located_line(name, tmp_path, hrc_drake):
     case = CASES[name]
     scenario = write_workspace(tmp_path, case)
-    status, _, err = hrc_drake(capsys, "validate", scenario)
+    status, _, err = hrc_drake("validate", scenario)
     where = expected_place(tmp_path, case) if case.at else str(tmp_path)
     assert_one_line_error(
         status, err, where, *(s.replace("{dir}", str(tmp_path)) for s in case.says)
     )
 
 
-def test_the_good_scenario_validates(tmp_path, capsys):
-    status, out, err = hrc_drake(capsys, "validate", write_workspace(tmp_path))
+def test_the_good_scenario_validates(tmp_path, hrc_drake):
+    status, out, err = hrc_drake("validate", write_workspace(tmp_path))
     assert status == 0, err
     assert "ok (corpus; trees robot: robot.xml)" in out
 
@@ -650,23 +650,23 @@ UNREADABLE = {
 
 
 @pytest.mark.parametrize("kind", UNREADABLE)
-def test_unreadable_scenario_file(kind, tmp_path, capsys):
+def test_unreadable_scenario_file(kind, tmp_path, hrc_drake):
     data, says = UNREADABLE[kind]
     path = tmp_path / "scenario.yaml"
     path.write_bytes(data)
-    status, _, err = hrc_drake(capsys, "validate", path)
+    status, _, err = hrc_drake("validate", path)
     assert_one_line_error(status, err, str(path), says)
 
 
-def test_a_file_that_cannot_be_read(capsys):
+def test_a_file_that_cannot_be_read(hrc_drake):
     """/proc/self/mem is a file no plain read succeeds on (an I/O error, as for a file
     without read permission: the same OSError path)."""
-    status, _, err = hrc_drake(capsys, "validate", "/proc/self/mem")
+    status, _, err = hrc_drake("validate", "/proc/self/mem")
     assert_one_line_error(status, err, "/proc/self/mem: cannot read the scenario file")
 
 
-def test_a_scenario_that_is_a_directory_or_missing(tmp_path, capsys):
-    status, _, err = hrc_drake(capsys, "validate", tmp_path)
+def test_a_scenario_that_is_a_directory_or_missing(tmp_path, hrc_drake):
+    status, _, err = hrc_drake("validate", tmp_path)
     assert_one_line_error(status, err, f"{tmp_path}: no such scenario file")
-    status, _, err = hrc_drake(capsys, "validate", "bsae")
+    status, _, err = hrc_drake("validate", "bsae")
     assert_one_line_error(status, err, "did you mean 'base'?")

@@ -5,17 +5,16 @@ that do not fit) ends the run cleanly with that line, keeping what the run wrote
 import json
 
 import pytest
-from corpus_helpers import (
+
+from hrc_drake.agent_trees import tree_errors
+from hrc_drake.scenario import load_scenario
+from tests.corpus.corpus_helpers import (
     GOOD_TREE,
     Case,
     assert_one_line_error,
     expected_place,
-    hrc_drake,
     write_workspace,
 )
-
-from hrc_drake.agent_trees import tree_errors
-from hrc_drake.scenario import load_scenario
 
 T = "robot.xml"
 S = "scenario.yaml"
@@ -178,10 +177,10 @@ CASES = {
 
 
 @pytest.mark.parametrize("name", CASES)
-def test_bad_tree_is_one_located_line(name, tmp_path, capsys):
+def test_bad_tree_is_one_located_line(name, tmp_path, hrc_drake):
     case = CASES[name]
     scenario = write_workspace(tmp_path, case)
-    status, _, err = hrc_drake(capsys, "validate", scenario)
+    status, _, err = hrc_drake("validate", scenario)
     where = expected_place(tmp_path, case) if case.at else str(tmp_path / "")
     line = assert_one_line_error(status, err, where, *case.says)
     assert "<unknown>" not in line
@@ -221,11 +220,11 @@ RUN_FAULTS = {
 
 
 @pytest.mark.parametrize("name", RUN_FAULTS)
-def test_a_tree_fault_during_a_run_ends_it_cleanly(name, tmp_path, capsys):
+def test_a_tree_fault_during_a_run_ends_it_cleanly(name, tmp_path, hrc_drake):
     old, new, port, problem = RUN_FAULTS[name]
     scenario = write_workspace(tmp_path, Case(T, old, new, ()))
     out = tmp_path / "run"
-    status, stdout, err = hrc_drake(capsys, "run", scenario, "--out", out)
+    status, stdout, err = hrc_drake("run", scenario, "--out", out)
     line = assert_one_line_error(status, err, f"{tmp_path / 'robot.xml'}:", port, problem)
     assert f"the run stopped at 0.00 s; what it recorded is in {out}" in line
     report = json.loads((out / "report.json").read_text())
@@ -234,7 +233,7 @@ def test_a_tree_fault_during_a_run_ends_it_cleanly(name, tmp_path, capsys):
         assert (out / kept).is_file(), kept
 
 
-def test_node_failures_are_summarised_after_a_run(tmp_path, capsys):
+def test_node_failures_are_summarised_after_a_run(tmp_path, hrc_drake):
     """The robot is sent somewhere it cannot reach: the run succeeds, and the command line
     says which node failed, how often and why."""
     far = Case(
@@ -244,9 +243,7 @@ def test_node_failures_are_summarised_after_a_run(tmp_path, capsys):
         (),
     )
     scenario = write_workspace(tmp_path, far)
-    status, stdout, err = hrc_drake(
-        capsys, "run", scenario, "--out", tmp_path / "run", "--duration", "0.3"
-    )
+    status, stdout, err = hrc_drake("run", scenario, "--out", tmp_path / "run", "--duration", "0.3")
     assert status == 0, err
     assert "tree nodes that failed:" in stdout
     summary = stdout.split("tree nodes that failed:")[1].splitlines()[1].strip()

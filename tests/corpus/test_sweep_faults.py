@@ -12,10 +12,9 @@ import sys
 import time
 from pathlib import Path
 
-from corpus_helpers import Case, hrc_drake, write_workspace
-
 from hrc_drake.scenario import resolve_scenario_path
 from hrc_drake.sweep import parse_seeds, plan, sweep
+from tests.corpus.corpus_helpers import Case, write_workspace
 
 BASE = resolve_scenario_path("base")
 LATE_FAULT = Case(
@@ -49,14 +48,14 @@ def test_seeds_are_streamed_not_listed():
     assert [spec.seed for spec in itertools.islice(specs, 2)] == [0, 1]
 
 
-def test_damaged_rows_are_set_aside_with_file_and_line(tmp_path, capsys):
+def test_damaged_rows_are_set_aside_with_file_and_line(tmp_path, hrc_drake):
     out = tmp_path / "sweep"
     args = ("sweep", BASE, "--seeds", "0:2", "--set", "duration=0.05", "--workers", "1")
-    assert hrc_drake(capsys, *args, "--out", out)[0] == 0
+    assert hrc_drake(*args, "--out", out)[0] == 0
     rows = out / "runs.jsonl"
     good, second = rows.read_text().splitlines()
     rows.write_text(f'{good[:40]}\n[1, 2]\n{second}\n{{"key": "seed=9"}}\n')
-    status, stdout, err = hrc_drake(capsys, *args, "--out", out)
+    status, stdout, err = hrc_drake(*args, "--out", out)
     assert status == 0, err
     warnings = err.splitlines()
     assert len(warnings) == 3
@@ -73,15 +72,15 @@ def test_damaged_rows_are_set_aside_with_file_and_line(tmp_path, capsys):
     assert len(rows.read_text().splitlines()) == 2
 
 
-def test_rows_of_an_edited_scenario_are_not_reused(tmp_path, capsys):
+def test_rows_of_an_edited_scenario_are_not_reused(tmp_path, hrc_drake):
     scenario = write_workspace(tmp_path)
     out = tmp_path / "sweep"
     args = ("sweep", scenario, "--seeds", "0", "--set", "duration=0.05", "--workers", "1")
-    assert hrc_drake(capsys, *args, "--out", out)[0] == 0
-    status, stdout, _ = hrc_drake(capsys, *args, "--out", out)
+    assert hrc_drake(*args, "--out", out)[0] == 0
+    status, stdout, _ = hrc_drake(*args, "--out", out)
     assert "1 runs (1 already done, 0 failed)" in stdout
     (tmp_path / "robot.xml").write_text((tmp_path / "robot.xml").read_text() + "<!-- -->\n")
-    status, stdout, err = hrc_drake(capsys, *args, "--out", out)
+    status, stdout, err = hrc_drake(*args, "--out", out)
     assert status == 0, err
     assert "1 runs (0 already done, 0 failed)" in stdout
     hashes = {json.loads(line)["scenario_hash"] for line in (out / "runs.jsonl").open()}
@@ -122,7 +121,7 @@ def alive(pid: int) -> bool:
     return status.is_file() and "State:\tZ" not in status.read_text()
 
 
-def test_a_killed_worker_is_a_failed_row_and_retry_failed_runs_it_again(tmp_path, capsys):
+def test_a_killed_worker_is_a_failed_row_and_retry_failed_runs_it_again(tmp_path, hrc_drake):
     sweep_process = subprocess.Popen(
         sweep_command(tmp_path), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
     )
@@ -138,7 +137,6 @@ def test_a_killed_worker_is_a_failed_row_and_retry_failed_runs_it_again(tmp_path
     assert (tmp_path / "summary.json").is_file()
 
     again = hrc_drake(
-        capsys,
         "sweep",
         "base",
         "--seeds",
@@ -152,7 +150,6 @@ def test_a_killed_worker_is_a_failed_row_and_retry_failed_runs_it_again(tmp_path
     )
     assert "3 runs (3 already done, 1 failed)" in again[1]
     retried = hrc_drake(
-        capsys,
         "sweep",
         "base",
         "--seeds",

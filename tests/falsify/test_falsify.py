@@ -21,14 +21,6 @@ WEAK = ("--set", "safety.v_h_rule=constant", "--set", "safety.v_h=0.8")
 SEARCH = ("--budget", "4", "--set", "falsify.batch=2", "--set", "falsify.worst=1")
 
 
-def hrc_drake(capsys, *args) -> str:
-    capsys.readouterr()
-    status = main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    assert status == 0, err
-    return out
-
-
 def monte_carlo(out, seeds: str, sets: list[str]) -> list[dict]:
     """The same cell over plain seeds (the scenario's own randomness), on the sweep."""
     rows = sweep(plan(prepare("walk_up").scenario_path, parse_seeds(seeds), sets), out, 2).rows
@@ -54,7 +46,7 @@ def test_weakened_monitor_violation_found_where_seeds_find_none(weak_search, tmp
     assert min(m["value"] for m in margins) > found["lowest_margin"]
 
 
-def test_worst_case_directory_and_its_command_reproduce_it(weak_search, capsys, tmp_path):
+def test_worst_case_directory_and_its_command_reproduce_it(weak_search, hrc_drake, tmp_path):
     out, _ = weak_search
     worst = json.loads((out / "s" / "falsify.json").read_text())["worst"][0]
     case = out / "s" / "cases" / f"trial-{worst['trial']:04d}"
@@ -65,7 +57,7 @@ def test_worst_case_directory_and_its_command_reproduce_it(weak_search, capsys, 
     assert json.loads((case / "report.json").read_text())["margin"]["value"] == worst["margin"]
     arguments = shlex.split(command)
     assert arguments[:2] == ["hrc-drake", "run"]
-    hrc_drake(capsys, *arguments[1:], "--out", tmp_path / "again")
+    assert hrc_drake(*arguments[1:], "--out", tmp_path / "again")[0] == 0
     again = json.loads((tmp_path / "again" / "report.json").read_text())["margin"]
     assert again["value"] == worst["margin"] and again["violation"]
 
@@ -81,18 +73,20 @@ def test_report_page_plots_margins_and_worst_timelines(weak_search):
     assert len(trials) == 5
 
 
-def test_a_finished_search_asked_again_runs_nothing(weak_search, capsys):
+def test_a_finished_search_asked_again_runs_nothing(weak_search, hrc_drake):
     out, _ = weak_search
     rows = (out / "s" / "runs.jsonl").read_text()
     before = json.loads((out / "s" / "falsify.json").read_text())
-    said = hrc_drake(capsys, "falsify", "walk_up", *SHORT, *WEAK, *SEARCH, "--out", out / "s")
+    status, said, err = hrc_drake("falsify", "walk_up", *SHORT, *WEAK, *SEARCH, "--out", out / "s")
+    assert status == 0, err
     assert (out / "s" / "runs.jsonl").read_text() == rows
     assert json.loads((out / "s" / "falsify.json").read_text()) == before
     assert "4 trials (0 failed)" in said and "violate ISO/TS 15066" in said
 
 
-def test_correct_monitor_reports_its_lowest_margin_and_no_violation(tmp_path, capsys):
-    said = hrc_drake(capsys, "falsify", "walk_up", *SHORT, *SEARCH, "--out", tmp_path)
+def test_correct_monitor_reports_its_lowest_margin_and_no_violation(tmp_path, hrc_drake):
+    status, said, err = hrc_drake("falsify", "walk_up", *SHORT, *SEARCH, "--out", tmp_path)
+    assert status == 0, err
     found = json.loads((tmp_path / "falsify.json").read_text())
     margins = [trial["margin"] for trial in found["trials"]]
     assert found["violations"] == 0 and not any(t["violation"] for t in found["trials"])

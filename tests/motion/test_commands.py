@@ -2,13 +2,13 @@
 
 import numpy as np
 import pytest
-from motion_helpers import build_station, make_scenario
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.messages import CANCELLED, FAILED, REJECTED, RUNNING, SUCCEEDED
 from hrc_drake.motion.messages import IDLE, Grip, MoveJoints, MoveLinear, MoveTo, Release, Stop
 from hrc_drake.workpieces.config import ObjectType, PlacedObject, WorkpiecesConfig
+from tests.motion.motion_helpers import build_station, make_scenario
 
 TOOL_DOWN = RollPitchYaw(np.pi, 0.0, 0.0)
 TABLE_TOP = 0.9

@@ -1,11 +1,11 @@
 """MoveLinear keeps the tool on the straight line (approach and retreat)."""
 
 import numpy as np
-from motion_helpers import build_station, distance_to_polyline, make_scenario, record
 from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.messages import FAILED, SUCCEEDED
 from hrc_drake.motion.messages import MoveLinear, MoveTo
+from tests.motion.motion_helpers import build_station, distance_to_polyline, make_scenario, record
 
 ABOVE = RigidTransform(RollPitchYaw(np.pi, 0.0, 0.3), [0.1, 0.35, 1.05])
 DOWN = 0.1

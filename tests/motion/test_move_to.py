@@ -2,12 +2,12 @@
 
 import numpy as np
 import pytest
-from motion_helpers import PEDESTAL_TOP, build_station, make_scenario
 from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import FAILED, SUCCEEDED
 from hrc_drake.motion.messages import MoveTo
+from tests.motion.motion_helpers import PEDESTAL_TOP, build_station, make_scenario
 
 TOOL_DOWN = RollPitchYaw(np.pi, 0.0, 0.0)
 

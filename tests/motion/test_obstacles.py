@@ -1,12 +1,12 @@
 """A target behind a box on the table is reached without touching anything on the way."""
 
 import numpy as np
-from motion_helpers import build_station, make_scenario
 from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.motion.messages import MoveTo
 from hrc_drake.station_models import ROBOT_MODEL, TOOL_MODEL
+from tests.motion.motion_helpers import build_station, make_scenario
 
 BOX_AT = (0.3, 0.35)
 BEHIND_THE_BOX = RigidTransform(RollPitchYaw(np.pi, 0.0, 0.0), [-0.1, 0.42, 0.96])

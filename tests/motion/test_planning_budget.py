@@ -7,13 +7,13 @@ import time
 
 import numpy as np
 import pytest
-from motion_helpers import make_scenario
 from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
+from tests.motion.motion_helpers import make_scenario
 
 TOOL_DOWN = RollPitchYaw(np.pi, 0.0, 0.0)
 COMMANDS = (

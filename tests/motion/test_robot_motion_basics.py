@@ -2,10 +2,10 @@
 
 import numpy as np
 import pytest
-from motion_helpers import build_station, make_scenario
 
 from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
 from hrc_drake.motion.messages import IDLE, MoveJoints, SetSpeed, Stop
+from tests.motion.motion_helpers import build_station, make_scenario
 
 
 @pytest.fixture(scope="module")

@@ -2,12 +2,12 @@
 
 import numpy as np
 import pytest
-from motion_helpers import build_station, distance_to_polyline, make_scenario, record
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import FINISHED, RUNNING, SUCCEEDED
 from hrc_drake.motion.messages import STOPPED, MoveJoints, SetSpeed
 from hrc_drake.safety.stopping import StopModel
+from tests.motion.motion_helpers import build_station, distance_to_polyline, make_scenario, record
 
 VARIANT = "lbr_iisy3_r760"
 GOAL = tuple(np.radians([70, -50, 60, 40, 60, 60]))

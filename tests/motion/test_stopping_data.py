@@ -6,7 +6,6 @@ import itertools
 
 import numpy as np
 import pytest
-from motion_helpers import build_station, make_scenario
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.motion.messages import MoveJoints
@@ -18,6 +17,7 @@ from hrc_drake.motion.stopping import (
     measure_stop,
 )
 from hrc_drake.safety.stopping import StopModel
+from tests.motion.motion_helpers import build_station, make_scenario
 
 UPDATE_PERIOD = 0.01
 

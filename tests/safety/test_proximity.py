@@ -7,7 +7,6 @@ import math
 
 import numpy as np
 import pytest
-from approach_cell import kinematic, walk
 from pydrake.geometry import SceneGraph
 from pydrake.systems.framework import DiagramBuilder
 
@@ -16,6 +15,7 @@ from hrc_drake.safety.geometry import body_parts, human_parts
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.scenario import load_scenario
 from hrc_drake.station_models import add_robot, model_parser
+from tests.safety.approach_cell import kinematic, walk
 
 PERIOD = 0.01
 PERSON = walk(stand=0.3, arrive=1.0, leave=5.0, bearing=math.radians(55), start=1.0)

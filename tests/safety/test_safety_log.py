@@ -6,7 +6,6 @@ import json
 
 import numpy as np
 import pytest
-from recompute import episodes
 
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.runner import run
@@ -14,6 +13,7 @@ from hrc_drake.safety.log import read_safety_log
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import load_scenario
 from hrc_drake.sweep.overrides import apply
+from tests.safety.recompute import episodes
 
 DURATION = 12.0
 

@@ -16,10 +16,10 @@ import itertools
 
 import numpy as np
 import pytest
-from recompute import episodes, recompute
-from walk_in import STAND, SWEEP_TIME, Case, simulate
 
 from hrc_drake.iisy import VARIANTS
+from tests.safety.recompute import episodes, recompute
+from tests.safety.walk_in import STAND, SWEEP_TIME, Case, simulate
 
 BEARINGS = tuple(range(0, 360, 45))
 GAPS = (1.25, 2.75)

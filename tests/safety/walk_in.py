@@ -13,7 +13,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from approach_cell import keep_person_out_of_contact, kinematic
 from pydrake.common.value import AbstractValue
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
@@ -33,6 +32,7 @@ from hrc_drake.station_models import add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
+from tests.safety.approach_cell import keep_person_out_of_contact, kinematic
 
 WALK_SPEED = 1.6
 """m/s: ISO 13855's walking approach speed"""

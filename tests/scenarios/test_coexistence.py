@@ -10,7 +10,6 @@ from pathlib import Path
 
 import pytest
 from pydrake.systems.analysis import Simulator
-from realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 from hrc_drake.areas import Area
 from hrc_drake.builder import build_diagram
@@ -19,6 +18,7 @@ from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT, ObjectStatus
+from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "coexistence.yaml"
 SAMPLE_PERIOD = 0.1

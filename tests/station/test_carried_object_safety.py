@@ -6,11 +6,10 @@ measures here (SSM off), as the robot may not move that near a person."""
 
 import dataclasses
 
-from test_trees_in_diagram import Simulation, cell
-
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.messages import CARRIED
 from hrc_drake.workpieces.config import ObjectType
+from tests.station.station_cell import Simulation, cell
 
 BAR = ObjectType(shape="box", size=[0.7, 0.04, 0.02], mass=1.5, capacity=1)
 

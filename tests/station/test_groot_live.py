@@ -24,7 +24,6 @@ import behaviortreepy as btcpp
 import msgpack
 import pytest
 import zmq
-from conftest import GrootClient, first_free_port
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.bt import StatefulActionNode, Status, default_registry, load_tree
@@ -32,6 +31,7 @@ from hrc_drake.bt.groot2 import Groot2Server
 from hrc_drake.builder import build_diagram
 from hrc_drake.groot import serve_groot
 from hrc_drake.scenario import load_scenario
+from tests.groot_client import GrootClient, first_free_port
 
 ROOT = Path(__file__).resolve().parents[2]
 BTVIEW = [sys.executable, "-m", "btview"]

@@ -5,50 +5,13 @@ simulates, and checks what happened in the world: poses, object holders and supp
 task events, the statuses the actors report.
 """
 
-import dataclasses
-from pathlib import Path
-
 import numpy as np
 import pytest
-from pydrake.systems.analysis import Simulator
 
-from hrc_drake.builder import build_diagram
 from hrc_drake.messages import CANCELLED
 from hrc_drake.runner import run
-from hrc_drake.scenario import AgentTree, load_scenario
 from hrc_drake.workpieces.messages import BOTH_HANDS, RIGHT_HAND, ROBOT
-
-HERE = Path(__file__).resolve().parent
-
-
-def cell(robot: str | None = None, human: str | None = None, person: bool = True):
-    """The test cell with the given tree files (names in trees/) for its agents."""
-    scenario = load_scenario(HERE / "cell.yaml")
-    trees = {"robot": robot, "human": human}
-    scenario.trees = {agent: AgentTree(str(HERE / "trees" / f)) for agent, f in trees.items() if f}
-    return scenario if person else dataclasses.replace(scenario, human=None)
-
-
-class Simulation:
-    """A scenario's station simulated step by step, with its outputs at hand."""
-
-    def __init__(self, scenario):
-        self.diagram = build_diagram(scenario)
-        self.simulator = Simulator(self.diagram)
-        self.simulator.Initialize()
-
-    def advance(self, t: float) -> "Simulation":
-        self.simulator.AdvanceTo(t)
-        return self
-
-    def __getitem__(self, port: str):
-        return self.diagram.GetOutputPort(port).Eval(self.simulator.get_context())
-
-    def events(self, agent: str) -> list[str]:
-        return [e.name for e in self[f"{agent}_task_events"]]
-
-    def tree(self, agent: str):
-        return self.diagram.GetSubsystemByName(f"bt_{agent}").tree
+from tests.station.station_cell import Simulation, cell
 
 
 def base_xy(status) -> np.ndarray:

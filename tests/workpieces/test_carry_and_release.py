@@ -4,41 +4,21 @@ import numpy as np
 import pytest
 from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.common.schema import Transform
-from pydrake.math import RollPitchYaw
-from workpieces_rig import (
-    PART_HEIGHT,
-    TABLE_TOP,
-    TOOL_DOWN,
-    WORK_TABLE_XY,
-    build_rig,
-    config_with,
-    part_on_table,
-    path,
-)
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.workpieces.config import GridLayout
-from hrc_drake.workpieces.messages import ROBOT, Attach, Release
-
-X, Y = WORK_TABLE_XY
-PART_TOP = TABLE_TOP + PART_HEIGHT
-TURNED = RollPitchYaw(np.pi, 0.0, np.pi / 2)
-GRIP = [(0.3, Attach(seq=1, holder=ROBOT, max_mass=3.0))]
-
-
-def carry_to(destination, release_at: float = 3.2):
-    """Tool path: down onto the part at the table centre, grip, lift, turn, carry, release."""
-    tool = path(
-        [
-            (0.0, (X, Y, PART_TOP), TOOL_DOWN),
-            (0.5, (X, Y, PART_TOP), TOOL_DOWN),
-            (1.5, (X + 0.2, Y + 0.1, 1.3), TURNED),
-            (2.8, destination, TURNED),
-            (4.0, destination, TURNED),
-        ]
-    )
-    commands = {"robot_gripper": [*GRIP, (release_at, Release(seq=2, holder=ROBOT))]}
-    return tool, commands
+from hrc_drake.workpieces.messages import ROBOT
+from tests.workpieces.workpieces_rig import (
+    PART_HEIGHT,
+    PART_TOP,
+    TABLE_TOP,
+    X,
+    Y,
+    build_rig,
+    carry_to,
+    config_with,
+    part_on_table,
+)
 
 
 def test_gripped_object_follows_the_tool_and_rests_on_the_table_when_released():

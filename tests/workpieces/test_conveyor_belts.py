@@ -6,9 +6,15 @@ import itertools
 import numpy as np
 import pytest
 from pydrake.common.schema import Transform
-from workpieces_rig import BELT_TOP, CONVEYOR_Y, PART_HEIGHT, build_rig, config_with
 
 from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject
+from tests.workpieces.workpieces_rig import (
+    BELT_TOP,
+    CONVEYOR_Y,
+    PART_HEIGHT,
+    build_rig,
+    config_with,
+)
 
 SPEED = 0.2
 PART_LENGTH = 0.12

@@ -3,7 +3,10 @@
 import numpy as np
 import pytest
 from pydrake.math import RollPitchYaw
-from workpieces_rig import (
+
+from hrc_drake.messages import FAILED, SUCCEEDED
+from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT, Attach, Transfer
+from tests.workpieces.workpieces_rig import (
     PART_HEIGHT,
     TABLE_TOP,
     TOOL_DOWN,
@@ -13,9 +16,6 @@ from workpieces_rig import (
     part_on_table,
     path,
 )
-
-from hrc_drake.messages import FAILED, SUCCEEDED
-from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT, Attach, Transfer
 
 LEVEL = RollPitchYaw(0.0, 0.0, 0.0)
 HANDOVER = np.array([0.0, 0.6, 1.2])

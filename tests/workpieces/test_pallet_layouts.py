@@ -5,11 +5,11 @@ exactly their number of cartons."""
 import numpy as np
 import pytest
 from pydrake.geometry import SceneGraph
-from workpieces_rig import load_example
 
 from hrc_drake.systems.workpieces import Workpieces
 from hrc_drake.workpieces.config import GridLayout
 from hrc_drake.workpieces.layouts import grid_placements
+from tests.workpieces.workpieces_rig import load_example
 
 PALLET_TOP = 0.144
 CARTON_HEIGHT = 0.2

@@ -4,12 +4,19 @@ belt end."""
 
 import numpy as np
 from pydrake.common.schema import Transform
-from test_carry_and_release import carry_to
-from workpieces_rig import BELT_TOP, PART_HEIGHT, TABLE_TOP, WORK_TABLE_XY, build_rig, config_with
 
 from hrc_drake.systems.workpieces import parked_pose
 from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject
 from hrc_drake.workpieces.messages import Despawn
+from tests.workpieces.workpieces_rig import (
+    BELT_TOP,
+    PART_HEIGHT,
+    TABLE_TOP,
+    WORK_TABLE_XY,
+    build_rig,
+    carry_to,
+    config_with,
+)
 
 X, Y = WORK_TABLE_XY
 REMOVING = ConveyorConfig(start=[-1.0, -1.5, BELT_TOP], end=[-0.6, -1.5, BELT_TOP], at_end=REMOVE)

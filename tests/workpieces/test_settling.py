@@ -2,9 +2,15 @@
 
 import pytest
 from pydrake.math import RigidTransform
-from workpieces_rig import PART_HEIGHT, TABLE_TOP, WORK_TABLE_XY, build_rig, config_with
 
 from hrc_drake.workpieces.messages import Despawn, Spawn
+from tests.workpieces.workpieces_rig import (
+    PART_HEIGHT,
+    TABLE_TOP,
+    WORK_TABLE_XY,
+    build_rig,
+    config_with,
+)
 
 X, Y = WORK_TABLE_XY
 ON_TABLE = TABLE_TOP + PART_HEIGHT / 2

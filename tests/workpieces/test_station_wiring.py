@@ -10,7 +10,6 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
-from workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
@@ -20,6 +19,7 @@ from hrc_drake.scenario import RobotConfig
 from hrc_drake.station_models import TOOL_MODEL, add_robot
 from hrc_drake.systems.workpieces import add_workpieces, hand_poses
 from hrc_drake.workpieces.messages import ROBOT, Attach, CommandResult, Spawn
+from tests.workpieces.workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
 
 @pytest.fixture(scope="module")

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from pydrake.geometry import Role
 from pydrake.math import RigidTransform, RollPitchYaw
-from workpieces_rig import BELT_TOP, CONVEYOR_Y, TABLE_TOP, build_rig, config_with
 
 from hrc_drake.workpieces.geometry import Solid, footprint, overlaps
 from hrc_drake.workpieces.surfaces import FLOOR, cell_surfaces
+from tests.workpieces.workpieces_rig import BELT_TOP, CONVEYOR_Y, TABLE_TOP, build_rig, config_with
 
 
 @pytest.fixture(scope="module")

@@ -4,7 +4,6 @@ import dataclasses
 
 import pytest
 from pydrake.geometry import SceneGraph
-from workpieces_rig import EXAMPLE, Section, load_example
 
 from hrc_drake.systems.workpieces import Workpieces
 from hrc_drake.workpieces.config import (
@@ -16,6 +15,7 @@ from hrc_drake.workpieces.config import (
     problems,
 )
 from hrc_drake.yaml_check import InputError, check_node, compose
+from tests.workpieces.workpieces_rig import EXAMPLE, Section, load_example
 
 
 def test_the_example_loads_without_problems():

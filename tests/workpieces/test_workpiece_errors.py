@@ -4,7 +4,11 @@ import dataclasses
 
 import pytest
 from pydrake.math import RigidTransform
-from workpieces_rig import (
+
+from hrc_drake.areas import Area
+from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
+from hrc_drake.workpieces.messages import LEFT_HAND, ROBOT, Attach, Despawn, Release, Spawn
+from tests.workpieces.workpieces_rig import (
     PART,
     PART_HEIGHT,
     TABLE_TOP,
@@ -14,10 +18,6 @@ from workpieces_rig import (
     config_with,
     part_on_table,
 )
-
-from hrc_drake.areas import Area
-from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
-from hrc_drake.workpieces.messages import LEFT_HAND, ROBOT, Attach, Despawn, Release, Spawn
 
 X, Y = WORK_TABLE_XY
 ON_TABLE = RigidTransform([X + 0.3, Y, TABLE_TOP + PART_HEIGHT / 2])

@@ -24,7 +24,7 @@ from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
 from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
-from hrc_drake.workpieces.messages import HandPoses
+from hrc_drake.workpieces.messages import ROBOT, Attach, HandPoses, Release
 from hrc_drake.yaml_check import check_node, compose
 
 WORK_TABLE_XY = (0.0, 0.9)
@@ -181,3 +181,24 @@ def _add_cell(plant) -> None:
     (free_part,) = parser.AddModels(url=f"package://{MODEL_PACKAGE}/cell/part_small.sdf")
     body = plant.GetBodyByName("body", free_part)
     plant.SetDefaultFloatingBaseBodyPose(body, RigidTransform([3.0, 3.0, 0.015]))
+
+
+X, Y = WORK_TABLE_XY
+PART_TOP = TABLE_TOP + PART_HEIGHT
+TURNED = RollPitchYaw(np.pi, 0.0, np.pi / 2)
+GRIP = [(0.3, Attach(seq=1, holder=ROBOT, max_mass=3.0))]
+
+
+def carry_to(destination, release_at: float = 3.2):
+    """Tool path: down onto the part at the table centre, grip, lift, turn, carry, release."""
+    tool = path(
+        [
+            (0.0, (X, Y, PART_TOP), TOOL_DOWN),
+            (0.5, (X, Y, PART_TOP), TOOL_DOWN),
+            (1.5, (X + 0.2, Y + 0.1, 1.3), TURNED),
+            (2.8, destination, TURNED),
+            (4.0, destination, TURNED),
+        ]
+    )
+    commands = {"robot_gripper": [*GRIP, (release_at, Release(seq=2, holder=ROBOT))]}
+    return tool, commands

@@ -1,0 +1,1 @@
+"""The project's tests: `make test` runs the default suite; `-m long` the long scenario runs."""

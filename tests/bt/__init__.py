@@ -1,0 +1,1 @@
+"""The behavior tree engine against BehaviorTree.CPP's semantics (and BT.CPP itself)."""

@@ -1,0 +1,1 @@
+"""The person: body model, clips, BVH, grasps, navigation, the HumanActor."""

@@ -1,0 +1,1 @@
+"""The robot's motion: planning, execution, speed override, stopping data."""

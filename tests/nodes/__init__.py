@@ -1,0 +1,1 @@
+"""The project's behavior tree nodes inside the station."""

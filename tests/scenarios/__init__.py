@@ -1,0 +1,1 @@
+"""Short (and `-m long`) runs of the three bundled scenarios."""

@@ -1,0 +1,1 @@
+"""Moving objects: carrying, releasing, conveyors, support surfaces, errors."""
