@@ -35,8 +35,9 @@ class Patrol(LeafSystem):
 
     def _calc(self, context, output):
         status = self._status.Eval(context)
-        done = 0 if status is None or status.last_seq < 0 else status.last_seq
-        if status is not None and status.outcome == "running":
+        last = status.results.last if status is not None else None
+        done = 0 if last is None else last.seq
+        if last is not None and last.outcome == "running":
             done -= 1
         seq = done + 1
         x, y = LEGS[seq % 2]

@@ -16,9 +16,10 @@ from pathlib import Path
 from pydrake.geometry import Meshcat
 from pydrake.systems.analysis import Simulator
 
-from hrc_drake.builder import HUMAN_NAME, RECORDER, VISUAL_PREFIX, build_diagram
+from hrc_drake.builder import build_diagram
 from hrc_drake.evaluation.replay import animation_message, write_replay
 from hrc_drake.scenario import load_scenario
+from hrc_drake.wiring import HUMAN_MODEL, RECORDER, VISUAL_PREFIX
 
 
 def simulate(scenario, duration: float, meshcat: Meshcat | None):
@@ -50,7 +51,10 @@ def main() -> None:
     recording = diagram.GetSubsystemByName(RECORDER).recording
     with tempfile.TemporaryDirectory() as folder:
         path = write_replay(
-            Path(folder) / "replay.html", meshcat, recording, f"/drake/{VISUAL_PREFIX}/{HUMAN_NAME}"
+            Path(folder) / "replay.html",
+            meshcat,
+            recording,
+            f"/drake/{VISUAL_PREFIX}/{HUMAN_MODEL}",
         )
         megabytes = path.stat().st_size / 1e6
     animation = len(animation_message(recording)) * 4 / 3 / 1e6  # base64 in the page

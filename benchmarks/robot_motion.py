@@ -75,7 +75,7 @@ def time_station(scenario, duration: float, targets: list) -> tuple[float, int]:
     done, seq = 0, 0
     start = time.perf_counter()
     while station.context.get_time() < duration:
-        if targets and (seq == 0 or station.status().outcome_of(seq) in FINISHED):
+        if targets and (seq == 0 or station.status().results.outcome_of(seq) in FINISHED):
             done += seq > 0
             seq += 1
             station.command(MoveTo(seq, targets[seq % len(targets)]))

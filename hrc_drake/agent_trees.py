@@ -1,5 +1,6 @@
 """A scenario's behavior trees: loaded with the HRC node library, checked against the
-scenario's named places, with the root blackboard filled from the scenario.
+scenario's named places and against what their agent may command (hrc_drake.wiring), with
+the root blackboard filled from the scenario.
 
 Every tree's root blackboard holds the scenario's locations (as Poses), areas and
 `parameters`, so a tree can write `{table_top}` as well as the literal `table_top`.
@@ -14,9 +15,10 @@ from hrc_drake.bt import BTError, Tree, load_tree, validate
 from hrc_drake.bt.ports import convert_from_string
 from hrc_drake.bt.registry import NodeModel
 from hrc_drake.nodes import hrc_registry
-from hrc_drake.nodes.context import AgentContext, Places
-from hrc_drake.scenario import AGENTS, AgentTree, Scenario
+from hrc_drake.nodes.agent import Agent, Places
+from hrc_drake.scenario import AgentTree, Scenario
 from hrc_drake.tree_types import AreaRef, Pose
+from hrc_drake.wiring import COMMANDED_BY
 
 
 def scenario_places(scenario: Scenario) -> Places:
@@ -52,32 +54,43 @@ class ParameterError(BTError):
         self.key = key
 
 
-def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, AgentContext]:
-    """The agent's tree, its context, and its root blackboard filled from the scenario.
-
-    Agents number their commands in disjoint steps (robot 1, 3, 5...; person 2, 4, 6...)
-    so an actor that both trees command never sees one number twice."""
+def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, Agent]:
+    """The agent's tree, its Agent, and its root blackboard filled from the scenario; a
+    node that commands an actor the agent may not command is a located BTError."""
     config = scenario.trees[agent]
-    context = AgentContext(
-        agent,
-        scenario_places(scenario),
-        seq_start=AGENTS.index(agent) + 1,
-        seq_step=len(AGENTS),
-    )
+    handle = Agent(agent, scenario_places(scenario))
     tree = load_tree(
         config.file,
         hrc_registry(),
         tree_id=config.tree_id or None,
-        context=context,
+        context=handle,
         port_values=config.ports,
     )
+    for error in command_errors(agent, tree):
+        raise error
     for key, value in blackboard_entries(scenario).items():
         try:
             tree.root_blackboard.set(key, value)
         except BTError as error:  # only parameters are text the tree may not read
             raise ParameterError(key, error) from None
     tree.root_blackboard.remember_initial_state()
-    return tree, context
+    return tree, handle
+
+
+def command_errors(agent: str, tree: Tree) -> list[BTError]:
+    """Nodes that would command an actor `agent` may not command: nothing would carry the
+    command out (a RobotMove in the person's tree would run forever)."""
+    allowed = COMMANDED_BY[agent]
+    errors = []
+    for _, _, node in tree.nodes():
+        for actor in getattr(type(node), "commands", ()):
+            if actor not in allowed:
+                problem = (
+                    f"the {agent}'s tree may not command the {actor} "
+                    f"(it commands: {', '.join(allowed)})"
+                )
+                errors.append(node.error(problem))
+    return errors
 
 
 Problem = tuple[tuple, str]

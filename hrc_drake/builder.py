@@ -5,7 +5,8 @@ controller and RobotMotion; the kinematic person (HumanActor); the Workpieces; t
 SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a Meshcat
 visualizer with the ReplayRecorder that replay.html is made from. Each part is present when
 the scenario asks for it: no `human:` section, no person and no monitor; no workpiece types,
-no Workpieces; no `trees:`, no behavior trees.
+no Workpieces; no `trees:`, no behavior trees. Which tree commands which actor, and the
+names of every port and system, come from `hrc_drake.wiring`.
 
 Two SceneGraphs: the dynamic plant keeps its own for contact (robot and cell only), and
 the world scene, named `scene_graph`, holds a kinematic mirror of the robot and cell
@@ -14,61 +15,111 @@ Meshcat and the `query_object` output see the world scene; the plant's 1 kHz ste
 pay for the person's or the objects' geometry.
 
 Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
-`robot_motion.robot_command`), so tests and notebooks can command the actors directly.
+`robot_motion.robot_tree_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
 `safety_status`, `safety_signals`, `realism` (the person's realism audit),
 `<agent>_tree_status`, `<agent>_task_events`.
+
+Whoever needs more of the station than its exported ports (the runner's loggers and tree
+logs, say) passes `attach`: it is called with the DiagramBuilder and the Station (its parts)
+before the diagram is built, and adds and connects what it needs.
 """
+
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role, SceneGraph
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.evaluation.replay import dress_scene
-from hrc_drake.human.builder import add_human
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
-from hrc_drake.nodes.context import HUMAN, ROBOT, SAFETY, STATUS_INPUTS, WORKPIECES
-from hrc_drake.scenario import AGENTS, NO_TOOL, Scenario
+from hrc_drake.scenario import NO_TOOL, Scenario
 from hrc_drake.seeding import stream
-from hrc_drake.station_models import (
-    TOOL_MODEL,
-    add_station_models,
-    model_parser,
-)
-from hrc_drake.systems.behavior_tree import BehaviorTreeSystem, command_port, status_port
-from hrc_drake.systems.realism_audit import add_realism_audit
+from hrc_drake.station_models import add_station_models, model_parser
+from hrc_drake.systems.adapters import add_human_hands
+from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
+from hrc_drake.systems.human_actor import HumanActor, add_human
+from hrc_drake.systems.realism_audit import RealismAudit, add_realism_audit
 from hrc_drake.systems.replay_recorder import ReplayRecorder
 from hrc_drake.systems.robot_controller import add_robot_controller
-from hrc_drake.systems.robot_motion import add_robot_motion
-from hrc_drake.systems.safety_monitor import add_safety_monitor
-from hrc_drake.systems.workpieces import HumanHands, add_workpieces
+from hrc_drake.systems.robot_motion import RobotMotion, add_robot_motion
+from hrc_drake.systems.safety_monitor import SafetyMonitor, add_safety_monitor
+from hrc_drake.systems.workpieces import Workpieces, add_workpieces
+from hrc_drake.wiring import (
+    COMMANDED_BY,
+    HUMAN,
+    HUMAN_MODEL,
+    PHYSICS_SCENE_GRAPH,
+    RECORDER,
+    ROBOT,
+    SAFETY,
+    SCENE_GRAPH,
+    STATION_MIRROR,
+    STATION_MIRROR_GEOMETRY,
+    TOOL_MODEL,
+    VISUAL_PREFIX,
+    VISUALIZER,
+    WORKPIECES,
+    command_input,
+    command_output,
+    status_port,
+    tree_issuer,
+    tree_system,
+)
 
-VISUALIZER = "meshcat_visualizer"
-RECORDER = "replay_recorder"
-VISUAL_PREFIX = "visual"
-HUMAN_NAME = "human"
-GRIPPER_ISSUER = "robot_gripper"
+
+@dataclass(frozen=True)
+class Station:
+    """The parts of a station, as `attach` hooks see them; None where the scenario has no
+    such part."""
+
+    plant: MultibodyPlant
+    arm: ModelInstanceIndex
+    scene_graph: SceneGraph
+    robot_motion: RobotMotion
+    human: HumanActor | None
+    workpieces: Workpieces | None
+    safety: SafetyMonitor | None
+    realism_audit: RealismAudit | None
+    trees: dict[str, BehaviorTreeSystem]
+    recorder: ReplayRecorder | None
+
+    @property
+    def status_sources(self) -> dict:
+        """The system behind every status source that the station has."""
+        return _status_sources(self.robot_motion, self.human, self.workpieces, self.safety)
 
 
-def tree_issuer(agent: str) -> str:
-    """How the actors name the commands of `agent`'s behavior tree."""
-    return f"{agent}_tree"
+def _status_sources(robot_motion, human, workpieces, safety) -> dict:
+    found = {ROBOT: robot_motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
+    return {source: system for source, system in found.items() if system is not None}
 
 
-def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram:
+def _status_output(sources: dict, source: str):
+    return sources[source].GetOutputPort(status_port(source))
+
+
+Attach = Callable[[DiagramBuilder, Station], None]
+
+
+def build_diagram(
+    scenario: Scenario, meshcat: Meshcat | None = None, attach: Attach | None = None
+) -> Diagram:
     """The whole scenario as one Diagram named after the scenario (see module docstring)."""
     builder = DiagramBuilder()
     plant, physics = AddMultibodyPlant(
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
         builder,
     )
-    physics.set_name("physics_scene_graph")
+    physics.set_name(PHYSICS_SCENE_GRAPH)
     arm, _ = add_station_models(plant, model_parser(plant), scenario)
     plant.Finalize()
     plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
@@ -85,17 +136,20 @@ def build_diagram(scenario: Scenario, meshcat: Meshcat | None = None) -> Diagram
     if human is not None:
         for reader in filter(None, (motion, safety)):
             builder.Connect(
-                human.GetOutputPort("human_status"), reader.GetInputPort("human_status")
+                human.GetOutputPort(status_port(HUMAN)), reader.GetInputPort(status_port(HUMAN))
             )
-    actors = {ROBOT: motion, HUMAN: human, WORKPIECES: workpieces, SAFETY: safety}
-    trees = [_add_tree(builder, scenario, agent, actors) for agent in scenario.trees]
+    sources = _status_sources(motion, human, workpieces, safety)
+    trees = {agent: _add_tree(builder, scenario, agent, sources) for agent in scenario.trees}
+    recorder = None
     if meshcat is not None:
-        _add_visualizer(builder, scene_graph, meshcat, scenario, actors)
-
-    _export_outputs(builder, plant, arm, scene_graph, actors, trees)
-    if audit is not None:
-        builder.ExportOutput(audit.GetOutputPort("realism"), "realism")
+        recorder = _add_visualizer(builder, scene_graph, meshcat, scenario, sources)
+    station = Station(
+        plant, arm, scene_graph, motion, human, workpieces, safety, audit, trees, recorder
+    )
+    _export_outputs(builder, station)
     _export_open_inputs(builder, [motion, human, workpieces])
+    if attach is not None:
+        attach(builder, station)
     diagram = builder.Build()
     diagram.set_name(scenario.name)
     return diagram
@@ -110,14 +164,14 @@ def _add_world_scene(builder, plant, scenario):
     someone queries this scene (the safety monitor at 100 Hz, Meshcat when it draws).
     Nothing here takes part in physics, so no collision filters are needed between them.
     """
-    scene_graph = builder.AddNamedSystem("scene_graph", SceneGraph())
+    scene_graph = builder.AddNamedSystem(SCENE_GRAPH, SceneGraph())
     mirror = MultibodyPlant(0.0)
-    mirror.set_name("station_mirror")
+    mirror.set_name(STATION_MIRROR)
     mirror.RegisterAsSourceForSceneGraph(scene_graph)
     add_station_models(mirror, model_parser(mirror), scenario)
     mirror.Finalize()
     to_pose = builder.AddNamedSystem(
-        "station_mirror_geometry", MultibodyPositionToGeometryPose(mirror, True)
+        STATION_MIRROR_GEOMETRY, MultibodyPositionToGeometryPose(mirror, True)
     )
     builder.Connect(plant.get_state_output_port(), to_pose.get_input_port())
     builder.Connect(
@@ -132,21 +186,18 @@ def _add_person(builder, scene_graph, mirror, scenario):
         return None, None
     x, y, yaw_deg = scenario.human.start
     robot_xy = scenario.robot.base_pose.GetDeterministicValue().translation()[:2]
-    human, human_plant = add_human(
+    return add_human(
         builder,
         scene_graph,
         scenario.human.height,
         scenario.human.mass,
-        name=HUMAN_NAME,
         start_pose=(x, y, np.radians(yaw_deg)),
-        issuers=tuple(tree_issuer(agent) for agent in AGENTS),
         navigation=NavigationMap(
             cell_obstacles(mirror, scene_graph.model_inspector()),
             keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
         ),
         clips=clip_catalog(scenario.human.clips),
     )
-    return human, human_plant
 
 
 def _add_workpieces(builder, scene_graph, plant, mirror, scenario, human):
@@ -164,12 +215,9 @@ def _add_workpieces(builder, scene_graph, plant, mirror, scenario, human):
         seed=stream(scenario.seed, "workpieces"),
         tool_frame=tool_frame,
         areas={name: scenario.area(name) for name in scenario.areas},
-        issuers=(*(tree_issuer(agent) for agent in AGENTS), GRIPPER_ISSUER),
     )
     if human is not None:
-        hands = builder.AddNamedSystem("human_hands", HumanHands())
-        builder.Connect(human.GetOutputPort("human_status"), hands.get_input_port())
-        builder.Connect(hands.get_output_port(), workpieces.GetInputPort("human_hands"))
+        builder.Connect(add_human_hands(builder, human), workpieces.GetInputPort("human_hands"))
     return workpieces
 
 
@@ -181,7 +229,7 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
         scene_graph,
         mirror,
         human_plant,
-        human_plant.GetModelInstanceByName(HUMAN_NAME),
+        human_plant.GetModelInstanceByName(HUMAN_MODEL),
         scenario.safety,
         scenario.robot.variant,
         carriable=workpieces.geometry_ids if workpieces is not None else (),
@@ -191,7 +239,7 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
     builder.Connect(motion.GetOutputPort("path_rate"), safety.GetInputPort("robot_path_rate"))
     if workpieces is not None:
         builder.Connect(
-            workpieces.GetOutputPort("workpieces_status"),
+            workpieces.GetOutputPort(status_port(WORKPIECES)),
             safety.get_workpieces_status_input_port(),
         )
     return safety
@@ -207,7 +255,7 @@ def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, sce
         scene_graph,
         mirror,
         human_plant,
-        human_plant.GetModelInstanceByName(HUMAN_NAME),
+        human_plant.GetModelInstanceByName(HUMAN_MODEL),
         human,
         workpieces,
         solids,
@@ -216,55 +264,43 @@ def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, sce
     )
 
 
-def _add_tree(builder, scenario, agent: str, actors: dict) -> BehaviorTreeSystem:
-    """The agent's tree, reading every actor's status and commanding the actors it may:
-    the robot's tree the robot, the person's tree the person, both trees the workpieces and
-    (to call the person) the person."""
-    tree, context = load_agent_tree(scenario, agent)
+def _add_tree(builder, scenario, agent: str, sources: dict) -> BehaviorTreeSystem:
+    """The agent's tree, reading every status source and commanding the actors it may
+    (hrc_drake.wiring.COMMANDED_BY) through their inputs for its issuer."""
+    tree, handle = load_agent_tree(scenario, agent)
     system = builder.AddNamedSystem(
-        f"bt_{agent}",
+        tree_system(agent),
         BehaviorTreeSystem(
-            tree, context, stream(scenario.seed, f"tree/{agent}"), scenario.trees[agent].period
+            tree, handle, stream(scenario.seed, f"tree/{agent}"), scenario.trees[agent].period
         ),
     )
-    for source in STATUS_INPUTS:
-        if actors[source] is not None:
+    for source in sources:
+        builder.Connect(_status_output(sources, source), system.GetInputPort(status_port(source)))
+    for actor in COMMANDED_BY[agent]:
+        if actor in sources:
             builder.Connect(
-                _status_output(source, actors[source]), system.GetInputPort(status_port(source))
-            )
-    commanded = [
-        (HUMAN, f"{tree_issuer(agent)}_command"),
-        (WORKPIECES, f"{tree_issuer(agent)}_command"),
-    ]
-    if agent == ROBOT:
-        commanded.append((ROBOT, "robot_command"))
-    for actor, port in commanded:
-        if actors[actor] is not None:
-            builder.Connect(
-                system.GetOutputPort(command_port(actor)), actors[actor].GetInputPort(port)
+                system.GetOutputPort(command_output(actor)),
+                sources[actor].GetInputPort(command_input(tree_issuer(agent))),
             )
     return system
 
 
-def _status_output(actor_name: str, system):
-    return system.GetOutputPort(status_port(actor_name))
-
-
-def _export_outputs(builder, plant, arm, scene_graph, actors, trees) -> None:
-    builder.ExportOutput(plant.get_state_output_port(arm), "robot_state")
-    builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
-    builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
-    motion = actors[ROBOT]
-    builder.ExportOutput(motion.GetOutputPort("robot_status"), "robot_status")
+def _export_outputs(builder, station: Station) -> None:
+    builder.ExportOutput(station.plant.get_state_output_port(station.arm), "robot_state")
+    builder.ExportOutput(station.scene_graph.get_query_output_port(), "query_object")
+    builder.ExportOutput(station.plant.get_body_poses_output_port(), "body_poses")
+    sources = station.status_sources
+    for source in sources:
+        builder.ExportOutput(_status_output(sources, source), status_port(source))
+    motion = station.robot_motion
     builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
-    for name in (HUMAN, WORKPIECES, SAFETY):
-        if actors[name] is not None:
-            builder.ExportOutput(_status_output(name, actors[name]), status_port(name))
-    if actors[SAFETY] is not None:
-        builder.ExportOutput(actors[SAFETY].GetOutputPort("safety_signals"), "safety_signals")
-    for tree in trees:
-        builder.ExportOutput(tree.GetOutputPort("tree_status"), f"{tree.agent}_tree_status")
-        builder.ExportOutput(tree.GetOutputPort("task_events"), f"{tree.agent}_task_events")
+    if station.safety is not None:
+        builder.ExportOutput(station.safety.GetOutputPort("safety_signals"), "safety_signals")
+    if station.realism_audit is not None:
+        builder.ExportOutput(station.realism_audit.GetOutputPort("realism"), "realism")
+    for agent, tree in station.trees.items():
+        builder.ExportOutput(tree.GetOutputPort("tree_status"), f"{agent}_tree_status")
+        builder.ExportOutput(tree.GetOutputPort("task_events"), f"{agent}_task_events")
 
 
 def _export_open_inputs(builder, systems) -> None:
@@ -275,7 +311,7 @@ def _export_open_inputs(builder, systems) -> None:
                 builder.ExportInput(port, f"{system.get_name()}.{port.get_name()}")
 
 
-def _add_visualizer(builder, scene_graph, meshcat, scenario, actors) -> None:
+def _add_visualizer(builder, scene_graph, meshcat, scenario, sources) -> ReplayRecorder | None:
     """Meshcat draws the world scene; with `record`, a ReplayRecorder samples it (and the
     safety state and held workpieces) for replay.html at the visualizer's rate."""
     options = scenario.visualization
@@ -296,11 +332,12 @@ def _add_visualizer(builder, scene_graph, meshcat, scenario, actors) -> None:
         if role == Role.kIllustration:
             visualizer.set_name(VISUALIZER)
     if not options.record:
-        return
+        return None
     recorder = builder.AddNamedSystem(RECORDER, ReplayRecorder(options.publish_period, roles))
     builder.Connect(scene_graph.get_query_output_port(), recorder.GetInputPort("query_object"))
-    for name in (SAFETY, WORKPIECES):
-        if actors[name] is not None:
+    for source in (SAFETY, WORKPIECES):
+        if source in sources:
             builder.Connect(
-                _status_output(name, actors[name]), recorder.GetInputPort(status_port(name))
+                _status_output(sources, source), recorder.GetInputPort(status_port(source))
             )
+    return recorder

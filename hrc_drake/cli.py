@@ -452,24 +452,23 @@ def _validate(args) -> int:
     from hrc_drake.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)
-    diagram = build_diagram(scenario)
-    _check_stand_spots(args.scenario, scenario, diagram)
+    built = []
+    build_diagram(scenario, attach=lambda _, station: built.append(station))
+    _check_stand_spots(args.scenario, scenario, built[0])
     trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
     print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
     return 0
 
 
-def _check_stand_spots(name_or_path: str, scenario, diagram) -> None:
+def _check_stand_spots(name_or_path: str, scenario, station) -> None:
     """Places to stand where the person would stand in the cell's geometry (file:line)."""
-    from hrc_drake.builder import HUMAN_NAME
     from hrc_drake.human.navigation import stand_problems
     from hrc_drake.scenario import resolve_scenario_path
     from hrc_drake.yaml_check import compose, located_error, node_at
 
-    actor = f"{HUMAN_NAME}_actor"
-    if not diagram.HasSubsystemNamed(actor):
+    if station.human is None:
         return
-    navigation = diagram.GetSubsystemByName(actor).navigation
+    navigation = station.human.navigation
     locations = {name: scenario.location(name) for name in scenario.locations}
     problems = stand_problems(navigation, locations)
     if problems:

@@ -18,8 +18,8 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import Diagram, EventStatus
 
 from hrc_drake.bt.groot2 import DEFAULT_PORT, Groot2Server, ServeError
-from hrc_drake.nodes.context import ROBOT
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
+from hrc_drake.wiring import ROBOT
 
 LOCALHOST = "127.0.0.1"
 PAIRS_TRIED = 16
@@ -75,7 +75,7 @@ def tree_systems(diagram: Diagram) -> dict[str, BehaviorTreeSystem]:
     while pending:
         for system in pending.pop().GetSystems():
             if isinstance(system, BehaviorTreeSystem):
-                found[system.agent] = system
+                found[system.agent.name] = system
             elif isinstance(system, Diagram):
                 pending.append(system)
     return dict(sorted(found.items(), key=lambda item: item[0] != ROBOT))

@@ -1,8 +1,8 @@
 """Vocabulary shared by every actor's command and status messages.
 
-Commands flow down and carry a sequence number; every actor's status reports the last
-sequence number it accepted and that command's outcome, so an asynchronous behavior tree
-node knows when *its* command finished (README: "How a scenario becomes a Diagram").
+Commands flow down and carry a sequence number; every actor's status reports the results
+of its recent commands by number (a ResultLog), so an asynchronous behavior tree node knows
+when *its* command finished (docs/architecture.md).
 """
 
 from dataclasses import dataclass
@@ -15,32 +15,52 @@ CANCELLED = "cancelled"
 
 OUTCOMES = (RUNNING, SUCCEEDED, FAILED, REJECTED, CANCELLED)
 FINISHED = (SUCCEEDED, FAILED, REJECTED, CANCELLED)
-RESULTS_KEPT = 16
-"""Recent command results an actor reports, so a node still finds its own after others."""
+RECENT_COMMANDS = 16
+"""One window for both ends: the commands a tree's command port carries (far more than one
+tick sends to one actor) and the results an actor reports, so a node finds the result of
+every command that is still on the port."""
 
 
 @dataclass(frozen=True)
 class CommandResult:
-    """The outcome of one command, by sequence number."""
+    """The outcome of one command, by sequence number; `object_id` names the object it
+    concerned where there is one (for the workpieces' Spawn: the new object)."""
 
     seq: int
     outcome: str
     reason: str = ""
+    object_id: int | None = None
 
     def __post_init__(self):
         if self.outcome not in OUTCOMES:
             raise ValueError(f"unknown outcome '{self.outcome}'")
 
 
-def recorded(results: tuple, result) -> tuple:
-    """`results` with `result` as the newest, replacing an earlier one of the same seq."""
-    kept = tuple(r for r in results if r.seq != result.seq)
-    return (*kept, result)[-RESULTS_KEPT:]
+@dataclass(frozen=True)
+class ResultLog:
+    """An actor's results of its recent commands, newest last: a node looks up its own
+    command by number even after later commands (of its own or of another node)."""
 
+    results: tuple[CommandResult, ...] = ()
 
-def result_of(results: tuple, seq: int):
-    """The result of command `seq` among `results` (newest first), or None."""
-    return next((r for r in reversed(results) if r.seq == seq), None)
+    def recorded(self, result: CommandResult) -> "ResultLog":
+        """This log with `result` as the newest, replacing an earlier one of the same seq."""
+        kept = tuple(r for r in self.results if r.seq != result.seq)
+        return ResultLog((*kept, result)[-RECENT_COMMANDS:])
+
+    def result_of(self, seq: int) -> CommandResult | None:
+        return next((r for r in reversed(self.results) if r.seq == seq), None)
+
+    def outcome_of(self, seq: int) -> str | None:
+        result = self.result_of(seq)
+        return result.outcome if result is not None else None
+
+    @property
+    def last(self) -> CommandResult | None:
+        return self.results[-1] if self.results else None
+
+    def __iter__(self):
+        return iter(self.results)
 
 
 NO_COMMANDS = ()

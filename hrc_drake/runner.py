@@ -30,7 +30,7 @@ from tqdm import tqdm
 
 import hrc_drake
 from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
-from hrc_drake.builder import HUMAN_NAME, RECORDER, VISUAL_PREFIX, build_diagram
+from hrc_drake.builder import build_diagram
 from hrc_drake.diagram_export import write_diagram
 from hrc_drake.evaluation.metrics import (
     bt_metrics,
@@ -48,6 +48,7 @@ from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.log import write_safety_log
 from hrc_drake.safety.margin import log_of, margin_metrics, reference_model
 from hrc_drake.scenario import Scenario
+from hrc_drake.wiring import HUMAN_MODEL, RECORDER, SAFETY_MONITOR, VISUAL_PREFIX, tree_system
 from hrc_drake.yaml_check import InputError
 
 LOG_PERIOD = 0.01
@@ -192,10 +193,10 @@ class _RunOutputs:
             states=states_log.changes(),
             realism=_final(station, station_context, "realism"),
             bt_statistics={
-                agent: _node_statistics(station.GetSubsystemByName(f"bt_{agent}"))
+                agent: _node_statistics(station.GetSubsystemByName(tree_system(agent)))
                 for agent in scenario.trees
             },
-            safety_parts=station.GetSubsystemByName("safety").part_names if log else (),
+            safety_parts=station.GetSubsystemByName(SAFETY_MONITOR).part_names if log else (),
         )
 
     def metrics(self, scenario: Scenario) -> dict:
@@ -303,7 +304,7 @@ def _open_tree_logs(station, scenario, out_dir: Path | None) -> list:
         return []
     logs = []
     for agent in scenario.trees:
-        tree = station.GetSubsystemByName(f"bt_{agent}").tree
+        tree = station.GetSubsystemByName(tree_system(agent)).tree
         for log in (
             BtlogWriter(out_dir / f"bt_{agent}.btlog"),
             JsonLinesWriter(out_dir / f"bt_{agent}.jsonl"),
@@ -386,7 +387,7 @@ def _write_run_directory(report: Report, station, meshcat, outputs) -> None:
     recording = _recording(station)
     if recording is not None:
         report.files["replay"] = write_replay(
-            out / "replay.html", meshcat, recording, f"/drake/{VISUAL_PREFIX}/{HUMAN_NAME}"
+            out / "replay.html", meshcat, recording, f"/drake/{VISUAL_PREFIX}/{HUMAN_MODEL}"
         )
     outputs.write_figures(out, report.files)
     report.files["report_html"] = write_run_html(out / "report.html", report.metrics, report.files)

@@ -30,6 +30,7 @@ from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir
 from hrc_drake.safety.config import V_H_RULES, SafetyConfig
 from hrc_drake.sweep.overrides import NEW_ENTRIES, Overrides, apply, field_type
+from hrc_drake.wiring import AGENTS, STATION_MODELS
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.yaml_check import (
     InputError,
@@ -84,9 +85,6 @@ class AgentTree:
     tree_id: str = ""
     period: float = 0.05
     ports: dict[str, dict[str, str]] = field(default_factory=dict, metadata={NEW_ENTRIES: True})
-
-
-AGENTS = ("robot", "human")
 
 
 @dataclass
@@ -427,7 +425,7 @@ def _place_problems(scenario: Scenario) -> Iterator[Problem]:
             seen.setdefault(name, section)
 
 
-RESERVED = ("iisy", "tool", "WorldModelInstance", "DefaultModelInstance")
+RESERVED = (*STATION_MODELS, "WorldModelInstance", "DefaultModelInstance")
 """Model instance names the station gives itself; the cell cannot use them."""
 
 

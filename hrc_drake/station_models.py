@@ -8,9 +8,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from hrc_drake.iisy import BASE_FRAME, add_iisy, add_tool
 from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import NO_TOOL, RobotConfig, Scenario
-
-ROBOT_MODEL = "iisy"
-TOOL_MODEL = "tool"
+from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
 
 
 def model_parser(plant: MultibodyPlant) -> Parser:

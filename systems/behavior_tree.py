@@ -5,8 +5,8 @@ simulation time as its clock, and stores the commands the nodes sent. The comman
 are computed from that state only (no feedthrough), so a command sent at tick k reaches its
 actor at the actor's next update.
 
-A command port carries the recent commands of this tree, oldest first, each with its
-sequence number: an actor acts on every command newer than the last one it saw, so two
+A command port carries the recent commands of this tree (`RECENT_COMMANDS`), oldest first,
+each with its sequence number: an actor acts on every command newer than the last one it saw, so two
 commands sent to one actor in the same tick (SetRobotVelocity, then RobotMove) both arrive.
 
 The tree object lives in the system, not in the Context: the initialization event resets
@@ -21,12 +21,10 @@ from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import LeafSystem
 
 from hrc_drake.bt import NodeCounters, Status, Tree
-from hrc_drake.messages import TaskEvent
-from hrc_drake.nodes.context import ACTORS, STATUS_INPUTS, AgentContext
+from hrc_drake.messages import RECENT_COMMANDS, TaskEvent
+from hrc_drake.nodes.agent import Agent
 from hrc_drake.ports import message_value, value_or_none
-
-COMMAND_WINDOW = 16
-"""Commands kept per actor port: far more than one tick sends to one actor."""
+from hrc_drake.wiring import STATUS_SOURCES, command_output, status_port
 
 
 @dataclass(frozen=True)
@@ -52,61 +50,50 @@ class TreeOutputs:
         return self  # immutable: Drake's state copies may share it
 
 
-def command_port(actor: str) -> str:
-    return f"{actor}_command"
-
-
-def status_port(source: str) -> str:
-    return f"{source}_status"
-
-
 class BehaviorTreeSystem(LeafSystem):
     """Ticks `tree` every `period` seconds (see module docstring).
 
-    Inputs (abstract, each optional): robot_status, human_status, workpieces_status,
-    safety_status. Outputs (abstract): robot_command, human_command, workpieces_command
-    (tuples of recent commands), tree_status (TreeStatus), task_events (all TaskEvents).
+    Inputs (abstract, each optional): `<source>_status` for every status source (robot,
+    human, workpieces, safety). Outputs (abstract): `<actor>_command` for every actor the
+    agent may command (tuples of recent commands), tree_status (TreeStatus), task_events
+    (all TaskEvents).
     """
 
-    def __init__(
-        self, tree: Tree, context: AgentContext, seed: np.random.SeedSequence, period: float = 0.05
-    ):
+    def __init__(self, tree: Tree, agent: Agent, seed: np.random.SeedSequence, period: float):
         super().__init__()
         self.tree = tree
-        self.agent_context = context
-        self.tree.context = context
+        self.agent = agent
+        self.tree.context = agent
         self.seed = seed
         self.counters = NodeCounters()
         self.tree.add_observer(self.counters)
         self._inputs = {
             source: self.DeclareAbstractInputPort(status_port(source), message_value())
-            for source in STATUS_INPUTS
+            for source in STATUS_SOURCES
         }
         self._state = self.DeclareAbstractState(AbstractValue.Make(self._initial_outputs()))
-        for actor in ACTORS:
-            self._declare_state_view(command_port(actor), (), lambda out, a=actor: out.commands[a])
+        for actor in agent.commands:
+            self._declare_state_view(
+                command_output(actor), (), lambda out, a=actor: out.commands[a]
+            )
         initial_status = self._initial_outputs().status
         self._declare_state_view("tree_status", initial_status, lambda out: out.status)
         self._declare_state_view("task_events", (), lambda out: out.events)
         self.DeclareInitializationUnrestrictedUpdateEvent(self._initialize)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._tick)
 
-    @property
-    def agent(self) -> str:
-        return self.agent_context.agent
-
     def _initial_outputs(self) -> TreeOutputs:
-        status = TreeStatus(self.agent, 0.0, Status.IDLE.name, "", 0)
-        return TreeOutputs({actor: () for actor in ACTORS}, status, ())
+        status = TreeStatus(self.agent.name, 0.0, Status.IDLE.name, "", 0)
+        return TreeOutputs({actor: () for actor in self.agent.commands}, status, ())
 
     def _initialize(self, context, state) -> None:
         self.tree.reset(rng=np.random.default_rng(self.seed))
-        self.agent_context.reset()
+        self.agent.reset()
         self.counters.reset()
         state.get_mutable_abstract_state(self._state).set_value(self._initial_outputs())
 
     def _tick(self, context, state) -> None:
-        agent = self.agent_context
+        agent = self.agent
         for source, port in self._inputs.items():
             agent.statuses[source] = value_or_none(port, context)
         agent.now = context.get_time()
@@ -116,7 +103,7 @@ class BehaviorTreeSystem(LeafSystem):
             TreeOutputs(
                 commands=self._updated_commands(previous.commands, agent.take_outbox()),
                 status=TreeStatus(
-                    self.agent,
+                    agent.name,
                     agent.now,
                     root_status.name,
                     self._running_path(),
@@ -129,10 +116,10 @@ class BehaviorTreeSystem(LeafSystem):
     @staticmethod
     def _updated_commands(previous: dict[str, tuple], sent: dict[str, list]) -> dict:
         return {
-            actor: (previous[actor] + tuple(sent[actor]))[-COMMAND_WINDOW:]
+            actor: (previous[actor] + tuple(sent[actor]))[-RECENT_COMMANDS:]
             if sent[actor]
             else previous[actor]
-            for actor in ACTORS
+            for actor in previous
         }
 
     def _running_path(self) -> str:

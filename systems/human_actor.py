@@ -1,9 +1,9 @@
 """HumanActor: the simulated person's state machine as a Drake LeafSystem.
 
-Inputs `<issuer>_command` (abstract), one per command issuer (default one, `human_command`):
-None, a command (hrc_drake.human.messages) or a tuple of recent commands; each issuer's new
-commands are handled in order (the robot's tree may call the person while the person's own
-tree directs them).
+Inputs `<issuer>_command` (abstract), one per command issuer (by default the trees that may
+command the person, hrc_drake.wiring): None, a command (hrc_drake.human.messages) or a tuple
+of recent commands; each issuer's new commands are handled in order (the robot's tree may
+call the person while the person's own tree directs them).
 Outputs, both computed from state only: `human_positions` (the kinematic human plant's q,
 for MultibodyPositionToGeometryPose) and `human_status` (HumanStatus). A periodic
 unrestricted update (60 Hz by default, above Meshcat's frame rate) runs the protocol and
@@ -13,14 +13,27 @@ at that rate.
 
 import numpy as np
 from pydrake.common.value import AbstractValue
+from pydrake.geometry import GeometrySet
+from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import LeafSystem
+from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
-from hrc_drake.human.body import HumanBody, human_body
-from hrc_drake.human.clip import Clip, load_clips
+from hrc_drake.human.body import HumanBody, human_body, parse_human
+from hrc_drake.human.clip import Clip, load_clips, scaled_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
 from hrc_drake.human.navigation import NavigationMap
+from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.ports import message_value, value_or_none
+from hrc_drake.scene_geometry import collision_geometries, filter_against
+from hrc_drake.wiring import (
+    HUMAN,
+    HUMAN_ACTOR,
+    HUMAN_GEOMETRY,
+    HUMAN_MODEL,
+    command_input,
+    issuers_of,
+)
 
 UPDATE_PERIOD = 1.0 / 60.0
 WALK_CLIP = "walk"
@@ -42,7 +55,7 @@ class HumanActor(LeafSystem):
         clips: dict[str, Clip] | None = None,
         start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
         period: float = UPDATE_PERIOD,
-        issuers: tuple[str, ...] = ("human",),
+        issuers: tuple[str, ...] = issuers_of(HUMAN),
         navigation: NavigationMap | None = None,
     ):
         LeafSystem.__init__(self)
@@ -52,7 +65,7 @@ class HumanActor(LeafSystem):
         """One gait cycle of the walk clip (s)."""
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
         self._commands = {
-            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", message_value())
+            issuer: self.DeclareAbstractInputPort(command_input(issuer), message_value())
             for issuer in issuers
         }
         self._actor = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -88,3 +101,46 @@ class HumanActor(LeafSystem):
         state.get_mutable_discrete_state(self._positions).set_value(positions)
         message = status(self._ctx, actor, t, self._frames(positions))
         state.get_mutable_abstract_state(self._status).set_value(message)
+
+
+def add_human(
+    builder,
+    scene_graph,
+    height: float = DEFAULT_HEIGHT,
+    mass: float = DEFAULT_MASS,
+    start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    issuers: tuple[str, ...] = issuers_of(HUMAN),
+    navigation: NavigationMap | None = None,
+    clips: dict[str, Clip] | None = None,
+) -> tuple[HumanActor, MultibodyPlant]:
+    """Adds a person as HUMAN_ACTOR: returns the actor and the person's kinematic plant.
+
+    The plant (time_step 0) is registered with `scene_graph` but is not a system of the
+    diagram: it is never stepped; HUMAN_GEOMETRY poses its geometry from the actor's joint
+    positions. Its geometry is collision-filtered within itself (the plant has no contact
+    to compute). Connect each issuer's commands to the actor's `<issuer>_command` input.
+    With a `navigation` map the person walks round the cell's geometry. `clips` default to
+    the built-in ones, scaled to the person's height.
+    """
+    plant = MultibodyPlant(0.0)
+    plant.set_name(f"{HUMAN_MODEL}_plant")  # names its geometry source in SceneGraph
+    plant.RegisterAsSourceForSceneGraph(scene_graph)
+    parse_human(plant, height, mass, HUMAN_MODEL)
+    plant.Finalize()
+    actor = builder.AddNamedSystem(
+        HUMAN_ACTOR,
+        HumanActor(
+            human_body(height, mass),
+            scaled_clips(clips or load_clips(), height),
+            start_pose,
+            issuers=issuers,
+            navigation=navigation,
+        ),
+    )
+    to_pose = builder.AddNamedSystem(HUMAN_GEOMETRY, MultibodyPositionToGeometryPose(plant))
+    builder.Connect(actor.GetOutputPort("human_positions"), to_pose.get_input_port())
+    builder.Connect(
+        to_pose.get_output_port(), scene_graph.get_source_pose_port(plant.get_source_id())
+    )
+    filter_against(scene_graph, GeometrySet(collision_geometries(plant)), GeometrySet())
+    return actor, plant

@@ -20,6 +20,7 @@ from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.geometry import bounding_segment, human_parts
+from hrc_drake.wiring import REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid, moved
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
 
@@ -195,7 +196,7 @@ def add_realism_audit(
     workpieces (when there are any)."""
     inspector = scene_graph.model_inspector()
     audit = builder.AddNamedSystem(
-        "realism_audit",
+        REALISM_AUDIT,
         RealismAudit(
             inspector,
             human_plant,

@@ -22,6 +22,7 @@ from pydrake.systems.primitives import MatrixGain, Multiplexer
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.scenario import Scenario
 from hrc_drake.station_models import make_control_plant
+from hrc_drake.wiring import ROBOT_CONTROLLER
 
 
 class RobotController(Diagram):
@@ -67,7 +68,7 @@ def add_robot_controller(
     from `plant` and driving its actuation; the caller connects the desired state."""
     variant = VARIANTS[scenario.robot.variant]
     controller = builder.AddNamedSystem(
-        "robot_controller",
+        ROBOT_CONTROLLER,
         RobotController(
             make_control_plant(scenario), variant.kp, variant.kd, reference_acceleration
         ),

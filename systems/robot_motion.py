@@ -27,8 +27,9 @@ from hrc_drake.messages import (
     REJECTED,
     RUNNING,
     SUCCEEDED,
+    CommandResult,
+    ResultLog,
     newer_commands,
-    recorded,
 )
 from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.execution import Progress, desired_motion, next_progress
@@ -39,7 +40,6 @@ from hrc_drake.motion.messages import (
     PLANNING,
     STOPPED,
     STOPPING,
-    CommandResult,
     Grip,
     Release,
     RobotStatus,
@@ -51,11 +51,16 @@ from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scenario import Scenario
-from hrc_drake.workpieces.messages import ROBOT, Attach
-from hrc_drake.workpieces.messages import Release as WorkpiecesRelease
+from hrc_drake.wiring import (
+    GRIPPER_ISSUER,
+    ROBOT,
+    ROBOT_DESIRED_MOTION,
+    ROBOT_MOTION,
+    command_input,
+    tree_issuer,
+)
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach
 
-GRIPPER_ISSUER = "robot_gripper"
-"""The workpieces system's issuer (input `robot_gripper_command`) that the vacuum uses."""
 ARRIVAL_SPEED = 0.01
 """rad/s: joint speeds below which a finished move counts as at rest."""
 
@@ -71,7 +76,7 @@ class MotionState:
 
     hold: tuple[float, ...]
     tool_pose: RigidTransform
-    results: tuple[CommandResult, ...] = ()
+    results: ResultLog = ResultLog()
     seen_seq: int = -1
     path: TimedPath | None = None
     progress: Progress | None = None
@@ -82,7 +87,7 @@ class MotionState:
     speed_fraction: float = 1.0
     safety_scale: float = 1.0
     tool_speed: float = 0.0
-    gripper_command: Attach | WorkpiecesRelease | None = None
+    gripper_command: Attach | Detach | None = None
     gripper_waiting: bool = False
     gripper_since: float = 0.0
     held_object: int | None = None
@@ -98,7 +103,7 @@ class MotionState:
         return np.concatenate([hold, np.zeros(2 * hold.size)])
 
     def with_result(self, seq: int, outcome: str, reason: str = "") -> "MotionState":
-        results = recorded(self.results, CommandResult(seq, outcome, reason))
+        results = self.results.recorded(CommandResult(seq, outcome, reason))
         return dataclasses.replace(self, results=results)
 
     def replace(self, **changes) -> "MotionState":
@@ -108,7 +113,8 @@ class MotionState:
 class RobotMotion(LeafSystem):
     """Plans and executes the robot's moves; see the module docstring.
 
-    Inputs: `robot_command` (None, a command, or a tuple of recent commands), `speed_scale`
+    Inputs: `robot_tree_command` (the robot's tree's command or tuple of recent commands; None
+    unconnected), `speed_scale`
     (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
@@ -130,7 +136,9 @@ class RobotMotion(LeafSystem):
         initial = MotionState(hold=tuple(q0), tool_pose=self._model.tool_pose(q0))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
 
-        self._command = self.DeclareAbstractInputPort("robot_command", message_value())
+        self._command = self.DeclareAbstractInputPort(
+            command_input(tree_issuer(ROBOT)), message_value()
+        )
         self._speed_scale = self.DeclareVectorInputPort("speed_scale", 1)
         self._robot_state = self.DeclareVectorInputPort("robot_state", 2 * self._n)
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
@@ -314,9 +322,9 @@ class RobotMotion(LeafSystem):
         if not gripping and state.held_object is None:
             return state.with_result(command.seq, SUCCEEDED, "nothing was held")
         vacuum = (
-            Attach(command.seq, ROBOT, max_mass=self._variant.payload)
+            Attach(command.seq, ROBOT_HOLDER, max_mass=self._variant.payload)
             if gripping
-            else WorkpiecesRelease(command.seq, ROBOT)
+            else Detach(command.seq, ROBOT_HOLDER)
         )
         state = state.replace(gripper_command=vacuum, gripper_waiting=True, gripper_since=t)
         return state.with_result(command.seq, RUNNING)
@@ -326,12 +334,12 @@ class RobotMotion(LeafSystem):
         status = value_or_none(self._workpieces, context)
         if status is None:
             return state
-        held = status.held_by(ROBOT)
+        held = status.held_by(ROBOT_HOLDER)
         state = state.replace(held_object=held.id if held is not None else None)
         if not state.gripper_waiting:
             return state
         seq = state.gripper_command.seq
-        result = status.result_of(GRIPPER_ISSUER, seq)
+        result = status.results_of(GRIPPER_ISSUER).result_of(seq)
         if result is not None and result.outcome in FINISHED:
             state = state.replace(gripper_waiting=False)
             return state.with_result(seq, result.outcome, result.reason)
@@ -427,10 +435,10 @@ def add_robot_motion(
     `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
     commands and reads its status; without, Grip and Release fail with a reason.
     """
-    motion = builder.AddNamedSystem("robot_motion", RobotMotion(scenario, options))
+    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(scenario, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
     n = motion.GetOutputPort("desired_acceleration").size()
-    split = builder.AddNamedSystem("robot_desired_motion", Demultiplexer([2 * n, n]))
+    split = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, Demultiplexer([2 * n, n]))
     builder.Connect(motion.GetOutputPort("desired_motion"), split.get_input_port())
     builder.Connect(split.get_output_port(0), controller.GetInputPort("desired_state"))
     if controller.HasInputPort("desired_acceleration"):
@@ -438,7 +446,7 @@ def add_robot_motion(
     if workpieces is not None:
         builder.Connect(
             motion.GetOutputPort("gripper_command"),
-            workpieces.GetInputPort(f"{GRIPPER_ISSUER}_command"),
+            workpieces.GetInputPort(command_input(GRIPPER_ISSUER)),
         )
         builder.Connect(
             workpieces.GetOutputPort("workpieces_status"), motion.GetInputPort("workpieces_status")

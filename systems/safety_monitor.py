@@ -44,7 +44,8 @@ from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
-from hrc_drake.workpieces.messages import ROBOT
+from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
+from hrc_drake.workpieces.messages import ROBOT_HOLDER
 
 
 @dataclass(frozen=True)
@@ -151,7 +152,7 @@ class SafetyMonitor(LeafSystem):
     def _held_object(self, context):
         """The workpiece the robot's gripper holds (an ObjectStatus), if any."""
         status = value_or_none(self._workpieces, context)
-        return status.held_by(ROBOT) if status is not None else None
+        return status.held_by(ROBOT_HOLDER) if status is not None else None
 
 
 def _active_parts(meter: ProximityMeter, robot: list[Part], carried: list[Part]) -> dict:
@@ -201,17 +202,21 @@ def add_safety_monitor(
 ) -> SafetyMonitor:
     """Adds the monitor named `safety` and connects its QueryObject input.
 
-    `plant` holds the robot as model instances `iisy` and `tool` (if present); the person's
+    `plant` holds the robot as model instances ROBOT_MODEL and TOOL_MODEL (if present); the person's
     geometry belongs to `human_instance` of `human_plant`; `carriable` are the geometries of
     objects the gripper may hold. The caller connects `speed_scale` to RobotMotion and, when
     objects can be carried, the workpieces' status to `workpieces_status`, and RobotMotion's
     `path_rate` to `robot_path_rate` (`command_latency`: its update period).
     """
-    arm = plant.GetModelInstanceByName("iisy")
-    tool = plant.GetModelInstanceByName("tool") if plant.HasModelInstanceNamed("tool") else None
+    arm = plant.GetModelInstanceByName(ROBOT_MODEL)
+    tool = (
+        plant.GetModelInstanceByName(TOOL_MODEL)
+        if plant.HasModelInstanceNamed(TOOL_MODEL)
+        else None
+    )
     inspector = scene_graph.model_inspector()
     monitor = builder.AddNamedSystem(
-        "safety",
+        SAFETY_MONITOR,
         SafetyMonitor(
             inspector,
             human_parts(human_plant, inspector, human_instance),

@@ -15,17 +15,14 @@ next, and is not reported.
 """
 
 import numpy as np
-from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import (
-    CollisionFilterDeclaration,
     FramePoseVector,
     GeometryFrame,
     GeometryInstance,
     GeometrySet,
     MakePhongIllustrationProperties,
     ProximityProperties,
-    Role,
     SceneGraph,
 )
 from pydrake.math import RigidTransform
@@ -34,14 +31,15 @@ from pydrake.multibody.tree import Frame
 from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
 
 from hrc_drake.areas import Area
-from hrc_drake.human.messages import HumanStatus
 from hrc_drake.ports import message_value, value_or_none
+from hrc_drake.scene_geometry import filter_against, other_proximity_geometry
+from hrc_drake.systems.adapters import add_tool_pose
+from hrc_drake.wiring import WORKPIECES, WORKPIECES_SYSTEM, command_input, issuers_of
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
 from hrc_drake.workpieces.world import Workcell, World, holder_frames, since
 
-DEFAULT_ISSUERS = ("robot_tree", "human_tree", "robot_gripper")
 PARKING_DEPTH = -1000.0
 PARKING_SPACING = 10.0
 
@@ -71,10 +69,10 @@ class Workpieces(LeafSystem):
         config: WorkpiecesConfig,
         scene_graph: SceneGraph,
         seed: int | np.random.SeedSequence = 0,
-        issuers: tuple[str, ...] = DEFAULT_ISSUERS,
+        issuers: tuple[str, ...] = issuers_of(WORKPIECES),
         surfaces: list[Surface] = (),
         areas: dict[str, Area] | None = None,
-        name: str = "workpieces",
+        name: str = WORKPIECES_SYSTEM,
     ):
         super().__init__()
         all_surfaces = [*surfaces, *named_surfaces(config.surfaces)]
@@ -92,7 +90,7 @@ class Workpieces(LeafSystem):
         initial = self.cell.initial_world()
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
-            issuer: self.DeclareAbstractInputPort(f"{issuer}_command", message_value())
+            issuer: self.DeclareAbstractInputPort(command_input(issuer), message_value())
             for issuer in self.cell.issuers
         }
         self._tool = self.DeclareAbstractInputPort(
@@ -184,72 +182,6 @@ class Workpieces(LeafSystem):
         output.set_value(status)
 
 
-class TcpPose(LeafSystem):
-    """The pose of one plant frame in the world, from the plant's `body_poses` output."""
-
-    def __init__(self, plant: MultibodyPlant, frame: Frame):
-        super().__init__()
-        self._body_index = int(frame.body().index())
-        self._X_BF = frame.GetFixedPoseInBodyFrame()
-        model = plant.get_body_poses_output_port().Allocate()
-        self.DeclareAbstractInputPort("body_poses", model)
-        self.DeclareAbstractOutputPort(
-            "tool_pose", lambda: AbstractValue.Make(RigidTransform()), self._calc
-        )
-
-    def _calc(self, context: Context, output: AbstractValue) -> None:
-        X_WB = self.get_input_port().Eval(context)[self._body_index]
-        output.set_value(X_WB @ self._X_BF)
-
-
-def hand_poses(status: HumanStatus | None) -> HandPoses | None:
-    """The person's grasp frames at the time of the status (HumanStatus gives them as
-    (x, y, z, qw, qx, qy, qz)); None before the person's first update."""
-    if status is None or not status.left_hand or not status.right_hand:
-        return None
-    left, right = _pose(status.left_hand), _pose(status.right_hand)
-    return HandPoses(left, right, status.time, status.base_pose[2])
-
-
-def _pose(values: tuple[float, ...]) -> RigidTransform:
-    x, y, z, qw, qx, qy, qz = values
-    return RigidTransform(Quaternion(qw, qx, qy, qz), [x, y, z])
-
-
-class HumanHands(LeafSystem):
-    """The person's hand grasp frames (HandPoses) from HumanActor's `human_status`; an empty
-    tuple before the person's first update (ports cannot carry None)."""
-
-    def __init__(self):
-        super().__init__()
-        status = self.DeclareAbstractInputPort("human_status", message_value())
-        self.DeclareAbstractOutputPort(
-            "human_hands",
-            message_value,
-            lambda context, output: output.set_value(hand_poses(status.Eval(context)) or ()),
-        )
-
-
-def filter_against(scene_graph: SceneGraph, geometry: GeometrySet, others: GeometrySet) -> None:
-    """No contact between `geometry` and `others` nor within `geometry` (distances between
-    them are still available through QueryObject's pair queries)."""
-    scene_graph.collision_filter_manager().Apply(
-        CollisionFilterDeclaration().ExcludeWithin(geometry).ExcludeBetween(geometry, others)
-    )
-
-
-def other_proximity_geometry(scene_graph: SceneGraph, source_id) -> GeometrySet:
-    """Every proximity geometry registered so far by sources other than `source_id`."""
-    inspector = scene_graph.model_inspector()
-    return GeometrySet(
-        [
-            g
-            for g in inspector.GetAllGeometryIds(Role.kProximity)
-            if not inspector.BelongsToSource(g, source_id)
-        ]
-    )
-
-
 def add_workpieces(
     builder: DiagramBuilder,
     scene_graph: SceneGraph,
@@ -258,7 +190,7 @@ def add_workpieces(
     seed: int | np.random.SeedSequence = 0,
     tool_frame: Frame | None = None,
     areas: dict[str, Area] | None = None,
-    issuers: tuple[str, ...] = DEFAULT_ISSUERS,
+    issuers: tuple[str, ...] = issuers_of(WORKPIECES),
 ) -> Workpieces:
     """Adds Workpieces beside a finalized plant: its support surfaces come from the plant's
     static geometry, its poses go to SceneGraph, it is collision-filtered against all the
@@ -267,7 +199,7 @@ def add_workpieces(
     its `tool_pose` input is fed from the body poses of that frame's plant."""
     surfaces = cell_surfaces(plant, scene_graph) if config.derive_surfaces else []
     workpieces = builder.AddNamedSystem(
-        "workpieces", Workpieces(config, scene_graph, seed, issuers, surfaces, areas)
+        WORKPIECES_SYSTEM, Workpieces(config, scene_graph, seed, issuers, surfaces, areas)
     )
     builder.Connect(
         workpieces.GetOutputPort("geometry_pose"),
@@ -278,9 +210,6 @@ def add_workpieces(
         workpieces.geometry_set(),
         other_proximity_geometry(scene_graph, workpieces.source_id),
     )
-    if tool_frame is not None:
-        robot_plant = tool_frame.GetParentPlant()  # may be another plant than the cell's
-        tcp = builder.AddNamedSystem("tool_pose", TcpPose(robot_plant, tool_frame))
-        builder.Connect(robot_plant.get_body_poses_output_port(), tcp.get_input_port())
-        builder.Connect(tcp.get_output_port(), workpieces.GetInputPort("tool_pose"))
+    if tool_frame is not None:  # its plant may be another than the cell's
+        builder.Connect(add_tool_pose(builder, tool_frame), workpieces.GetInputPort("tool_pose"))
     return workpieces

@@ -11,13 +11,14 @@ translations in metres, one frame per line.
 """
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 from math import floor
 from pathlib import Path
 
 import numpy as np
 
+from hrc_drake.human.skeleton import DEFAULT_HEIGHT
 from hrc_drake.paths import resource_dir
 
 LENGTH_JOINTS = ("base_x", "base_y", "pelvis_height")
@@ -158,3 +159,19 @@ def load_clips(directory: Path | None = None) -> dict[str, Clip]:
     """Every clip in the animations folder, by name (read once per process)."""
     folder = directory or animations_dir()
     return {path.stem: load_clip(path) for path in sorted(folder.glob("*.json"))}
+
+
+def scaled_clips(clips: dict[str, Clip], height: float) -> dict[str, Clip]:
+    """The clips for a person of another height: every length scales with body height."""
+    factor = height / DEFAULT_HEIGHT
+    if factor == 1.0:
+        return clips
+    scaled = {}
+    for name, clip in clips.items():
+        frames = clip.frames.copy()
+        for joint in LENGTH_JOINTS:
+            frames[:, clip.joint_names.index(joint)] *= factor
+        scaled[name] = replace(
+            clip, frames=frames, animation_distance=clip.animation_distance * factor
+        )
+    return scaled

@@ -1,14 +1,14 @@
 """Commands to the simulated person and the status it reports (frozen, port-friendly).
 
-Every command carries a sequence number `seq`. The `human_command` input port holds the most
-recent command (or None); the actor acts once on each new seq. A command arriving while a
-Movement or Animation runs is rejected; Cancel stops the running one; SetCalled is a flag and
-never conflicts.
+Every command carries a sequence number `seq`. Each issuer's input port (`<issuer>_command`,
+hrc_drake.wiring) holds its recent commands; the actor acts once on each new seq. A command
+arriving while a Movement or Animation runs is rejected; Cancel stops the running one;
+SetCalled is a flag and never conflicts.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
-from hrc_drake.messages import CommandResult, result_of
+from hrc_drake.messages import ResultLog
 
 NULL_QUATERNION = (0.0, 0.0, 0.0, 0.0)
 """Target orientation meaning "end facing the walking direction"."""
@@ -95,8 +95,8 @@ HumanCommand = MoveCommand | AnimateCommand | CancelCommand | SetCalledCommand
 class HumanStatus:
     """What the person reports after every update.
 
-    `last_seq`/`outcome`/`reason` describe the newest change of any command; `results` keeps
-    the recent ones (newest last) so a node can still find its own after a later command.
+    `results` keeps the outcomes of the recent commands, so a node can still find its own
+    after a later command.
     Poses are (x, y, z, qw, qx, qy, qz) in world; `base_pose` is (x, y, yaw). `event` is the
     clip event that fired during the last update ("" if none); `event_count` counts them all;
     `activity_events` are the events fired since the running action started, so a behavior
@@ -104,9 +104,6 @@ class HumanStatus:
     """
 
     state: str = "SETUP"
-    last_seq: int = -1
-    outcome: str = ""
-    reason: str = ""
     progress: float = 0.0
     base_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     base_speed: float = 0.0
@@ -118,17 +115,9 @@ class HumanStatus:
     event_count: int = 0
     activity_events: tuple[str, ...] = ()
     animation: str = ""
-    results: tuple[CommandResult, ...] = field(default_factory=tuple)
+    results: ResultLog = ResultLog()
     time: float = 0.0
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
         return self
-
-    def result_of(self, seq: int) -> CommandResult | None:
-        """The result of command `seq`, if it is still in the recent results."""
-        return result_of(self.results, seq)
-
-    def outcome_of(self, seq: int) -> str | None:
-        result = self.result_of(seq)
-        return result.outcome if result is not None else None

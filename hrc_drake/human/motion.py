@@ -49,7 +49,16 @@ from hrc_drake.human.stepping import (
     standing_spots,
 )
 from hrc_drake.human.targeting import TARGETED, AimedMotion, Unreachable, aim_clip
-from hrc_drake.messages import CommandResult, newer_commands, recorded
+from hrc_drake.messages import (
+    CANCELLED,
+    FAILED,
+    REJECTED,
+    RUNNING,
+    SUCCEEDED,
+    CommandResult,
+    ResultLog,
+    newer_commands,
+)
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
@@ -549,7 +558,7 @@ class ActorState(NamedTuple):
     running: int = -1
     seen: tuple[tuple[str, int], ...] = ()
     """(issuer, newest seq taken from it), per command issuer."""
-    results: tuple[CommandResult, ...] = ()
+    results: ResultLog = ResultLog()
     called: bool = False
     event: str = ""
     event_count: int = 0
@@ -751,7 +760,7 @@ def hold_after(command, pose) -> Hold | None:
 
 
 def _record(state: ActorState, seq: int, outcome: str, reason: str = "") -> ActorState:
-    return state._replace(results=recorded(state.results, CommandResult(seq, outcome, reason)))
+    return state._replace(results=state.results.recorded(CommandResult(seq, outcome, reason)))
 
 
 def _switch(ctx: Context, actor: ActorState, activity: Activity, t: float, **changes):
@@ -803,11 +812,11 @@ def _still_stepping(ctx: Context, activity: Activity | None, t: float):
 
 def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
     if isinstance(command, SetCalledCommand):
-        return _record(state._replace(called=command.called), command.seq, "succeeded")
+        return _record(state._replace(called=command.called), command.seq, SUCCEEDED)
     if isinstance(command, CancelCommand):
         if state.running < 0:
-            return _record(state, command.seq, "succeeded", "nothing to cancel")
-        state = _record(state, state.running, "cancelled", f"cancelled by {command.seq}")
+            return _record(state, command.seq, SUCCEEDED, "nothing to cancel")
+        state = _record(state, state.running, CANCELLED, f"cancelled by {command.seq}")
         state = _switch(
             ctx,
             state,
@@ -817,9 +826,9 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
             running=-1,
             animation=IDLE_CLIP,
         )
-        return _record(state, command.seq, "succeeded")
+        return _record(state, command.seq, SUCCEEDED)
     if state.running >= 0:
-        return _record(state, command.seq, "rejected", f"busy with command {state.running}")
+        return _record(state, command.seq, REJECTED, f"busy with command {state.running}")
     walking, t0 = _still_stepping(ctx, state.activity, t)
     try:
         if isinstance(command, MoveCommand):
@@ -827,7 +836,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         else:
             activity, mode = plan_animation(ctx, command, state.anchor, t0), "ANIMATION"
     except Unreachable as error:
-        return _record(state, command.seq, "failed", str(error))
+        return _record(state, command.seq, FAILED, str(error))
     if walking:
         segments = (*walking, *activity.segments)
         activity = Activity.plan(ctx, segments, activity.final_pose)
@@ -841,7 +850,7 @@ def _handle(ctx: Context, state: ActorState, command, t: float) -> ActorState:
         animation=command.animation_name,
         hold=hold_after(command, state.anchor),
     )
-    return _record(state, command.seq, "running")
+    return _record(state, command.seq, RUNNING)
 
 
 def _events(ctx: Context, state: ActorState, t0: float, t1: float) -> list[str]:
@@ -895,7 +904,7 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
     state = _take_commands(ctx, state, t, commands)
     if state.running >= 0 and t >= state.activity.end:
         final = state.activity.final_pose
-        state = _record(state, state.running, "succeeded")
+        state = _record(state, state.running, SUCCEEDED)
         idle = _idle(ctx, final, t, state.hold)
         state = _switch(ctx, state, idle, t, state="IDLE", running=-1, animation=IDLE_CLIP)
     fired = _events(ctx, state, previous_t, t) if state.state != "IDLE" else []
@@ -917,7 +926,8 @@ def advance(ctx: Context, state: ActorState, t: float, commands: dict) -> ActorS
 
 def progress(ctx: Context, state: ActorState, t: float) -> float:
     if state.running < 0 or state.activity is None:
-        return 1.0 if state.results and state.results[-1].outcome == "succeeded" else 0.0
+        last = state.results.last
+        return 1.0 if last is not None and last.outcome == SUCCEEDED else 0.0
     start, end = state.activity.start(), state.activity.end
     return float(min(max((t - start) / max(end - start, 1e-9), 0.0), 1.0))
 
@@ -925,13 +935,9 @@ def progress(ctx: Context, state: ActorState, t: float) -> float:
 def status(ctx: Context, state: ActorState, t: float, hands_and_head: tuple) -> HumanStatus:
     """The status after an update; `hands_and_head` are the world poses of the left and right
     hand grasp frames and the head gaze frame at state.pose, (x, y, z, qw, qx, qy, qz) each."""
-    last = state.results[-1] if state.results else None
     left, right, head = hands_and_head
     return HumanStatus(
         state=state.state,
-        last_seq=last.seq if last else -1,
-        outcome=last.outcome if last else "",
-        reason=last.reason if last else "",
         progress=progress(ctx, state, t),
         base_pose=state.base,
         base_speed=state.speed,

@@ -26,7 +26,7 @@ from shapely import prepared
 from shapely.geometry import LineString, MultiPoint, Point, Polygon
 from shapely.ops import nearest_points, unary_union
 
-from hrc_drake.cell_geometry import anchored_collision_shapes
+from hrc_drake.scene_geometry import anchored_collision_shapes
 
 BAND = (0.03, 1.9)
 """m: heights the body occupies (above the soles' clearance, up to the head)."""

@@ -1,7 +1,8 @@
 """Robot command and status messages (abstract-valued ports of RobotMotion).
 
-A BehaviorTreeSystem holds its latest command on the `robot_command` port; RobotMotion acts
-on a command whose `seq` is newer than the last one it saw. Every command's outcome uses the
+The robot's BehaviorTreeSystem holds its recent commands on its `robot_command` output;
+RobotMotion (input `robot_tree_command`) acts on every command whose `seq` is newer than the
+last one it saw. Every command's outcome uses the
 shared vocabulary of `hrc_drake.messages` (running, succeeded, failed, rejected, cancelled).
 
 Poses are `RigidTransform`s of the tool's `tcp` frame (the suction cup face, z out of the
@@ -12,7 +13,7 @@ from dataclasses import dataclass
 
 from pydrake.math import RigidTransform
 
-from hrc_drake.messages import CommandResult, result_of
+from hrc_drake.messages import ResultLog
 
 IDLE = "idle"
 PLANNING = "planning"
@@ -94,39 +95,18 @@ MOTION_COMMANDS = (MoveTo, MoveJoints, MoveLinear)
 class RobotStatus:
     """What RobotMotion reports, computed at its last update.
 
-    `results` holds the outcomes of the most recent commands, newest last, so that a move's
-    outcome stays visible after a later SetSpeed or a rejected command: a behavior tree node
-    looks up its own command with `outcome_of(seq)`. `last_seq`, `outcome` and `reason`
-    describe the newest command. `speed_fraction` is the SetSpeed override, `safety_scale`
-    the safety monitor's scale, `speed_scale` the effective scale the path is traversed at
-    (it follows their product with bounded acceleration).
+    `results` holds the outcomes of the most recent commands, so that a move's outcome stays
+    visible after a later SetSpeed or a rejected command: a behavior tree node looks up its
+    own command with `results.outcome_of(seq)`. `speed_fraction` is the SetSpeed override,
+    `safety_scale` the safety monitor's scale, `speed_scale` the effective scale the path is
+    traversed at (it follows their product with bounded acceleration).
     """
 
     mode: str
-    results: tuple[CommandResult, ...]
+    results: ResultLog
     tool_pose: RigidTransform
     tool_speed: float
     speed_fraction: float
     safety_scale: float
     speed_scale: float
     held_object: int | None = None
-
-    @property
-    def last_seq(self) -> int:
-        return self.results[-1].seq if self.results else -1
-
-    @property
-    def outcome(self) -> str | None:
-        return self.results[-1].outcome if self.results else None
-
-    @property
-    def reason(self) -> str:
-        return self.results[-1].reason if self.results else ""
-
-    def result_of(self, seq: int) -> CommandResult | None:
-        """The result of command `seq`, if it is still among the recent ones."""
-        return result_of(self.results, seq)
-
-    def outcome_of(self, seq: int) -> str | None:
-        result = self.result_of(seq)
-        return result.outcome if result else None

@@ -43,7 +43,7 @@ from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import resource_dir
 from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.scenario import RobotConfig, Scenario
-from hrc_drake.station_models import ROBOT_MODEL, TOOL_MODEL
+from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
 
 STOPPING_DIR = "iisy/stopping"
 """Inside the model folder (models/ in a checkout): one file per variant."""
@@ -103,7 +103,7 @@ class _IdealRobot:
         builder.Connect(
             self.motion.GetOutputPort("desired_state"), self.motion.GetInputPort("robot_state")
         )
-        builder.ExportInput(self.motion.GetInputPort("robot_command"), "robot_command")
+        builder.ExportInput(self.motion.GetInputPort("robot_tree_command"), "robot_command")
         builder.ExportInput(self.motion.GetInputPort("speed_scale"), "speed_scale")
         self.diagram = builder.Build()
         self.simulator = Simulator(self.diagram)
@@ -124,7 +124,11 @@ class _IdealRobot:
         return self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
 
     def outcome(self, seq: int) -> str | None:
-        return self.motion.GetOutputPort("robot_status").Eval(self.motion_context).outcome_of(seq)
+        return (
+            self.motion.GetOutputPort("robot_status")
+            .Eval(self.motion_context)
+            .results.outcome_of(seq)
+        )
 
     def step(self) -> None:
         self.simulator.AdvanceTo(self.context.get_time() + SAMPLE)
@@ -140,7 +144,11 @@ class _IdealRobot:
             samples.append((self.context.get_time(), _fastest_step(before, now) / SAMPLE))
             before = now
         if self.outcome(seq) != SUCCEEDED:
-            reason = self.motion.GetOutputPort("robot_status").Eval(self.motion_context).reason
+            reason = (
+                self.motion.GetOutputPort("robot_status")
+                .Eval(self.motion_context)
+                .results.last.reason
+            )
             raise RuntimeError(f"stopping measurement move {seq} did not succeed: {reason}")
         return samples
 

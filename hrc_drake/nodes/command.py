@@ -9,7 +9,7 @@ from abc import abstractmethod
 from typing import ClassVar
 
 from hrc_drake.bt import StatefulActionNode, Status
-from hrc_drake.messages import RUNNING, SUCCEEDED
+from hrc_drake.messages import RUNNING, SUCCEEDED, ResultLog
 
 
 class CommandNode(StatefulActionNode):
@@ -17,6 +17,9 @@ class CommandNode(StatefulActionNode):
     failed, was rejected or cancelled."""
 
     actor: ClassVar[str]
+    commands: ClassVar[tuple[str, ...]]
+    """Every actor the node sends commands to (`actor` and any other): a tree may hold the
+    node only if its agent may command them all (hrc_drake.wiring.COMMANDED_BY)."""
     cancel_command: ClassVar[type | None] = None
     """Command class (built from a seq) sent when the node is halted; None: nothing."""
 
@@ -24,10 +27,14 @@ class CommandNode(StatefulActionNode):
     def command(self, seq: int):
         """The command to send, numbered `seq`."""
 
+    def results(self, status) -> ResultLog:
+        """Where the actor's `status` keeps the results of this agent's commands."""
+        return status.results
+
     def result(self):
         """The actor's CommandResult for this node's command (None until it has one)."""
         status = self.context.statuses[self.actor]
-        return status.result_of(self.seq) if status is not None else None
+        return self.results(status).result_of(self.seq) if status is not None else None
 
     def outcome(self) -> str | None:
         result = self.result()

@@ -9,9 +9,10 @@ key `type` is the object type and other keys are attributes (`defective=true`).
 from hrc_drake.areas import Area
 from hrc_drake.bt import InputPort, OutputPort, Status, SyncActionNode
 from hrc_drake.bt.ports import value_to_text
+from hrc_drake.messages import ResultLog
 from hrc_drake.nodes.command import CommandNode
-from hrc_drake.nodes.context import WORKPIECES
 from hrc_drake.tree_types import Pose
+from hrc_drake.wiring import WORKPIECES
 from hrc_drake.workpieces import messages as wp
 
 
@@ -117,7 +118,7 @@ class HeldObject(ObjectsNode):
     hand-over, which NextObject (free objects only) cannot see."""
 
     ports = (
-        InputPort("holder", str, default=wp.ROBOT, description=", ".join(wp.HOLDERS)),
+        InputPort("holder", str, default=wp.ROBOT_HOLDER, description=", ".join(wp.HOLDERS)),
         OutputPort("object_id", int),
         OutputPort("pose", Pose, description="the object's centre (position only)"),
     )
@@ -139,12 +140,10 @@ class WorkpiecesCommandNode(CommandNode):
     """A command to the Workpieces system, which answers per issuer (this agent's tree)."""
 
     actor = WORKPIECES
+    commands = (WORKPIECES,)
 
-    def result(self):
-        status = self.context.workpieces
-        if status is None:
-            return None
-        return status.result_of(self.context.workpieces_issuer, self.seq)
+    def results(self, status) -> ResultLog:
+        return status.results_of(self.context.issuer)
 
 
 class SpawnObject(WorkpiecesCommandNode):
@@ -170,8 +169,7 @@ class SpawnObject(WorkpiecesCommandNode):
         )
 
     def succeeded(self) -> Status:
-        result = self.context.workpieces.result_of(self.context.workpieces_issuer, self.seq)
-        self.set_output("object_id", result.object_id)
+        self.set_output("object_id", self.result().object_id)
         return Status.SUCCESS
 
 

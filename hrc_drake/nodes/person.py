@@ -15,8 +15,8 @@ from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
 from hrc_drake.nodes.command import CommandNode
-from hrc_drake.nodes.context import HUMAN, WORKPIECES
 from hrc_drake.tree_types import Pose
+from hrc_drake.wiring import HUMAN, WORKPIECES
 from hrc_drake.workpieces import messages as wp
 from hrc_drake.workpieces.geometry import yaw_of
 
@@ -31,6 +31,7 @@ class PersonCommandNode(CommandNode):
     """A command to the HumanActor; halting it cancels the running action."""
 
     actor = HUMAN
+    commands = (HUMAN,)
     cancel_command = human.CancelCommand
 
     def held(self) -> wp.ObjectStatus | None:
@@ -126,6 +127,7 @@ class SetCalledTo(SyncActionNode):
     """Sets the person's called flag; always SUCCESS."""
 
     ports = (InputPort("state", bool),)
+    commands = (HUMAN,)
 
     def tick(self) -> Status:
         called = self.get_input("state")
@@ -137,6 +139,7 @@ class TargetedAction(PersonCommandNode):
     """Plays `clip()` aimed at `target_point()`; at the clip event `contact_event` it sends
     `object_command(seq)` to the Workpieces system. SUCCESS when both succeeded."""
 
+    commands = (HUMAN, WORKPIECES)
     contact_event = ""
     """Clip event at which the object changes hands ("": the action moves no object)."""
 
@@ -176,14 +179,13 @@ class TargetedAction(PersonCommandNode):
         status = self.context.human
         return (
             bool(self.contact_event)
-            and status is not None
-            and status.outcome_of(self.seq) == RUNNING
+            and self.outcome() == RUNNING
             and self.contact_event in status.activity_events
         )
 
     def _contact_result(self) -> Status:
         status = self.context.workpieces
-        outcome = status.outcome_of(self.context.workpieces_issuer, self.contact_seq)
+        outcome = status.results_of(self.context.issuer).outcome_of(self.contact_seq)
         if outcome is None:
             return Status.RUNNING
         return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
@@ -255,7 +257,7 @@ class ActorPlace(TargetedAction):
 
     def object_command(self, seq: int):
         held = self.held()
-        return wp.Release(seq, held.holder if held is not None else wp.BOTH_HANDS)
+        return wp.Detach(seq, held.holder if held is not None else wp.BOTH_HANDS)
 
 
 class ActorReach(TargetedAction):
@@ -296,7 +298,7 @@ class ActorHandOver(TargetedAction):
 
     def object_command(self, seq: int):
         if not self.takes():
-            return wp.Transfer(seq, self.get_input("object_id"), wp.ROBOT)
+            return wp.Transfer(seq, self.get_input("object_id"), wp.ROBOT_HOLDER)
         holder, center = self.holder_and_center()
         return wp.Transfer(seq, self.get_input("object_id"), holder, center=center)
 

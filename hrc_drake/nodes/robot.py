@@ -10,8 +10,8 @@ from pydrake.math import RigidTransform, RotationMatrix
 from hrc_drake.bt import InputPort, Status, SyncActionNode
 from hrc_drake.motion import messages as robot
 from hrc_drake.nodes.command import CommandNode
-from hrc_drake.nodes.context import ROBOT
 from hrc_drake.tree_types import Pose
+from hrc_drake.wiring import ROBOT
 
 TOOL_DOWN = RotationMatrix.MakeXRotation(math.pi)
 """Orientation of a target given without one: the tool axis pointing at the floor."""
@@ -21,6 +21,7 @@ class RobotCommandNode(CommandNode):
     """A command to RobotMotion; halting a move stops the robot on its path."""
 
     actor = ROBOT
+    commands = (ROBOT,)
     cancel_command = robot.Stop
 
     def tool_target(self, port: str) -> tuple[RigidTransform, bool]:
@@ -98,6 +99,7 @@ class SetRobotVelocity(SyncActionNode):
     speeds up on the same path without failing. Always SUCCESS."""
 
     ports = (InputPort("velocity", float, description="fraction of full speed, 0..1"),)
+    commands = (ROBOT,)
 
     def tick(self) -> Status:
         fraction = self.get_input("velocity")

@@ -1,11 +1,11 @@
 """Workpieces command and status messages (abstract-valued ports of the Workpieces system).
 
-Several issuers (the robot's and the person's behavior trees, the robot's vacuum gripper) each
-hold their latest command on their own input port. Workpieces acts on a command whose `seq`
-is newer than the last one it saw from that issuer; every command finishes within one update,
-so its outcome is `succeeded`, `failed` (sound, but not possible now: capacity, unknown id,
-too far, too heavy) or `rejected` (meaningless: unknown type, holder or area), from the shared
-vocabulary of `hrc_drake.messages`.
+Several issuers (the robot's and the person's behavior trees, the robot's vacuum gripper,
+hrc_drake.wiring) each hold their recent commands on their own input port. Workpieces acts on
+a command whose `seq` is newer than the last one it saw from that issuer; every command
+finishes within one update, so its outcome is `succeeded`, `failed` (sound, but not possible
+now: capacity, unknown id, too far, too heavy) or `rejected` (meaningless: unknown type,
+holder or area), from the shared vocabulary of `hrc_drake.messages`.
 
 Holders are the robot's vacuum cup (grasp frame: the tool's `tcp`, z out of the cup) and the
 person's hands: one hand holds in a level frame at its grasp point turned with the person,
@@ -20,14 +20,15 @@ from pydrake.geometry import GeometryId
 from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
 
-from hrc_drake.messages import OUTCOMES
+from hrc_drake.messages import ResultLog
 
-ROBOT = "robot"
+ROBOT_HOLDER = "robot"
+"""The robot's vacuum cup as a holder of objects."""
 LEFT_HAND = "left_hand"
 RIGHT_HAND = "right_hand"
 BOTH_HANDS = "both_hands"
 PERSON_HOLDERS = (LEFT_HAND, RIGHT_HAND, BOTH_HANDS)
-HOLDERS = (ROBOT, *PERSON_HOLDERS)
+HOLDERS = (ROBOT_HOLDER, *PERSON_HOLDERS)
 
 GRASPABLE = "graspable"
 """Attribute: an object whose `graspable` attribute is false cannot be attached."""
@@ -87,7 +88,7 @@ class Attach:
 
 
 @dataclass(frozen=True)
-class Release:
+class Detach:
     """`holder` lets go of `object_id` (None: whatever it holds); the object drops and settles."""
 
     seq: int
@@ -111,23 +112,7 @@ class Transfer:
     """Where the object's centre goes in the receiver's frame (None: where it is now)."""
 
 
-WorkpiecesCommand = Spawn | Despawn | Attach | Release | Transfer
-
-
-@dataclass(frozen=True)
-class CommandResult:
-    """The outcome of one issuer's latest command; `object_id` names the object it concerned
-    (for Spawn: the new object)."""
-
-    seq: int
-    command: str
-    outcome: str
-    reason: str = ""
-    object_id: int | None = None
-
-    def __post_init__(self):
-        if self.outcome not in OUTCOMES:
-            raise ValueError(f"unknown outcome '{self.outcome}'")
+WorkpiecesCommand = Spawn | Despawn | Attach | Detach | Transfer
 
 
 @dataclass(frozen=True)
@@ -158,13 +143,13 @@ class ObjectStatus:
 
 @dataclass(frozen=True)
 class WorkpiecesStatus:
-    """Every live object (by increasing id), each issuer's last command result, and how many
-    more objects of each type can be spawned."""
+    """Every live object (by increasing id), each issuer's recent command results, and how
+    many more objects of each type can be spawned."""
 
     time: float
     objects: tuple[ObjectStatus, ...]
-    results: dict[str, tuple[CommandResult, ...]]
-    """Per issuer its recent command results, newest last."""
+    results: dict[str, ResultLog]
+    """Per issuer its recent command results (the objects answer each issuer apart)."""
     free_slots: dict[str, int]
 
     def object(self, object_id: int) -> ObjectStatus | None:
@@ -173,18 +158,8 @@ class WorkpiecesStatus:
     def held_by(self, holder: str) -> ObjectStatus | None:
         return next((o for o in self.objects if o.holder == holder), None)
 
-    def result(self, issuer: str) -> CommandResult | None:
-        """`issuer`'s latest command result."""
-        recent = self.results.get(issuer, ())
-        return recent[-1] if recent else None
-
-    def result_of(self, issuer: str, seq: int) -> CommandResult | None:
-        """The result of `issuer`'s command `seq`, if it is among the recent ones."""
-        return next((r for r in reversed(self.results.get(issuer, ())) if r.seq == seq), None)
-
-    def outcome_of(self, issuer: str, seq: int) -> str | None:
-        result = self.result_of(issuer, seq)
-        return result.outcome if result is not None else None
+    def results_of(self, issuer: str) -> ResultLog:
+        return self.results.get(issuer, ResultLog())
 
 
 OBJECT_SUPPORT_PREFIX = "object:"

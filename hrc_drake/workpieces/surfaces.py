@@ -16,7 +16,7 @@ from pydrake.geometry import Box, Cylinder, SceneGraph
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
-from hrc_drake.cell_geometry import anchored_collision_shapes
+from hrc_drake.scene_geometry import anchored_collision_shapes
 from hrc_drake.workpieces.config import SurfaceConfig
 from hrc_drake.workpieces.geometry import CIRCLE_SIDES, edge_normals, overlaps
 

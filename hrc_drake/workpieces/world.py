@@ -29,7 +29,14 @@ from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.areas import Area
-from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED, newer_commands, recorded
+from hrc_drake.messages import (
+    FAILED,
+    REJECTED,
+    SUCCEEDED,
+    CommandResult,
+    ResultLog,
+    newer_commands,
+)
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import (
@@ -50,14 +57,13 @@ from hrc_drake.workpieces.messages import (
     LEFT_HAND,
     PERSON_HOLDERS,
     RIGHT_HAND,
-    ROBOT,
+    ROBOT_HOLDER,
     Attach,
     Attributes,
-    CommandResult,
     Despawn,
+    Detach,
     HandPoses,
     ObjectStatus,
-    Release,
     Spawn,
     Transfer,
     WorkpiecesCommand,
@@ -155,7 +161,7 @@ class World:
     next_id: int
     holders: dict[str, HolderSample]
     seen: dict[str, int]
-    results: dict[str, tuple[CommandResult, ...]]
+    results: dict[str, ResultLog]
 
     def __deepcopy__(self, memo):
         """Never modified after construction, so copies can share it (Drake clones state)."""
@@ -170,7 +176,7 @@ def holder_frames(
     hands' at their midpoint, facing away from the body (x), y from the right hand to the
     left, z up. `hands` is empty or None while the person has none. The poses are copied:
     an input port's value may be overwritten in place when it is evaluated again."""
-    frames = {} if tool is None else {ROBOT: (RigidTransform(tool), None)}
+    frames = {} if tool is None else {ROBOT_HOLDER: (RigidTransform(tool), None)}
     if hands:
         facing = RotationMatrix.MakeZRotation(hands.heading)
         left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
@@ -347,7 +353,7 @@ class _Step:
             Spawn: lambda c: self.spawn(c, self.cell.random(SPAWN_STREAM, issuer_index, c.seq)),
             Despawn: self.despawn,
             Attach: self.attach,
-            Release: self.release,
+            Detach: self.detach,
             Transfer: self.transfer,
         }
         handler = handlers.get(type(command))
@@ -357,7 +363,7 @@ class _Step:
             result = handler(command)
         self.changed |= result.outcome == SUCCEEDED
         self.seen[issuer] = command.seq
-        self.results[issuer] = recorded(self.results.get(issuer, ()), result)
+        self.results[issuer] = self.results.get(issuer, ResultLog()).recorded(result)
 
     def spawn(self, command: Spawn, rng: np.random.Generator) -> CommandResult:
         kind = self.cell.kinds.get(command.type)
@@ -428,7 +434,7 @@ class _Step:
             problem = self._attach_problem(piece, command.object_id, holder)
         return self._grasp(command, piece, holder, problem)
 
-    def release(self, command: Release) -> CommandResult:
+    def detach(self, command: Detach) -> CommandResult:
         if command.holder not in HOLDERS:
             return _result(command, REJECTED, _unknown_holder(command.holder))
         if command.object_id is None:
@@ -470,7 +476,7 @@ class _Step:
         if holder not in HOLDERS:
             return _unknown_holder(holder)
         if holder not in self.samples:
-            who = "robot tool" if holder == ROBOT else "person's hands"
+            who = "robot tool" if holder == ROBOT_HOLDER else "person's hands"
             return f"there is no {holder}: the {who} pose is not connected"
         return ""
 
@@ -493,7 +499,9 @@ class _Step:
             return f"object {piece.id} is held by {piece.holder}; hand it over with Transfer"
         if not piece.attributes.get(GRASPABLE, True):
             return f"object {piece.id} is not graspable"
-        tolerance = self.config.vacuum_tolerance if holder == ROBOT else self.config.hand_tolerance
+        tolerance = (
+            self.config.vacuum_tolerance if holder == ROBOT_HOLDER else self.config.hand_tolerance
+        )
         if self._grasp_distance(piece, holder) is None:
             return f"object {piece.id} is not within {tolerance} m of the {holder}'s grasp frame"
         return ""
@@ -503,7 +511,7 @@ class _Step:
             return f"no object {object_id}"
         if piece.holder is None:
             return f"object {piece.id} is not held; grasp it with Attach"
-        if (piece.holder == ROBOT) == (to == ROBOT):
+        if (piece.holder == ROBOT_HOLDER) == (to == ROBOT_HOLDER):
             return f"a hand-over is between the robot and the person, not {piece.holder} -> {to}"
         problem = self._holder_problem(to) or self._busy(to)
         if problem:
@@ -539,14 +547,14 @@ class _Step:
         """How far the holder's grasp is from the piece, if within the holder's tolerance.
 
         The vacuum cup must lie on the top face, facing it; hands must be near the surface."""
-        if holder == ROBOT:
+        if holder == ROBOT_HOLDER:
             return self._cup_distance(piece)
         distance = self._distance(piece, holder)
         return distance if distance <= self.config.hand_tolerance else None
 
     def _cup_distance(self, piece: Piece) -> float | None:
         solid = self.cell.kinds[piece.type].solid
-        X_OT = piece.pose.inverse() @ self.holder_pose(ROBOT)
+        X_OT = piece.pose.inverse() @ self.holder_pose(ROBOT_HOLDER)
         facing = -X_OT.rotation().col(2)[2]
         tilt_limit = math.cos(math.radians(self.config.vacuum_max_tilt_deg))
         p_OT = X_OT.translation()
@@ -669,7 +677,7 @@ def _sample(previous: HolderSample | None, pose: RigidTransform, time: float) ->
 def _result(
     command: WorkpiecesCommand, outcome: str, reason: str = "", object_id: int | None = None
 ) -> CommandResult:
-    return CommandResult(command.seq, type(command).__name__, outcome, reason, object_id)
+    return CommandResult(command.seq, outcome, reason, object_id)
 
 
 def _unknown_holder(holder: str) -> str:

@@ -186,6 +186,30 @@ def test_bad_tree_is_one_located_line(name, tmp_path, hrc_drake):
     assert "<unknown>" not in line
 
 
+@pytest.mark.parametrize("command", ["validate", "run"])
+def test_a_node_commanding_an_actor_its_agent_may_not_is_one_located_line(
+    command, tmp_path, hrc_drake
+):
+    """The robot's tree given to the person: its SetRobotVelocity (line 4) and RobotMove
+    would command the robot, which only the robot's tree does; nothing would carry their
+    commands out, so the tree is refused before any simulation."""
+    robot_tree_to_the_person = Case(
+        S, "  robot: {file: robot.xml,", "  human: {file: robot.xml,", ()
+    )
+    scenario = write_workspace(tmp_path, robot_tree_to_the_person)
+    status, _, err = hrc_drake(
+        command, scenario, *(["--out", tmp_path / "run"] * (command == "run"))
+    )
+    assert_one_line_error(
+        status,
+        err,
+        f"{tmp_path / 'robot.xml'}:4:",
+        "SetRobotVelocity",
+        "the human's tree may not command the robot (it commands: human, workpieces)",
+    )
+    assert not (tmp_path / "run").exists()
+
+
 @pytest.mark.parametrize("name", ["unknown node", "unknown port", "missing port"])
 def test_a_mistake_in_a_shared_subtree_is_reported_once(name, tmp_path):
     """Reach is used twice; each of its mistakes is one message, not one per instance."""

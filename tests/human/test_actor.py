@@ -9,7 +9,6 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from hrc_drake.human.body import human_body
-from hrc_drake.human.builder import add_human, body_regions
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.messages import (
     AnimateCommand,
@@ -21,6 +20,9 @@ from hrc_drake.human.motion import ActorState, Context, TurnSegment, advance, po
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.ports import message_value
+from hrc_drake.safety.geometry import human_parts
+from hrc_drake.systems.human_actor import add_human
+from hrc_drake.wiring import HUMAN_MODEL
 
 SAMPLE = 1.0 / 60.0
 
@@ -49,7 +51,7 @@ class Run:
         scene_graph = builder.AddSystem(SceneGraph())
         self.actor, self.plant = add_human(builder, scene_graph, start_pose=start_pose)
         script = builder.AddSystem(ScriptedCommands(schedule))
-        builder.Connect(script.get_output_port(), self.actor.GetInputPort("human_command"))
+        builder.Connect(script.get_output_port(), self.actor.GetInputPort("human_tree_command"))
         self.scene_graph = scene_graph
         self.simulator = Simulator(builder.Build())
         self.context = self.actor.GetMyContextFromRoot(self.simulator.get_mutable_context())
@@ -97,24 +99,24 @@ def test_command_while_busy_is_rejected_and_cancel_returns_to_idle():
     )
     status = run.advance(0.7)
     assert status.state == "ANIMATION"
-    assert (status.last_seq, status.outcome) == (2, "rejected")
-    assert status.outcome_of(1) == "running"
+    assert (status.results.last.seq, status.results.last.outcome) == (2, "rejected")
+    assert status.results.outcome_of(1) == "running"
     status = run.advance(1.2)
     assert status.state == "IDLE"
-    assert status.outcome_of(1) == "cancelled"
-    assert status.outcome_of(3) == "succeeded"
+    assert status.results.outcome_of(1) == "cancelled"
+    assert status.results.outcome_of(3) == "succeeded"
 
 
 def test_unknown_animation_fails_with_a_reason():
     status = Run([(0.1, AnimateCommand(1, "moonwalk"))]).advance(0.3)
-    assert status.outcome == "failed" and "moonwalk" in status.reason
+    assert status.results.last.outcome == "failed" and "moonwalk" in status.results.last.reason
 
 
 def test_set_called_does_not_disturb_a_running_animation():
     run = Run([(0.1, AnimateCommand(1, "wave")), (0.4, SetCalledCommand(2, True))])
     status = run.advance(0.6)
     assert status.called and status.state == "ANIMATION"
-    assert status.outcome_of(1) == "running" and status.outcome_of(2) == "succeeded"
+    assert status.results.outcome_of(1) == "running" and status.results.outcome_of(2) == "succeeded"
 
 
 def _yaw(quaternion_yaw):
@@ -125,7 +127,7 @@ def test_movement_reaches_target_pose():
     target_yaw = np.radians(120)
     run = Run([(0.1, MoveCommand(1, (3.0, -1.5, 0.0), _yaw(target_yaw)))])
     status = run.advance(10.0)
-    assert status.outcome_of(1) == "succeeded" and status.state == "IDLE"
+    assert status.results.outcome_of(1) == "succeeded" and status.state == "IDLE"
     x, y, yaw = status.base_pose
     assert np.hypot(x - 3.0, y + 1.5) < 0.02
     assert abs(np.angle(np.exp(1j * (yaw - target_yaw)))) < np.radians(3)
@@ -135,7 +137,7 @@ def test_null_quaternion_ends_facing_the_walking_direction_via_waypoints():
     run = Run([(0.1, MoveCommand(1, (2.0, 2.0, 0.0), waypoints=((2.0, 0.0),)))])
     status = run.advance(10.0)
     x, y, yaw = status.base_pose
-    assert status.outcome_of(1) == "succeeded"
+    assert status.results.outcome_of(1) == "succeeded"
     assert np.hypot(x - 2.0, y - 2.0) < 0.02
     assert abs(np.angle(np.exp(1j * (yaw - np.pi / 2)))) < np.radians(3)
 
@@ -175,7 +177,7 @@ def test_walk_speed_and_planted_feet_in_the_actor():
     statuses, poses = run.record(9.0)
     arrived = next(s.time for s in statuses if s.base_pose[0] >= 8.0 - 0.005)
     assert 1.2 <= 8.0 / (arrived - 0.1 - 0.6) <= 1.4  # cruising speed; ramps cost 0.6 s
-    done = next(s.time for s in statuses if s.outcome == "succeeded")
+    done = next(s.time for s in statuses if s.results.outcome_of(1) == "succeeded")
     assert arrived <= done <= arrived + GAIT_CYCLE  # the last step closes the feet
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
@@ -198,7 +200,7 @@ def test_a_walk_turns_to_face_its_place_over_its_last_steps():
     statuses, poses = run.record(5.5)
     segments = run.context.get_abstract_state(0).get_value().activity.segments
     assert not any(isinstance(s, TurnSegment) and s.cycles for s in segments)
-    assert statuses[-1].outcome_of(1) == "succeeded"
+    assert statuses[-1].results.outcome_of(1) == "succeeded"
     assert abs(statuses[-1].base_pose[2] - np.radians(40)) < np.radians(3)
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
@@ -220,7 +222,7 @@ def test_a_turn_cancelled_halfway_finishes_its_step_without_sliding_a_foot():
         [(0.1, MoveCommand(1, (0.0, 0.0, 0.0), _yaw(np.radians(170)))), (0.8, CancelCommand(2))]
     )
     statuses, poses = run.record(4.0)
-    assert statuses[-1].outcome_of(1) == "cancelled" and statuses[-1].state == "IDLE"
+    assert statuses[-1].results.outcome_of(1) == "cancelled" and statuses[-1].state == "IDLE"
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
 
@@ -229,10 +231,10 @@ def test_animation_progress_rises_and_speed_two_halves_the_duration():
     for speed in (1.0, 2.0):
         run = Run([(0.1, AnimateCommand(1, "reach", speed))])
         statuses, _ = run.record(3.0)
-        running = [s for s in statuses if s.outcome_of(1) == "running"]
+        running = [s for s in statuses if s.results.outcome_of(1) == "running"]
         progress = [s.progress for s in running]
         assert progress[0] < 0.05 and np.all(np.diff(progress) >= 0)
-        done = next(s for s in statuses if s.outcome_of(1) == "succeeded")
+        done = next(s for s in statuses if s.results.outcome_of(1) == "succeeded")
         assert done.progress == 1.0
         durations[speed] = done.time - 0.1
     assert durations[2.0] == pytest.approx(durations[1.0] / 2, abs=2 * SAMPLE)
@@ -261,7 +263,7 @@ def test_targeted_pick_puts_the_hands_on_the_target():
 def test_unreachable_target_fails_without_moving():
     run = Run([(0.1, AnimateCommand(1, "reach", target=(2.5, 0.0, 1.0)))])
     status = run.advance(0.5)
-    assert status.outcome == "failed" and "reach" in status.reason
+    assert status.results.last.outcome == "failed" and "reach" in status.results.last.reason
     assert status.state == "IDLE"
 
 
@@ -342,5 +344,6 @@ def test_walk_transitions_are_continuous():
 
 def test_regions_cover_every_collision_geometry():
     run = Run([])
-    regions = body_regions(run.plant, run.scene_graph)
-    assert len(regions) == 19 and set(regions.values()) == set(REGIONS)
+    inspector = run.scene_graph.model_inspector()
+    parts = human_parts(run.plant, inspector, run.plant.GetModelInstanceByName(HUMAN_MODEL))
+    assert len(parts) == 19 and {part.name for part in parts} == set(REGIONS)

@@ -83,5 +83,5 @@ def test_the_palms_keep_hold_through_pick_turn_walk_and_standing():
         state = advance(ctx, state, t, {"human": command} if command else {})
         if t > grasped + 0.05:
             spacings.append(_palm_spacing(ctx, state, t))
-    assert state.state == "IDLE" and state.results[-1].outcome == "succeeded"
+    assert state.state == "IDLE" and state.results.last.outcome == "succeeded"
     assert max(abs(s - CARTON[1]) for s in spacings) < 0.02

@@ -67,7 +67,7 @@ class Station:
         return self.simulator.get_context()
 
     def command(self, command) -> None:
-        self.diagram.GetInputPort("robot_motion.robot_command").FixValue(self.context, command)
+        self.diagram.GetInputPort("robot_motion.robot_tree_command").FixValue(self.context, command)
 
     def set_safety_scale(self, scale: float) -> None:
         self.diagram.GetInputPort("robot_motion.speed_scale").FixValue(self.context, [scale])
@@ -92,7 +92,7 @@ class Station:
             self.simulator.AdvanceTo(self.context.get_time() + 0.01)
             if on_step is not None:
                 on_step(self)
-            outcome = self.status().outcome_of(seq)
+            outcome = self.status().results.outcome_of(seq)
             if outcome in FINISHED:
                 return outcome
         return "timeout"
@@ -133,7 +133,7 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
             station.motion.GetOutputPort("desired_acceleration").Eval(motion_context).copy()
         )
         trace.speed_scale.append(status.speed_scale)
-        trace.outcomes.append(status.outcome_of(seq))
+        trace.outcomes.append(status.results.outcome_of(seq))
         trace.modes.append(status.mode)
         return EventStatus.Succeeded()
 

@@ -31,7 +31,7 @@ def move_next_to_the_person(avoid_person: bool):
     diagram = build_diagram(scenario)
     simulator = Simulator(diagram)
     context = simulator.get_context()
-    diagram.GetInputPort("robot_motion.robot_command").FixValue(
+    diagram.GetInputPort("robot_motion.robot_tree_command").FixValue(
         context, MoveTo(1, NEXT_TO_THE_PERSON)
     )
     simulator.AdvanceTo(4.0)
@@ -40,7 +40,7 @@ def move_next_to_the_person(avoid_person: bool):
 
 def test_without_perception_the_planner_goes_next_to_the_person():
     status = move_next_to_the_person(avoid_person=False)
-    assert status.outcome_of(1) == SUCCEEDED
+    assert status.results.outcome_of(1) == SUCCEEDED
     np.testing.assert_allclose(
         status.tool_pose.translation(), NEXT_TO_THE_PERSON.translation(), atol=2e-3
     )
@@ -48,5 +48,5 @@ def test_without_perception_the_planner_goes_next_to_the_person():
 
 def test_with_perception_a_target_at_the_person_is_refused():
     status = move_next_to_the_person(avoid_person=True)
-    assert status.outcome_of(1) == FAILED
-    assert "collision" in status.result_of(1).reason
+    assert status.results.outcome_of(1) == FAILED
+    assert "collision" in status.results.result_of(1).reason

@@ -34,15 +34,15 @@ def test_move_while_moving_is_rejected_and_stop_cancels(station):
     step(station, 0.3)
     station.command(MoveJoints(seq=2, configuration="ready"))
     step(station)
-    assert station.status().result_of(2).outcome == REJECTED
-    assert "busy" in station.status().result_of(2).reason
-    assert station.status().outcome_of(1) == RUNNING
+    assert station.status().results.result_of(2).outcome == REJECTED
+    assert "busy" in station.status().results.result_of(2).reason
+    assert station.status().results.outcome_of(1) == RUNNING
     station.command(Grip(seq=3))
     step(station)
-    assert station.status().outcome_of(3) == REJECTED
+    assert station.status().results.outcome_of(3) == REJECTED
     station.command(Stop(seq=4))
     step(station)
-    assert station.status().outcome_of(1) == CANCELLED
+    assert station.status().results.outcome_of(1) == CANCELLED
     assert station.run_until_finished(4) == SUCCEEDED
     assert station.status().mode == IDLE
     stopped_at = station.q()
@@ -55,7 +55,7 @@ def test_move_while_moving_is_rejected_and_stop_cancels(station):
 def test_grip_without_workpieces_system_fails(station):
     station.command(Grip(seq=1))
     assert station.run_until_finished(1) == FAILED
-    assert "no workpieces system" in station.status().reason
+    assert "no workpieces system" in station.status().results.last.reason
 
 
 def parts_on_the_table() -> WorkpiecesConfig:
@@ -92,6 +92,8 @@ def test_grip_attaches_the_part_at_the_cup_within_payload():
     ]
     for command, outcome, held in commands:
         station.command(command)
-        assert station.run_until_finished(command.seq) == outcome, station.status().reason
+        assert station.run_until_finished(command.seq) == outcome, (
+            station.status().results.last.reason
+        )
         assert station.status().held_object == held, command
-    assert "already holding" in station.status().result_of(3).reason
+    assert "already holding" in station.status().results.result_of(3).reason

@@ -14,7 +14,7 @@ DOWN = 0.1
 def test_approach_and_retreat_stay_on_the_line():
     station = build_station(make_scenario())
     station.command(MoveTo(seq=1, pose=ABOVE))
-    assert station.run_until_finished(1) == SUCCEEDED, station.status().reason
+    assert station.run_until_finished(1) == SUCCEEDED, station.status().results.last.reason
     start = station.tool_pose().translation()
     approach = RigidTransform(ABOVE.rotation(), ABOVE.translation() - [0.0, 0.0, DOWN])
     for seq, target in ((2, approach), (3, ABOVE)):
@@ -27,7 +27,7 @@ def test_approach_and_retreat_stay_on_the_line():
                 )
             },
         )
-        assert trace.final == SUCCEEDED, station.status().reason
+        assert trace.final == SUCCEEDED, station.status().results.last.reason
         line = np.array([start, target.translation()])
         assert distance_to_polyline(trace.arrays()["tool"], line).max() < 5e-3
         assert np.linalg.norm(station.tool_pose().translation() - target.translation()) < 2e-3
@@ -41,4 +41,4 @@ def test_line_through_the_table_fails_with_reason():
     into_table = RigidTransform(ABOVE.rotation(), ABOVE.translation() - [0.0, 0.0, 0.3])
     station.command(MoveLinear(seq=2, pose=into_table))
     assert station.run_until_finished(2) == FAILED
-    assert "linear move" in station.status().reason
+    assert "linear move" in station.status().results.last.reason

@@ -38,14 +38,14 @@ def test_move_to_reaches_targets_across_the_workspace(variant):
     station = build_station(make_scenario(variant))
     for seq, target in enumerate(workspace_targets(variant), start=1):
         station.command(MoveTo(seq=seq, pose=target))
-        assert station.run_until_finished(seq) == SUCCEEDED, station.status().reason
+        assert station.run_until_finished(seq) == SUCCEEDED, station.status().results.last.reason
         distance, angle = pose_error(station.tool_pose(), target)
         assert distance < 2e-3 and angle < 1.0, (distance, angle)
     station.command(
         MoveTo(seq=9, pose=RigidTransform(TOOL_DOWN, [2.0 * VARIANTS[variant].reach, 0, 1]))
     )
     assert station.run_until_finished(9) == FAILED
-    assert "unreachable" in station.status().reason
+    assert "unreachable" in station.status().results.last.reason
 
 
 def test_unreachable_orientation_fails_with_reason():
@@ -53,4 +53,4 @@ def test_unreachable_orientation_fails_with_reason():
     inside_pedestal = RigidTransform(TOOL_DOWN, [0.0, 0.0, PEDESTAL_TOP - 0.1])
     station.command(MoveTo(seq=1, pose=inside_pedestal))
     assert station.run_until_finished(1) == FAILED
-    assert "unreachable" in station.status().reason
+    assert "unreachable" in station.status().results.last.reason

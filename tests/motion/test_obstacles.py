@@ -5,7 +5,7 @@ from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.motion.messages import MoveTo
-from hrc_drake.station_models import ROBOT_MODEL, TOOL_MODEL
+from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
 from tests.motion.motion_helpers import build_station, make_scenario
 
 BOX_AT = (0.3, 0.35)
@@ -41,7 +41,7 @@ def test_target_behind_box_is_reached_around_it():
     outcome = station.run_until_finished(
         1, on_step=lambda s: closest.append(robot_cell_distance(s))
     )
-    assert outcome == SUCCEEDED, station.status().reason
+    assert outcome == SUCCEEDED, station.status().results.last.reason
     assert min(closest) > 0.0
     assert max(closest) - min(closest) > 0.01  # the queried scene follows the moving robot
     assert np.linalg.norm(station.tool_pose().translation() - BEHIND_THE_BOX.translation()) < 2e-3

@@ -18,7 +18,7 @@ def test_holds_initial_configuration_without_commands(station):
     station.simulator.AdvanceTo(station.context.get_time() + 0.5)
     assert np.abs(station.q() - home).max() < 1e-4
     status = station.status()
-    assert status.mode == IDLE and status.last_seq == -1 and status.speed_scale == 1.0
+    assert status.mode == IDLE and status.results.last is None and status.speed_scale == 1.0
 
 
 def test_move_joints_to_named_configuration_and_back(station):
@@ -32,7 +32,7 @@ def test_move_joints_to_named_configuration_and_back(station):
 def test_unknown_configuration_fails_with_reason(station):
     station.command(MoveJoints(seq=3, configuration="nowhere"))
     assert station.run_until_finished(3) == FAILED
-    assert "unknown configuration 'nowhere'" in station.status().reason
+    assert "unknown configuration 'nowhere'" in station.status().results.last.reason
 
 
 def test_bad_speed_is_rejected_and_stop_when_idle_succeeds(station):

@@ -7,7 +7,7 @@ import pytest
 from hrc_drake.areas import Area
 from hrc_drake.bt import Status, SyncActionNode, load_tree
 from hrc_drake.nodes import hrc_registry
-from hrc_drake.nodes.context import AgentContext, Places
+from hrc_drake.nodes.agent import Agent, Places
 
 L_SHAPE = Area.from_polygon([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]])
 CHI2_999 = {2: 13.82, 11: 31.26}  # chi-square critical values at p = 0.001
@@ -15,8 +15,8 @@ CHI2_999 = {2: 13.82, 11: 31.26}  # chi-square critical values at p = 0.001
 
 def make_tree(body: str, registry=None, seed=0):
     xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{body}</BehaviorTree></root>'
-    context = AgentContext("test", Places(areas={"L": L_SHAPE}))
-    return load_tree(xml, registry or hrc_registry(), seed=seed, context=context)
+    agent = Agent("robot", Places(areas={"L": L_SHAPE}))
+    return load_tree(xml, registry or hrc_registry(), seed=seed, context=agent)
 
 
 def chi_square(counts, expected) -> float:

@@ -6,7 +6,7 @@ from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.bt import BTError, Status, load_tree
 from hrc_drake.nodes import hrc_registry
-from hrc_drake.nodes.context import AgentContext, Places
+from hrc_drake.nodes.agent import Agent, Places
 from hrc_drake.workpieces import messages as wp
 
 
@@ -33,14 +33,14 @@ def tick_held_object(status, holder="robot"):
         f'<HeldObject holder="{holder}" object_id="{{id}}" pose="{{pose}}"/>'
         "</BehaviorTree></root>"
     )
-    context = AgentContext("human", Places())
-    context.statuses["workpieces"] = status
-    tree = load_tree(xml, hrc_registry(), context=context)
+    agent = Agent("human", Places())
+    agent.statuses["workpieces"] = status
+    tree = load_tree(xml, hrc_registry(), context=agent)
     return tree.tick(0.0), tree.root_blackboard
 
 
 def test_held_object_names_what_the_robot_holds():
-    status, blackboard = tick_held_object(objects_status((1, None), (2, wp.ROBOT)))
+    status, blackboard = tick_held_object(objects_status((1, None), (2, wp.ROBOT_HOLDER)))
     assert status is Status.SUCCESS
     assert blackboard.get("id") == 2
     assert blackboard.get("pose").position == (2.0, 0.0, 1.0)
@@ -54,4 +54,4 @@ def test_held_object_fails_when_the_holder_holds_nothing():
 
 def test_held_object_rejects_an_unknown_holder():
     with pytest.raises(BTError, match="unknown holder 'gripper'"):
-        tick_held_object(objects_status((1, wp.ROBOT)), holder="gripper")
+        tick_held_object(objects_status((1, wp.ROBOT_HOLDER)), holder="gripper")

@@ -8,7 +8,7 @@ from hrc_drake.areas import Area
 from hrc_drake.bt import Status, load_tree
 from hrc_drake.motion.messages import RobotStatus
 from hrc_drake.nodes import hrc_registry
-from hrc_drake.nodes.context import AgentContext, Places
+from hrc_drake.nodes.agent import Agent, Places
 
 TRAY = Area.from_polygon([[-0.6, -0.2], [-0.3, -0.2], [-0.3, 0.3], [-0.6, 0.3]])
 
@@ -27,9 +27,9 @@ def robot_status(tool_xyz=(0.0, 0.0, 0.9), mode="moving") -> RobotStatus:
 
 def tick_condition(node: str, status) -> Status:
     xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{node}</BehaviorTree></root>'
-    context = AgentContext("human", Places(areas={"tray": TRAY}))
-    context.statuses["robot"] = status
-    return load_tree(xml, hrc_registry(), context=context).tick(0.0)
+    agent = Agent("human", Places(areas={"tray": TRAY}))
+    agent.statuses["robot"] = status
+    return load_tree(xml, hrc_registry(), context=agent).tick(0.0)
 
 
 def tick_robot_in_area(status) -> Status:

@@ -139,7 +139,7 @@ class Shuttle(LeafSystem):
     def _update(self, context, state) -> EventStatus:
         command = context.get_abstract_state(self._command).get_value()
         status = self._status.Eval(context)
-        if status is not None and status.outcome_of(command.seq) in FINISHED:
+        if status is not None and status.results.outcome_of(command.seq) in FINISHED:
             state.get_mutable_abstract_state(self._command).set_value(self._move(command.seq + 1))
         return EventStatus.Succeeded()
 
@@ -225,7 +225,7 @@ def build(case: Case):
     motion = add_robot_motion(builder, scene, plant, arm, controller)
     shuttle = builder.AddSystem(Shuttle(sweep_goals()))
     builder.Connect(motion.GetOutputPort("robot_status"), shuttle.get_input_port())
-    builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_command"))
+    builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_tree_command"))
 
     human_plant, human = _kinematic_person(builder, scene_graph, case)
     monitor = add_safety_monitor(

@@ -17,7 +17,7 @@ from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
-from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT, ObjectStatus
+from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT_HOLDER, ObjectStatus
 from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "coexistence.yaml"
@@ -123,7 +123,7 @@ def assert_parts_stay_in_the_process(outcome: Outcome) -> None:
     places["finished_part"] += ("output_tray",)
     for sample in outcome.samples:
         for obj in sample.objects:
-            if obj.type not in places or obj.holder in (ROBOT, *PERSON_HOLDERS):
+            if obj.type not in places or obj.holder in (ROBOT_HOLDER, *PERSON_HOLDERS):
                 continue
             if obj.type == "raw_part" and outcome.lies_in(obj, "bench_top"):
                 continue  # the person's own stock
@@ -187,7 +187,7 @@ def test_short_run_person_adds_a_part_the_robot_then_takes(short_run):
         assert short_run.lies_in(objects[int(event.value)], "input_tray")
     first = int(added[0].value)
     assert any(
-        o.id == first and o.holder == ROBOT
+        o.id == first and o.holder == ROBOT_HOLDER
         for sample in short_run.samples
         if sample.time > added[0].time
         for o in sample.objects

@@ -19,15 +19,15 @@ from hrc_drake.evaluation.realism import realism_metrics
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import Scenario, load_scenario
-from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT, ObjectStatus
+from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT_HOLDER, ObjectStatus
 from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "cooperation.yaml"
 SAMPLE_PERIOD = 0.25
 """Seconds between looks at the objects status: a part needs longer to cross the belt."""
 GONE = "gone"
-PLACES_OF_GOOD = {"infeed", ROBOT, "outfeed", GONE}
-PLACES_OF_DEFECTIVE = {"infeed", ROBOT, "reject_zone", "person", "scrap_bin"}
+PLACES_OF_GOOD = {"infeed", ROBOT_HOLDER, "outfeed", GONE}
+PLACES_OF_DEFECTIVE = {"infeed", ROBOT_HOLDER, "reject_zone", "person", "scrap_bin"}
 SHORT_SEED = 0
 """Its first three parts are defective and its fourth good: a short run fills the reject
 zone, brings the person to clear it and sends a part out on the belt."""
@@ -61,8 +61,8 @@ class Outcome:
 
 def place_of(obj: ObjectStatus, scenario: Scenario) -> str:
     """Where a part is, in the scenario's terms."""
-    if obj.holder == ROBOT:
-        return ROBOT
+    if obj.holder == ROBOT_HOLDER:
+        return ROBOT_HOLDER
     if obj.holder in PERSON_HOLDERS:
         return "person"
     if obj.support in ("infeed", "outfeed"):

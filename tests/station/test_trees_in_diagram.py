@@ -10,7 +10,7 @@ import pytest
 
 from hrc_drake.messages import CANCELLED
 from hrc_drake.runner import run
-from hrc_drake.workpieces.messages import BOTH_HANDS, RIGHT_HAND, ROBOT
+from hrc_drake.workpieces.messages import BOTH_HANDS, RIGHT_HAND, ROBOT_HOLDER
 from tests.station.station_cell import Simulation, cell
 
 
@@ -86,8 +86,8 @@ def test_spawned_part_goes_from_robot_to_person_and_is_carried_away():
         supports.append(objects[0].support)
     assert holders[0] is None and supports[0] == "work_table"
     # An 8 cm, 0.3 kg part: the person takes it in one hand (hrc_drake.human.grasp).
-    assert ROBOT in holders and RIGHT_HAND in holders and BOTH_HANDS not in holders
-    assert holders.index(ROBOT) < holders.index(RIGHT_HAND)
+    assert ROBOT_HOLDER in holders and RIGHT_HAND in holders and BOTH_HANDS not in holders
+    assert holders.index(ROBOT_HOLDER) < holders.index(RIGHT_HAND)
     final = sim["workpieces_status"].objects[0]
     assert final.holder is None and final.support == "floor"
     np.testing.assert_allclose(final.pose.translation()[:2], [3.0, 2.5], atol=0.1)

@@ -7,7 +7,7 @@ from pydrake.common.schema import Transform
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.workpieces.config import GridLayout
-from hrc_drake.workpieces.messages import ROBOT
+from hrc_drake.workpieces.messages import ROBOT_HOLDER
 from tests.workpieces.workpieces_rig import (
     PART_HEIGHT,
     PART_TOP,
@@ -29,7 +29,7 @@ def test_gripped_object_follows_the_tool_and_rests_on_the_table_when_released():
     position_errors, angle_errors = [], []
     for t in np.arange(0.5, 3.1, 0.0173):  # between the 10 ms updates too
         status = rig.advance(t)
-        assert status.object(1).holder == ROBOT
+        assert status.object(1).holder == ROBOT_HOLDER
         expected = tool(t) @ X_TO
         for pose in (status.object(1).pose, rig.query().GetPoseInWorld(geometry_id)):
             error = expected.inverse() @ pose
@@ -52,7 +52,7 @@ def test_released_over_a_stack_rests_on_the_top_object():
     rig = build_rig(config, commands, tool)
     status = rig.advance(4.0)
     carried = status.object(1)
-    assert status.result("robot_gripper").outcome == SUCCEEDED
+    assert status.results_of("robot_gripper").last.outcome == SUCCEEDED
     assert carried.support == "object:4"
     assert abs(carried.pose.translation()[2] - (stack_top + PART_HEIGHT / 2)) < 1e-3
     assert [status.object(i).support for i in (2, 3, 4)] == ["work_table", "object:2", "object:3"]

@@ -5,7 +5,7 @@ import pytest
 from pydrake.math import RollPitchYaw
 
 from hrc_drake.messages import FAILED, SUCCEEDED
-from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT, Attach, Transfer
+from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT_HOLDER, Attach, Transfer
 from tests.workpieces.workpieces_rig import (
     PART_HEIGHT,
     TABLE_TOP,
@@ -58,14 +58,14 @@ TOOL = path(
     ]
 )
 COMMANDS = {
-    "robot_gripper": [(0.2, Attach(seq=1, holder=ROBOT, max_mass=3.0))],
+    "robot_gripper": [(0.2, Attach(seq=1, holder=ROBOT_HOLDER, max_mass=3.0))],
     "human_tree": [
         (1.5, Transfer(seq=1, object_id=1, to_holder=BOTH_HANDS)),
         (2.6, Transfer(seq=2, object_id=1, to_holder=BOTH_HANDS)),
     ],
     "robot_tree": [
-        (3.8, Transfer(seq=1, object_id=1, to_holder=ROBOT, max_mass=3.0)),
-        (4.7, Transfer(seq=2, object_id=1, to_holder=ROBOT, max_mass=3.0)),
+        (3.8, Transfer(seq=1, object_id=1, to_holder=ROBOT_HOLDER, max_mass=3.0)),
+        (4.7, Transfer(seq=2, object_id=1, to_holder=ROBOT_HOLDER, max_mass=3.0)),
     ],
 }
 
@@ -83,14 +83,14 @@ def centre(status) -> np.ndarray:
 
 
 def test_robot_to_person_is_refused_while_the_hands_are_far(run):
-    result = run[1.6].result("human_tree")
+    result = run[1.6].results_of("human_tree").last
     assert (result.seq, result.outcome) == (1, FAILED)
     assert result.reason.startswith("hand-over refused: both_hands is 0.58")  # their midpoint
-    assert run[1.6].object(1).holder == ROBOT
+    assert run[1.6].object(1).holder == ROBOT_HOLDER
 
 
 def test_robot_to_person_works_when_close_and_the_part_follows_the_hands(run):
-    assert run[2.7].outcome_of("human_tree", 2) == SUCCEEDED
+    assert run[2.7].results_of("human_tree").outcome_of(2) == SUCCEEDED
     assert run[2.7].object(1).holder == BOTH_HANDS
     np.testing.assert_allclose(centre(run[4.2]), TAKEN - [0, 0, HALF_HEIGHT], atol=1e-6)
 
@@ -101,9 +101,9 @@ def test_the_part_follows_hands_sampled_at_60_hz_between_their_samples(run):
 
 
 def test_person_to_robot_is_refused_when_far_and_works_when_close(run):
-    refused = run[3.9].result("robot_tree")
+    refused = run[3.9].results_of("robot_tree").last
     assert (refused.seq, refused.outcome) == (1, FAILED)
     assert refused.reason.startswith("hand-over refused: robot is")
-    assert run[4.8].outcome_of("robot_tree", 2) == SUCCEEDED
-    assert run[5.8].object(1).holder == ROBOT
+    assert run[4.8].results_of("robot_tree").outcome_of(2) == SUCCEEDED
+    assert run[5.8].object(1).holder == ROBOT_HOLDER
     np.testing.assert_allclose(centre(run[5.8]), TAKEN - [0, 0, HALF_HEIGHT], atol=1e-6)

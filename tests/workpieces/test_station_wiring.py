@@ -13,12 +13,14 @@ from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
-from hrc_drake.messages import NO_COMMANDS, SUCCEEDED
+from hrc_drake.messages import NO_COMMANDS, SUCCEEDED, CommandResult
 from hrc_drake.paths import add_model_package
 from hrc_drake.scenario import RobotConfig
-from hrc_drake.station_models import TOOL_MODEL, add_robot
-from hrc_drake.systems.workpieces import add_workpieces, hand_poses
-from hrc_drake.workpieces.messages import ROBOT, Attach, CommandResult, Spawn
+from hrc_drake.station_models import add_robot
+from hrc_drake.systems.adapters import hand_poses
+from hrc_drake.systems.workpieces import add_workpieces
+from hrc_drake.wiring import TOOL_MODEL
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Spawn
 from tests.workpieces.workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
 
@@ -41,7 +43,7 @@ def station():
     workpieces = add_workpieces(builder, scene_graph, plant, config_with(), tool_frame=tcp)
     spawn = builder.AddSystem(TimedValue(script([(0.0, Spawn(1, "part", under_cup))]), NO_COMMANDS))
     builder.Connect(spawn.get_output_port(), workpieces.GetInputPort("robot_tree_command"))
-    grip = Attach(seq=5, holder=ROBOT, max_mass=3.0)
+    grip = Attach(seq=5, holder=ROBOT_HOLDER, max_mass=3.0)
     vacuum = builder.AddSystem(TimedValue(script([(0.005, grip)]), NO_COMMANDS))
     builder.Connect(vacuum.get_output_port(), workpieces.GetInputPort("robot_gripper_command"))
     diagram = builder.Build()
@@ -56,9 +58,9 @@ def station():
 
 def test_the_tool_pose_is_the_plants_tcp_and_the_vacuum_attaches_the_part_under_it(station):
     X_WT, status = station
-    assert status.result("robot_gripper") == CommandResult(5, "Attach", SUCCEEDED, object_id=1)
+    assert status.results_of("robot_gripper").last == CommandResult(5, SUCCEEDED, object_id=1)
     part = status.object(1)
-    assert part.holder == ROBOT and part.mass == 0.4
+    assert part.holder == ROBOT_HOLDER and part.mass == 0.4
     top_centre = part.pose.translation() + [0.0, 0.0, PART_HEIGHT / 2]
     assert np.linalg.norm(top_centre - X_WT.translation()) < 2e-3
 

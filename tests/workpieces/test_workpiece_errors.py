@@ -7,7 +7,7 @@ from pydrake.math import RigidTransform
 
 from hrc_drake.areas import Area
 from hrc_drake.messages import FAILED, REJECTED, SUCCEEDED
-from hrc_drake.workpieces.messages import LEFT_HAND, ROBOT, Attach, Despawn, Release, Spawn
+from hrc_drake.workpieces.messages import LEFT_HAND, ROBOT_HOLDER, Attach, Despawn, Detach, Spawn
 from tests.workpieces.workpieces_rig import (
     PART,
     PART_HEIGHT,
@@ -25,16 +25,16 @@ CUP_ON_PART = RigidTransform(TOOL_DOWN, [X, Y, TABLE_TOP + PART_HEIGHT])
 COMMANDS = [
     Spawn(seq=1, type="part", pose=ON_TABLE),
     Spawn(seq=2, type="part", pose=ON_TABLE),
-    Attach(seq=3, holder=ROBOT, object_id=99),
-    Release(seq=4, holder=ROBOT, object_id=1),
-    Release(seq=5, holder=ROBOT),
+    Attach(seq=3, holder=ROBOT_HOLDER, object_id=99),
+    Detach(seq=4, holder=ROBOT_HOLDER, object_id=1),
+    Detach(seq=5, holder=ROBOT_HOLDER),
     Attach(seq=6, holder="tentacle"),
     Attach(seq=7, holder=LEFT_HAND, object_id=1),
     Spawn(seq=8, type="widget", pose=ON_TABLE),
     Despawn(seq=9, object_id=2),
     Spawn(seq=10, type="part", area="table"),
-    Attach(seq=11, holder=ROBOT, object_id=1, max_mass=0.1),
-    Attach(seq=12, holder=ROBOT, max_mass=3.0),
+    Attach(seq=11, holder=ROBOT_HOLDER, object_id=1, max_mass=0.1),
+    Attach(seq=12, holder=ROBOT_HOLDER, max_mass=3.0),
 ]
 EXPECTED = {
     1: (SUCCEEDED, ""),
@@ -68,16 +68,16 @@ def results():
 
 @pytest.mark.parametrize("seq", sorted(EXPECTED))
 def test_each_command_has_a_clear_outcome(results, seq):
-    result = results[seq].result("robot_tree")
+    result = results[seq].results_of("robot_tree").last
     assert result.seq == seq
     assert (result.outcome, result.reason) == EXPECTED[seq]
 
 
 def test_the_simulation_carries_on_after_failures(results):
-    assert results[1].result("robot_tree").object_id == 2
+    assert results[1].results_of("robot_tree").last.object_id == 2
     assert results[9].object(2) is None
-    spawned = results[10].object(results[10].result("robot_tree").object_id)
+    spawned = results[10].object(results[10].results_of("robot_tree").last.object_id)
     assert spawned.support == "work_table"
     assert spawned.pose.translation()[2] == pytest.approx(TABLE_TOP + PART_HEIGHT / 2)
-    assert results[12].object(1).holder == ROBOT
+    assert results[12].object(1).holder == ROBOT_HOLDER
     assert results[12].free_slots == {"part": 0}

@@ -24,7 +24,7 @@ from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
 from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
-from hrc_drake.workpieces.messages import ROBOT, Attach, HandPoses, Release
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, HandPoses
 from hrc_drake.yaml_check import check_node, compose
 
 WORK_TABLE_XY = (0.0, 0.9)
@@ -186,7 +186,7 @@ def _add_cell(plant) -> None:
 X, Y = WORK_TABLE_XY
 PART_TOP = TABLE_TOP + PART_HEIGHT
 TURNED = RollPitchYaw(np.pi, 0.0, np.pi / 2)
-GRIP = [(0.3, Attach(seq=1, holder=ROBOT, max_mass=3.0))]
+GRIP = [(0.3, Attach(seq=1, holder=ROBOT_HOLDER, max_mass=3.0))]
 
 
 def carry_to(destination, release_at: float = 3.2):
@@ -200,5 +200,5 @@ def carry_to(destination, release_at: float = 3.2):
             (4.0, destination, TURNED),
         ]
     )
-    commands = {"robot_gripper": [*GRIP, (release_at, Release(seq=2, holder=ROBOT))]}
+    commands = {"robot_gripper": [*GRIP, (release_at, Detach(seq=2, holder=ROBOT_HOLDER))]}
     return tool, commands

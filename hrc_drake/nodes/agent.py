@@ -1,10 +1,11 @@
-"""What a behavior tree node sees of the simulation: statuses in, commands out.
+"""What a behavior tree node sees of the simulation: its agent, with statuses in and
+commands out.
 
-The BehaviorTreeSystem puts one AgentContext on its tree (`tree.context`). Before each
-tick it stores the latest status messages of the actors it is wired to; nodes read them
-and send commands, which get the system's next sequence number. After the tick the system
-publishes the commands on its output ports. Named places of the scenario (locations and
-areas) are resolved here, so trees can name them.
+The BehaviorTreeSystem gives its tree one Agent (`tree.context`). Before each tick it stores
+the latest status of every source (hrc_drake.wiring.STATUS_SOURCES); nodes read them and
+send commands to the actors the agent may command, numbered in the agent's own steps. After
+the tick the system publishes the commands on its output ports. Named places of the
+scenario (locations and areas) are resolved here, so trees can name them.
 """
 
 from collections.abc import Callable
@@ -17,14 +18,17 @@ from pydrake.math import RigidTransform
 from hrc_drake.areas import Area
 from hrc_drake.messages import TaskEvent
 from hrc_drake.tree_types import AreaRef, Pose
-
-ROBOT = "robot"
-HUMAN = "human"
-WORKPIECES = "workpieces"
-SAFETY = "safety"
-ACTORS = (ROBOT, HUMAN, WORKPIECES)
-"""Actors a tree commands; each has a command output and a status input."""
-STATUS_INPUTS = (ROBOT, HUMAN, WORKPIECES, SAFETY)
+from hrc_drake.wiring import (
+    COMMANDED_BY,
+    HUMAN,
+    ROBOT,
+    SAFETY,
+    SEQ_STEP,
+    STATUS_SOURCES,
+    WORKPIECES,
+    first_seq,
+    tree_issuer,
+)
 
 
 @dataclass
@@ -35,22 +39,27 @@ class Places:
     areas: dict[str, Area] = field(default_factory=dict)
 
 
-class AgentContext:
+class Agent:
     """The tree's handle on its agent's world (see module docstring)."""
 
-    def __init__(self, agent: str, places: Places, seq_start: int = 1, seq_step: int = 1):
-        self.agent = agent
-        self.places = places
-        self.seq_start = seq_start
-        self.seq_step = seq_step
-        self.statuses: dict[str, Any] = dict.fromkeys(STATUS_INPUTS)
+    def __init__(self, name: str, places: Places | None = None):
+        self.name = name
+        self.places = places or Places()
+        self.commands = COMMANDED_BY[name]
+        """The actors this agent may command, one outbox each."""
+        self.statuses: dict[str, Any] = dict.fromkeys(STATUS_SOURCES)
         self.now = 0.0
         self.reset()
 
     def reset(self) -> None:
-        self.next_seq = self.seq_start
-        self.outbox: dict[str, list] = {actor: [] for actor in ACTORS}
+        self.next_seq = first_seq(self.name)
+        self.outbox: dict[str, list] = {actor: [] for actor in self.commands}
         self.events: list[TaskEvent] = []
+
+    @property
+    def issuer(self) -> str:
+        """How the actors name this agent's commands."""
+        return tree_issuer(self.name)
 
     # statuses ------------------------------------------------------------------------
     @property
@@ -69,25 +78,22 @@ class AgentContext:
     def safety(self):
         return self.statuses[SAFETY]
 
-    @property
-    def workpieces_issuer(self) -> str:
-        """This agent's name towards the Workpieces system, which answers per issuer."""
-        return f"{self.agent}_tree"
-
     # commands ------------------------------------------------------------------------
     def send(self, actor: str, make_command: Callable[[int], Any]) -> int:
-        """Queue `make_command(seq)` for `actor`; returns its sequence number."""
+        """Queue `make_command(seq)` for `actor`; returns its sequence number. Trees are
+        checked when they are loaded (hrc_drake.agent_trees), so an actor the agent may not
+        command is a programming error here."""
         seq = self.next_seq
-        self.next_seq += self.seq_step
+        self.next_seq += SEQ_STEP
         self.outbox[actor].append(make_command(seq))
         return seq
 
     def take_outbox(self) -> dict[str, list]:
-        sent, self.outbox = self.outbox, {actor: [] for actor in ACTORS}
+        sent, self.outbox = self.outbox, {actor: [] for actor in self.commands}
         return sent
 
     def emit(self, event: str, value: str = "") -> None:
-        self.events.append(TaskEvent(self.now, event, self.agent, value))
+        self.events.append(TaskEvent(self.now, event, self.name, value))
 
     # places --------------------------------------------------------------------------
     def resolve_pose(self, pose: Pose) -> Pose:
