@@ -17,8 +17,6 @@ from hrc_drake.iisy import (
     add_iisy,
     add_tool,
 )
-from hrc_drake.modelgen import generators
-from hrc_drake.paths import resource_dir
 
 
 class Station:
@@ -161,9 +159,3 @@ def test_tool_tcp_points_down_at_home(variant_name):
     X_WT = station.frame_in_world(TCP_FRAME)
     np.testing.assert_allclose(X_WT.rotation().matrix()[:, 2], [0.0, 0.0, -1.0], atol=1e-9)
     assert X_WT.translation()[2] > 0.05
-
-
-@pytest.mark.parametrize("relative_path", sorted(generators()))
-def test_generator_reproduces_committed_file(relative_path):
-    committed = (resource_dir("models") / relative_path).read_text()
-    assert committed == generators()[relative_path](), "run `python -m hrc_drake.modelgen`"

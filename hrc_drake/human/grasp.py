@@ -20,8 +20,8 @@ from functools import lru_cache
 import numpy as np
 from pydrake.math import RotationMatrix
 
-from hrc_drake.human.authoring import HOLD, pose_vector
 from hrc_drake.human.body import FrameTask, HumanBody
+from hrc_drake.human.keyed_clips import HOLD, pose_vector
 from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Grasp, Hold
 from hrc_drake.human.skeleton import SIDES
 

@@ -15,7 +15,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from hrc_drake.human.authoring import minimum_jerk, turn_clip
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import (
@@ -26,6 +25,7 @@ from hrc_drake.human.grasp import (
     reach_target,
     release_targets,
 )
+from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
 from hrc_drake.human.legs import Legs
 from hrc_drake.human.messages import (
     NULL_QUATERNION,

@@ -1,23 +1,17 @@
-"""Write the human skeleton as an SDFormat model, and keep the committed default model current.
+"""The human skeleton as SDFormat text, for a person of any height and mass.
 
-`python -m hrc_drake.human.sdf` rewrites models/human/human.sdf (the 1.75 m, 75 kg adult);
-other heights are generated in memory by `human_sdf(height, mass)`.
+The person's plant parses it from memory (hrc_drake.human.body); the committed default model
+models/human/human.sdf (the 1.75 m, 75 kg adult) is the same text, written by
+`python -m hrc_drake.modelgen models`.
 """
 
-import sys
-from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from hrc_drake.human.skeleton import COLORS, Body, Shape, Skeleton, build_skeleton
-from hrc_drake.paths import resource_dir
 
 MODEL_NAME = "human"
 REGION_SEPARATOR = "__"
 """Collision names are `<region>__<body>_<i>`: the safety monitor reads the region from them."""
-
-
-def default_model_path() -> Path:
-    return resource_dir("models") / "human" / "human.sdf"
 
 
 def _fmt(values) -> str:
@@ -118,15 +112,3 @@ def skeleton_sdf(skeleton: Skeleton) -> str:
 
 def human_sdf(height: float, mass: float) -> str:
     return skeleton_sdf(build_skeleton(height, mass))
-
-
-def main(argv=None) -> None:
-    """Rewrite the committed default model."""
-    del argv
-    path = default_model_path()
-    path.write_text(human_sdf(1.75, 75.0))
-    print(f"wrote {path}")
-
-
-if __name__ == "__main__":
-    main(sys.argv[1:])

@@ -18,8 +18,8 @@ from math import cos, inf, pi, sin, sqrt
 
 import numpy as np
 
-from hrc_drake.human.authoring import LIFTING, SETTLING, minimum_jerk
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.legs import Legs
 from hrc_drake.human.skeleton import SIDES
 
@@ -27,6 +27,12 @@ PROFILE_SAMPLES = 240
 """Samples of one gait cycle in a GaitProfile."""
 STANCE = 0.6
 """Fraction of the gait cycle a foot stands (heel strike to toe-off; docs/human-body.md)."""
+LIFTING = (STANCE, 0.68)
+"""Leg phases over which the foot leaving the floor picks up speed: it rises before it
+moves on (the gait clips are authored so too: hrc_drake.modelgen.gait)."""
+SETTLING = (0.9, 1.0)
+"""Leg phases over which the swinging foot slows to a stop above its landing place: it comes
+down on it without sliding on."""
 LAG = {"left": 0.0, "right": 0.5}
 """Phase of each foot's heel strike in the gait cycle (the clips' `<side>_heel_strike`)."""
 START_PHASE = 0.0

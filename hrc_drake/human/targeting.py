@@ -19,10 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
-from hrc_drake.human.authoring import minimum_jerk
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms, arm_indices, hand_tasks, outward
+from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.skeleton import SIDES
 
 TARGETED = {

@@ -1,33 +1,14 @@
-"""Generators of the model files in models/: `python -m hrc_drake.modelgen` rewrites them all."""
+"""The offline generators of the files in models/, apart from the code that reads them.
 
-from collections.abc import Callable
-from functools import partial
-from pathlib import Path
+`python -m hrc_drake.modelgen [models|clips|stopping]` regenerates them (all kinds without
+an argument; `--help` says more):
 
-from hrc_drake.iisy import VARIANTS
-from hrc_drake.modelgen.cell import CELL_OBJECTS, cell_sdf
-from hrc_drake.modelgen.robot import robot_sdf
-from hrc_drake.modelgen.tool import vacuum_gripper_sdf
-from hrc_drake.paths import resource_dir
+- models: the robot, tool, cell and human SDFormat files (`models`, `robot`, `tool`, `cell`,
+  `sdf`; the person's SDF text itself comes from hrc_drake.human.sdf, which also builds a
+  person of any other height at run time);
+- clips: the person's built-in motion clips (`clips`, `gait`);
+- stopping: the robots' stopping data, measured on RobotMotion (`stopping`; minutes).
 
-
-def generators() -> dict[str, Callable[[], str]]:
-    """Model file path (relative to models/) -> function returning its text."""
-    files: dict[str, Callable[[], str]] = {"tools/vacuum_gripper.sdf": vacuum_gripper_sdf}
-    for variant in VARIANTS.values():
-        files[f"iisy/{variant.name}.sdf"] = partial(robot_sdf, variant)
-    for name in CELL_OBJECTS:
-        files[f"cell/{name}.sdf"] = partial(cell_sdf, name)
-    return files
-
-
-def write_all(models_dir: Path | None = None) -> list[Path]:
-    """Write every generated model file; returns the paths written."""
-    root = models_dir or resource_dir("models")
-    written = []
-    for relative, generate in generators().items():
-        path = root / relative
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(generate())
-        written.append(path)
-    return written
+This package sits with the assemblers: it may build Drake systems (the stopping measurement
+runs RobotMotion), and runtime code never imports it.
+"""

@@ -77,7 +77,7 @@ def next_progress(
     speeds up gently. Slowing down (a SetSpeed, a protective slow-down or stop) brakes the
     way a robot controller's category 2 stop does: on the path, with the full acceleration
     limits. The stop from rate r then takes r times the stop from full speed and travels
-    r² times as far: the stopping data (`hrc_drake.motion.stopping`) and S_p rest on that.
+    r² times as far: the stopping data (`hrc_drake.modelgen.stopping`) and S_p rest on that.
     The feasible range of ṙ is the intersection, over the joints and over τ now and one
     period ahead, and over r now and target (the extremes of r in the period), of
     |q''(τ) r² + q'(τ) ṙ| ≤ limit.

@@ -1,5 +1,6 @@
 """The robot's stop as S_p needs it: stopping time and distance as functions of the speed it
-moves at now, from the variant's measured stopping data (`hrc_drake.motion.stopping`).
+moves at now, from the variant's measured stopping data (models/iisy/stopping/<variant>.yaml,
+measured by `python -m hrc_drake.modelgen stopping`: hrc_drake.modelgen.stopping).
 
 RobotMotion brakes on its path with its full joint acceleration limits, so a stop from a
 fraction r of full speed takes about r times as long as from full speed (plus up to one
@@ -14,8 +15,44 @@ model takes the worst measured case at each tabulated speed (over axes and exten
 
 import bisect
 from dataclasses import dataclass
+from pathlib import Path
 
-from hrc_drake.motion.stopping import Stop, load_stops
+import yaml
+
+from hrc_drake.paths import resource_dir
+
+STOPPING_DIR = "iisy/stopping"
+"""Inside the model folder (models/ in a checkout): one file per variant."""
+
+
+@dataclass(frozen=True)
+class Stop:
+    """One measured stop (SI units; the angle in degrees)."""
+
+    axis: str
+    speed: float
+    """fraction of full speed the robot moved at (the override)"""
+    extension: float
+    """fraction of the largest horizontal distance of the tool from the A1 axis"""
+    time: float
+    """s from the stop command to rest"""
+    distance: float
+    """m travelled by the fastest point meanwhile"""
+    point_speed: float
+    """m/s of the fastest point when the stop was commanded"""
+    angle: float
+    """degrees the axis turned meanwhile"""
+
+
+def load_stops(variant: str) -> tuple[Stop, ...]:
+    """The stored stopping data of `variant`."""
+    entries = yaml.safe_load(stopping_file(variant).read_text())["stops"]
+    return tuple(Stop(**entry) for entry in entries)
+
+
+def stopping_file(variant: str, models_dir: Path | None = None) -> Path:
+    """Where the stopping data of `variant` are (in the shipped models unless `models_dir`)."""
+    return (models_dir or resource_dir("models")) / STOPPING_DIR / f"{variant}.yaml"
 
 
 @dataclass(frozen=True)

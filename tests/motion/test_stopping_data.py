@@ -8,15 +8,9 @@ import numpy as np
 import pytest
 
 from hrc_drake.iisy import VARIANTS
+from hrc_drake.modelgen.stopping import AXES, EXTENSIONS, SPEEDS, measure_stop
 from hrc_drake.motion.messages import MoveJoints
-from hrc_drake.motion.stopping import (
-    AXES,
-    EXTENSIONS,
-    SPEEDS,
-    load_stops,
-    measure_stop,
-)
-from hrc_drake.safety.stopping import StopModel
+from hrc_drake.safety.stopping import StopModel, load_stops
 from tests.motion.motion_helpers import build_station, make_scenario
 
 UPDATE_PERIOD = 0.01

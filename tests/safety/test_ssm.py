@@ -3,7 +3,6 @@
 
 import pytest
 
-from hrc_drake.motion.stopping import Stop
 from hrc_drake.safety.config import CONSTANT, MEASURED, SafetyConfig
 from hrc_drake.safety.ssm import (
     FREE,
@@ -15,7 +14,7 @@ from hrc_drake.safety.ssm import (
     protective_separation,
     zone,
 )
-from hrc_drake.safety.stopping import StopModel
+from hrc_drake.safety.stopping import Stop, StopModel
 
 # A stop model by hand: 0.01 s from (almost) rest, 0.2 / 0.4 / 0.6 s from 33 / 66 / 100 %
 # speed, the fastest point travelling half its speed times the stopping time.
