@@ -10,7 +10,8 @@ from __future__ import annotations
 from typing import Any
 
 from .errors import BTError
-from .node import ControlNode, NodeConfig, halt_and_reset
+from .node import NodeConfig
+from .node_kinds import ControlNode, halt_and_reset
 from .ports import InputPort, value_to_text
 from .script import EPSILON
 from .status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
