@@ -7,7 +7,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from . import actions, controls, decorators
+from . import actions, decorators
+from .controls import branches, parallel, sequences
 from .errors import BTError
 from .node import TreeNode
 from .ports import PortInfo
@@ -107,25 +108,25 @@ def _register_builtins(registry: NodeRegistry) -> None:
     def add(cls, id, **params):
         registry.register(cls, id, builtin=True, **params)
 
-    seq = controls.SequentialControl
+    seq = sequences.SequentialControl
     add(seq, "Sequence", stops_on=FAILURE)
     add(seq, "AsyncSequence", stops_on=FAILURE, yields=True)
     add(seq, "SequenceWithMemory", stops_on=FAILURE, yields=True, memory=True)
     add(seq, "SequenceStar", stops_on=FAILURE, yields=True, memory=True)
     add(seq, "Fallback", stops_on=SUCCESS)
     add(seq, "AsyncFallback", stops_on=SUCCESS, yields=True)
-    add(controls.ReactiveControl, "ReactiveSequence", stops_on=FAILURE)
-    add(controls.ReactiveControl, "ReactiveFallback", stops_on=SUCCESS)
+    add(sequences.ReactiveControl, "ReactiveSequence", stops_on=FAILURE)
+    add(sequences.ReactiveControl, "ReactiveFallback", stops_on=SUCCESS)
     for cls in (
-        controls.Parallel,
-        controls.ParallelAll,
-        controls.IfThenElse,
-        controls.WhileDoElse,
-        controls.TryCatch,
+        parallel.Parallel,
+        parallel.ParallelAll,
+        branches.IfThenElse,
+        branches.WhileDoElse,
+        sequences.TryCatch,
     ):
         add(cls, cls.__name__)
     for cases in range(2, 7):
-        add(controls.Switch, f"Switch{cases}", cases=cases)
+        add(branches.Switch, f"Switch{cases}", cases=cases)
 
     add(decorators.Inverter, "Inverter")
     add(decorators.ForceStatus, "ForceSuccess", forced=SUCCESS)
