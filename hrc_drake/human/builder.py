@@ -7,11 +7,11 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.human.clip import LENGTH_JOINTS, Clip, load_clips
 from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.sdf import REGION_SEPARATOR
-from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.systems.human_actor import HumanActor
 
 

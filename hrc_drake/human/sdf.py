@@ -8,7 +8,8 @@ import sys
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from hrc_drake.human.skeleton import COLORS, Body, Shape, Skeleton, build_skeleton
+from hrc_drake.human.anthropometry import build_skeleton
+from hrc_drake.human.skeleton import COLORS, Body, Shape, Skeleton
 from hrc_drake.paths import resource_dir
 
 MODEL_NAME = "human"
