@@ -23,8 +23,8 @@ from pydrake.multibody.parsing import ModelDirective, PackageMap
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
 from hrc_drake.falsify.config import FalsifyConfig, search_problems
+from hrc_drake.human.anthropometry import HEIGHT_RANGE
 from hrc_drake.human.clip_files import read_clip_file
-from hrc_drake.human.skeleton import HEIGHT_RANGE
 from hrc_drake.iisy import TOOL_BODY, VARIANTS
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.paths import add_model_package, resource_dir

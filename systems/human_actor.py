@@ -18,12 +18,12 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import LeafSystem
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.human.body import HumanBody, human_body, parse_human
 from hrc_drake.human.clip import Clip, load_clips, scaled_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
 from hrc_drake.human.navigation import NavigationMap
-from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scene_geometry import collision_geometries, filter_against
 from hrc_drake.wiring import (

@@ -41,13 +41,13 @@ from .blackboard import Blackboard
 from .errors import BTError
 from .factory import TreeFactory, load_tree, validate
 from .model_xml import tree_nodes_model_xml, tree_to_xml
-from .node import (
+from .node import TreeNode
+from .node_kinds import (
     ConditionNode,
     ControlNode,
     DecoratorNode,
     StatefulActionNode,
     SyncActionNode,
-    TreeNode,
 )
 from .observers import BtlogWriter, JsonLinesWriter, NodeCount, NodeCounters
 from .ports import (

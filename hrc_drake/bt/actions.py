@@ -7,7 +7,8 @@ import functools
 from collections.abc import Callable
 
 from .decorators import ENTRY_PORT, EntryWatch
-from .node import ConditionNode, EntryRef, NodeConfig, StatefulActionNode, SyncActionNode
+from .node import EntryRef, NodeConfig
+from .node_kinds import ConditionNode, StatefulActionNode, SyncActionNode
 from .ports import BidirectionalPort, InputPort, PortInfo, literal_value
 from .script import ScriptCode, compile_script
 from .status import FAILURE, RUNNING, SUCCESS, Status

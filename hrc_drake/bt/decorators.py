@@ -4,7 +4,8 @@ Timeout on simulation time."""
 from __future__ import annotations
 
 from .blackboard import Blackboard
-from .node import DecoratorNode, EntryRef, NodeConfig
+from .node import EntryRef, NodeConfig
+from .node_kinds import DecoratorNode
 from .ports import BidirectionalPort, InputPort, OutputPort, convert_from_string
 from .script import ScriptCode, compile_script
 from .status import COMPLETED, FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status

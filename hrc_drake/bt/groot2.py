@@ -1,20 +1,6 @@
-"""A live Groot2 server for one tree: BehaviorTree.CPP v4's Groot2Publisher protocol on ZeroMQ.
-
-A client (Groot2, btview, ...) connects a REQ socket to ``port`` and a SUB socket to
-``port + 1``. A request is a multipart message whose first frame is a 6-byte header
-(protocol 2, request type, request id as little-endian uint32); the reply repeats it, adds the
-tree's 16-byte UUID, then the payload (BehaviorTree.CPP's groot2_protocol.h):
-
-- ``T`` the tree XML with ``_uid`` attributes and the TreeNodesModel (as the .btlog header);
-- ``S`` 3 bytes per node (uid, status; an IDLE node reports 10 + its previous status),
-  SubTree instance after instance;
-- ``B`` the blackboards named in the second frame (``;``-separated: the main tree's ID or a
-  SubTree's path) as a MessagePack map;
-- ``I`` ``R`` ``U`` ``A`` ``X`` ``D``: insert, remove, unlock, remove all, disable all and dump
-  the hooks (JSON, as Groot2 sends them); ``N`` is published on ``port + 1`` when a
-  breakpoint is reached;
-- ``r`` start/stop recording transitions, ``t`` fetch them (9 bytes each: 6-byte microsecond
-  offset from the start, uid, new status).
+"""A live Groot2 server for one tree: BehaviorTree.CPP v4's Groot2Publisher on ZeroMQ, serving
+requests on ``port`` and publishing breakpoint notifications on ``port + 1``. The bytes on the
+wire are :mod:`.groot2_protocol`'s; breakpoints and replacements, :mod:`.groot2_hooks`'s.
 
 Watching changes nothing it watches: the server answers from snapshots the tick thread
 hands over at tick boundaries (statuses at every tick; blackboards only while a client has
@@ -29,32 +15,36 @@ from __future__ import annotations
 
 import collections
 import contextlib
-import enum
 import itertools
 import json
-import struct
 import threading
 import time
 import uuid
 from dataclasses import dataclass
-from functools import partial
 from typing import Any
 
 import msgpack
 import zmq
 
+from .groot2_hooks import HookTable
+from .groot2_protocol import (
+    HEADER,
+    IDLE_FROM,
+    NODE_STATUS,
+    PROTOCOL,
+    Refused,
+    error_reply,
+    json_payload,
+    plain_value,
+    transition_record,
+)
 from .model_xml import tree_to_xml
 from .node import TreeNode
-from .ports import value_to_text
-from .status import IDLE, SKIPPED, Status
+from .status import IDLE, Status
 from .tree import Tree
 
 DEFAULT_PORT = 1667
 """BehaviorTree.CPP's Groot2Publisher default, where Groot2 looks first."""
-PROTOCOL = 2
-HEADER = struct.Struct("<BBI")
-IDLE_FROM = 10
-"""Status code of a node gone IDLE: 10 + the status it had."""
 HEARTBEAT = 5.0
 """Seconds without a request after which hooks are disabled and blackboards not copied."""
 MAX_MESSAGE = 1 << 16
@@ -71,56 +61,6 @@ class ServeError(Exception):
     """The server cannot start (port out of range or in use, bad address): one line."""
 
 
-class Position(enum.IntEnum):
-    PRE = 0
-    POST = 1
-
-
-class Mode(enum.IntEnum):
-    BREAKPOINT = 0
-    REPLACE = 1
-
-
-class Refused(Exception):
-    """A request the server answers with an error reply."""
-
-
-@dataclass
-class Hook:
-    """A breakpoint (waits until unlocked) or a replacement (returns ``desired_status``)
-    before or after a node's tick, as Groot2 describes it in JSON."""
-
-    uid: int
-    position: Position
-    mode: Mode = Mode.BREAKPOINT
-    once: bool = False
-    enabled: bool = True
-    desired_status: Status = SKIPPED
-    ready: bool = False
-
-    @classmethod
-    def from_json(cls, data: dict) -> Hook:
-        hook = cls(int(data["uid"]), Position(int(data["position"])))
-        hook.update(data)
-        return hook
-
-    def update(self, data: dict) -> None:
-        self.enabled = bool(data["enabled"])
-        self.once = bool(data["once"])
-        self.mode = Mode(int(data["mode"]))
-        self.desired_status = Status[str(data["desired_status"])]
-
-    def to_json(self) -> dict:
-        return {
-            "enabled": self.enabled,
-            "uid": self.uid,
-            "mode": int(self.mode),
-            "once": self.once,
-            "desired_status": self.desired_status.name,
-            "position": int(self.position),
-        }
-
-
 @dataclass(frozen=True)
 class Snapshot:
     """The tree as it was at a tick boundary (or at a breakpoint)."""
@@ -130,32 +70,11 @@ class Snapshot:
     blackboards: dict[str, dict[str, Any]] | None
 
 
-def _plain(value: Any) -> Any:
-    """A blackboard value as MessagePack can carry it (other types as their text)."""
-    if value is None or isinstance(value, bool | int | float | str):
-        return value
-    if isinstance(value, enum.Enum):
-        return value.name
-    if isinstance(value, list | tuple):
-        return [_plain(item) for item in value]
-    return value_to_text(value)
-
-
-def _json_frame(frames: list[bytes]) -> Any:
-    if len(frames) != 2:
-        raise Refused("must be 2 parts message")
-    return json.loads(frames[1].decode())
-
-
-def _error(message: str) -> list[bytes]:
-    return [b"error", message.encode()]
-
-
 class Groot2Server:
     """Serves ``tree`` on ``host:port`` (requests) and ``port + 1`` (breakpoint
     notifications) from a thread of its own, until ``close()``."""
 
-    def __init__(self, tree: Tree, port: int = 1667, host: str = "127.0.0.1"):
+    def __init__(self, tree: Tree, port: int = DEFAULT_PORT, host: str = "127.0.0.1"):
         if not 1 <= port <= 65534:
             raise ServeError(f"Groot2 port {port} is out of range (1 to 65534: it uses two)")
         self.tree = tree
@@ -163,23 +82,19 @@ class Groot2Server:
         self.host = host
         self._uuid = uuid.uuid4().bytes
         self._xml = tree_to_xml(tree).encode()
-        self._nodes: dict[int, TreeNode] = {}
         self._offsets: dict[int, int] = {}
         self._codes = bytearray()
         self._blackboards = {
             instance.path or instance.tree_id: instance.blackboard
             for instance, _ in tree.instance_nodes()
         }
-        for _, nodes in tree.instance_nodes():
-            for node in nodes:
-                self._nodes[node.uid] = node
-                self._offsets[node.uid] = len(self._codes) + 2
-                self._codes += struct.pack("<HB", node.uid, node.status)
-        self._lock = threading.Condition(threading.RLock())
-        self._hooks: dict[tuple[Position, int], Hook] = {}
-        self._installed: dict[tuple[Position, int], Hook] = {}
-        self._hooks_changed = False
-        self._reached: collections.deque[int] = collections.deque()
+        nodes: dict[int, TreeNode] = {}
+        for _, instance_nodes in tree.instance_nodes():
+            for node in instance_nodes:
+                nodes[node.uid] = node
+                self._offsets[node.uid] = len(self._codes) + NODE_STATUS.size - 1
+                self._codes += NODE_STATUS.pack(node.uid, node.status)
+        self.hooks = HookTable(nodes, self._on_pause, POLL_MS / 1000)
         self._recording = False
         self._record_start_us = 0
         self._transitions: collections.deque[tuple[int, int, int]] = collections.deque(
@@ -228,8 +143,8 @@ class Groot2Server:
             self._transitions.append((offset, node.uid, new))
 
     def before_tick(self, tree: Tree) -> None:
-        if self._hooks_changed:
-            self._install_hooks()
+        if self.hooks.changed:
+            self.hooks.install()
 
     def after_tick(self, tree: Tree) -> None:
         self._latest = self._snapshot(with_blackboards=self.watched)
@@ -242,50 +157,10 @@ class Groot2Server:
         )
         return Snapshot(self.tree.now, bytes(self._codes), blackboards)
 
-    def _install_hooks(self) -> None:
-        """Give the nodes the hooks the clients asked for (only in the tick thread)."""
-        with self._lock:
-            wanted = dict(self._hooks)
-            self._hooks_changed = False
-        for key in self._installed.keys() | wanted.keys():
-            hook = wanted.get(key)
-            if self._installed.get(key) is hook:
-                continue
-            position, uid = key
-            node = self._nodes[uid]
-            if position is Position.PRE:
-                node.set_pre_tick(None if hook is None else partial(self._run_hook, hook))
-            else:
-                node.set_post_tick(None if hook is None else partial(self._run_hook, hook))
-        self._installed = wanted
-
-    def _run_hook(self, hook: Hook, node: TreeNode, status: Status | None = None) -> Status:
-        """The hook's part of a tick: notify, wait at a breakpoint, return its status."""
-        with self._lock:
-            if not hook.enabled:
-                return SKIPPED
-        self._reached.append(hook.uid)
-        if hook.mode is Mode.BREAKPOINT:
-            self._pause_at(hook)
-        with self._lock:
-            if not hook.enabled or self._closing:
-                return SKIPPED
-            if hook.once:
-                hook.enabled = False
-                self._forget(hook)
-            return hook.desired_status
-
-    def _pause_at(self, hook: Hook) -> None:
-        """Block the tick (and so the simulation) until the breakpoint is unlocked,
-        disabled or the server closes; hook changes made meanwhile take effect now."""
+    def _on_pause(self) -> None:
+        """A breakpoint was reached: the tick waits, so take the snapshot clients see."""
         self.paused = True
         self._latest = self._snapshot(with_blackboards=True)
-        with self._lock:
-            while not (hook.ready or not hook.enabled or self._closing):
-                self._lock.wait(POLL_MS / 1000)
-                if self._hooks_changed:
-                    self._install_hooks()
-            hook.ready = False
 
     # the server thread ------------------------------------------------------------------
     def _serve(self) -> None:
@@ -310,21 +185,21 @@ class Groot2Server:
         try:
             reply = self._reply(frames)
         except Exception as error:  # whatever a client sends, the server stays up
-            reply = _error(f"{type(error).__name__}: {error}")
+            reply = error_reply(f"{type(error).__name__}: {error}")
         with contextlib.suppress(zmq.ZMQError):  # REP drops replies to vanished clients
             self._server.send_multipart(reply, zmq.NOBLOCK)
 
     def _reply(self, frames: list[bytes]) -> list[bytes]:
         if len(frames[0]) != HEADER.size:
-            return _error("wrong request header")
+            return error_reply("wrong request header")
         _, kind, request_id = HEADER.unpack(frames[0])
         handler = self._handlers.get(chr(kind))
         if handler is None:
-            return _error("Request not recognized")
+            return error_reply("Request not recognized")
         try:
             payload = handler(self, frames)
         except Refused as refusal:
-            return _error(str(refusal))
+            return error_reply(str(refusal))
         return [HEADER.pack(PROTOCOL, kind, request_id) + self._uuid, *payload]
 
     def _full_tree(self, frames) -> list[bytes]:
@@ -338,7 +213,7 @@ class Groot2Server:
             raise Refused("must be 2 parts message")
         boards = self._fresh_blackboards()
         dump = {
-            name: {key: _plain(value) for key, value in boards[name].items()} or None
+            name: {key: plain_value(value) for key, value in boards[name].items()} or None
             for name in frames[1].decode().split(";")
             if name in boards
         }
@@ -359,74 +234,27 @@ class Groot2Server:
         return self._snapshot(with_blackboards=True).blackboards
 
     def _insert_hooks(self, frames) -> list[bytes]:
-        received = _json_frame(frames)
-        with self._lock:
-            for data in received if isinstance(received, list) else [received]:
-                key = (Position(int(data["position"])), int(data["uid"]))
-                if key[1] not in self._nodes:
-                    continue  # as BT.CPP: unknown nodes are ignored
-                hook = self._hooks.get(key)
-                if hook is None:
-                    self._hooks[key] = Hook.from_json(data)
-                    continue
-                was_breakpoint = hook.mode is Mode.BREAKPOINT
-                hook.update(data)
-                hook.ready = hook.ready or (was_breakpoint and hook.mode is Mode.REPLACE)
-            self._hooks_changed = True
-            self._lock.notify_all()
+        self.hooks.insert(json_payload(frames))
         return []
 
-    def _hook_of(self, data: dict) -> Hook:
-        hook = self._hooks.get((Position(int(data["position"])), int(data["uid"])))
-        if hook is None:
-            raise Refused("Node ID not found")
-        return hook
-
     def _unlock(self, frames) -> list[bytes]:
-        data = _json_frame(frames)
-        desired = str(data["desired_status"])
-        with self._lock:
-            hook = self._hook_of(data)
-            hook.desired_status = Status[desired] if desired in ("SUCCESS", "FAILURE") else SKIPPED
-            hook.once = hook.once or bool(data["remove_when_done"])
-            hook.ready = hook.mode is Mode.BREAKPOINT
-            self._lock.notify_all()
+        self.hooks.unlock(json_payload(frames))
         return []
 
     def _remove_hook(self, frames) -> list[bytes]:
-        data = _json_frame(frames)
-        with self._lock:
-            self._forget(self._hook_of(data))
+        self.hooks.remove(json_payload(frames))
         return []
 
-    def _forget(self, hook: Hook) -> None:
-        with self._lock:
-            hook.enabled = False
-            key = (hook.position, hook.uid)
-            if self._hooks.get(key) is hook:
-                del self._hooks[key]
-            self._hooks_changed = True
-            self._lock.notify_all()
-
-    def _remove_all_hooks(self, frames=None) -> list[bytes]:
-        with self._lock:
-            for hook in list(self._hooks.values()):
-                self._forget(hook)
+    def _remove_all_hooks(self, frames) -> list[bytes]:
+        self.hooks.remove_all()
         return []
 
-    def _disable_all_hooks(self, frames=None) -> list[bytes]:
-        self._enable_all(False)
+    def _disable_all_hooks(self, frames) -> list[bytes]:
+        self.hooks.enable_all(False)
         return []
-
-    def _enable_all(self, enabled: bool) -> None:
-        with self._lock:
-            for hook in self._hooks.values():
-                hook.enabled = enabled
-            self._lock.notify_all()
 
     def _dump_hooks(self, frames) -> list[bytes]:
-        with self._lock:
-            return [json.dumps([hook.to_json() for hook in self._hooks.values()]).encode()]
+        return [json.dumps(self.hooks.to_json()).encode()]
 
     def _toggle_recording(self, frames) -> list[bytes]:
         if len(frames) != 2:
@@ -446,7 +274,7 @@ class Groot2Server:
         records = bytearray()
         while self._transitions:
             offset, uid, status = self._transitions.popleft()
-            records += struct.pack("<Q", offset)[:6] + struct.pack("<HB", uid, status)
+            records += transition_record(offset, uid, status)
         return [bytes(records)]
 
     _handlers = {
@@ -464,8 +292,8 @@ class Groot2Server:
     }
 
     def _publish_reached(self) -> None:
-        while self._reached:
-            uid = self._reached.popleft()
+        while self.hooks.reached:
+            uid = self.hooks.reached.popleft()
             header = HEADER.pack(PROTOCOL, ord("N"), next(self._notifications))
             with contextlib.suppress(zmq.ZMQError):  # nobody listening: it still waits
                 self._publisher.send_multipart([header, str(uid).encode()], zmq.NOBLOCK)
@@ -477,7 +305,7 @@ class Groot2Server:
         self.watched = self.watched and alive
         if alive != self._heartbeat:
             self._heartbeat = alive
-            self._enable_all(alive)
+            self.hooks.enable_all(alive)
 
     # lifetime -------------------------------------------------------------------------
     def close(self) -> None:
@@ -485,12 +313,11 @@ class Groot2Server:
         the tree is not being ticked, e.g. after the simulation)."""
         if self._closing:
             return
-        with self._lock:
-            self._closing = True
-            self._lock.notify_all()
+        self._closing = True
+        self.hooks.release()
         self._thread.join()
-        self._remove_all_hooks()
-        self._install_hooks()
+        self.hooks.remove_all()
+        self.hooks.install()
         self.tree.remove_observer(self)
         self.tree.remove_monitor(self)
         self._server.close()

@@ -1,8 +1,9 @@
-"""Base classes of tree nodes, with BehaviorTree.CPP's tick, halt and status rules.
+"""What every tree node is: its configuration from the XML, its ports, BehaviorTree.CPP's
+tick with pre/post-conditions and hooks, its status and halting.
 
-Authors subclass :class:`SyncActionNode`, :class:`ConditionNode`,
-:class:`StatefulActionNode`, :class:`ControlNode` or :class:`DecoratorNode`, declare
-``ports`` and implement ``tick`` (or ``on_start``/``on_running``/``on_halted``).
+The kinds authors subclass (actions, conditions, controls, decorators) are in
+:mod:`.node_kinds`. A node sees the tree that holds it only as a :class:`HostTree`, so this
+module does not import the tree module (which imports it).
 """
 
 from __future__ import annotations
@@ -10,7 +11,9 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, ClassVar
+from typing import Any, ClassVar, Protocol
+
+import numpy as np
 
 from .blackboard import UNSET, Blackboard, Entry
 from .errors import BTError
@@ -18,14 +21,25 @@ from .ports import PortInfo
 from .script import Script, ScriptEnv
 from .status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
-if TYPE_CHECKING:
-    from .tree import Tree
-
 PRECONDITIONS = ("_failureIf", "_successIf", "_skipIf", "_while")
 POSTCONDITIONS = ("_onSuccess", "_onFailure", "_onHalted", "_post")
 
 PreTickHook = Callable[["TreeNode"], Status]
 PostTickHook = Callable[["TreeNode", Status], Status]
+
+
+class HostTree(Protocol):
+    """What a node uses of the tree that holds it (``bt.tree.Tree`` is one): the time of
+    the tick, the random generator, the application's context, the enums scripts know and
+    the observers it notifies of its transitions."""
+
+    now: float
+    rng: np.random.Generator
+    context: Any
+    enums: dict[str, int]
+    observers: list[Any]
+
+    def notify(self, node: TreeNode, previous: Status, new: Status) -> None: ...
 
 
 class Literal:
@@ -61,7 +75,7 @@ class NodeConfig:
     name: str
     uid: int
     path: str
-    tree: Tree
+    tree: HostTree
     blackboard: Blackboard
     inputs: dict[str, Literal | EntryRef] = field(default_factory=dict)
     outputs: dict[str, EntryRef] = field(default_factory=dict)
@@ -296,109 +310,3 @@ class TreeNode(ABC):
 
     def on_tree_reset(self) -> None:  # noqa: B027  (a hook: most nodes keep no memory)
         """Forget memory that survives a halt (Tree.reset calls this on every node)."""
-
-
-def halt_and_reset(node: TreeNode) -> None:
-    """Halt ``node`` if it is RUNNING, then make it IDLE (BT.CPP's haltChild)."""
-    if node.status is RUNNING:
-        node.halt_node()
-    if node.status is not IDLE:
-        node.set_status(IDLE)
-
-
-class SyncActionNode(TreeNode):
-    """An action that completes within its tick: ``tick`` returns SUCCESS or FAILURE."""
-
-    synchronous: ClassVar[bool] = True
-
-
-class ConditionNode(SyncActionNode):
-    """A check without side effects: ``tick`` returns SUCCESS or FAILURE."""
-
-    kind: ClassVar[str] = "Condition"
-
-
-class StatefulActionNode(TreeNode):
-    """An asynchronous action: ``on_start`` when first ticked, ``on_running`` on later
-    ticks while RUNNING, ``on_halted`` if it is interrupted while RUNNING."""
-
-    @abstractmethod
-    def on_start(self) -> Status:
-        """First tick: start the action; RUNNING, or its result at once."""
-
-    @abstractmethod
-    def on_running(self) -> Status:
-        """Later ticks while RUNNING: RUNNING until the action has its result."""
-
-    def on_halted(self) -> None:
-        """Cancel whatever the action started (default: nothing)."""
-
-    def tick(self) -> Status:
-        if self.status is IDLE:
-            status = self.on_start()
-        elif self.status is RUNNING:
-            status = self.on_running()
-        else:
-            return self.status
-        if status is IDLE:
-            raise self.error(f"{type(self).__name__} must not return IDLE")
-        return status
-
-    def halt(self) -> None:
-        if self.status is RUNNING:
-            self.on_halted()
-        self.reset_status()
-
-
-class ControlNode(TreeNode):
-    """A node with one or more children, ticked in an order the subclass decides."""
-
-    kind: ClassVar[str] = "Control"
-    children_range: ClassVar[tuple[int, int | None]] = (1, None)
-
-    def __init__(self, config: NodeConfig):
-        super().__init__(config)
-        self.children: list[TreeNode] = []
-
-    def children_nodes(self) -> list[TreeNode]:
-        return self.children
-
-    def halt_child(self, index: int) -> None:
-        halt_and_reset(self.children[index])
-
-    def reset_children(self) -> None:
-        for child in self.children:
-            if child.status is not IDLE:
-                halt_and_reset(child)
-
-    def halt(self) -> None:
-        self.reset_children()
-        self.reset_status()
-
-
-class DecoratorNode(TreeNode):
-    """A node with exactly one child, whose result it transforms."""
-
-    kind: ClassVar[str] = "Decorator"
-    children_range: ClassVar[tuple[int, int | None]] = (1, 1)
-
-    def __init__(self, config: NodeConfig):
-        super().__init__(config)
-        self.child: TreeNode | None = None
-
-    def children_nodes(self) -> list[TreeNode]:
-        return [self.child] if self.child is not None else []
-
-    def reset_child(self) -> None:
-        halt_and_reset(self.child)
-
-    def halt(self) -> None:
-        self.reset_child()
-        self.reset_status()
-
-    def execute_tick(self) -> Status:
-        status = TreeNode.execute_tick(self)
-        child_status = self.child.status
-        if child_status is SUCCESS or child_status is FAILURE:
-            self.child.reset_status()
-        return status

@@ -7,7 +7,33 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from . import actions, controls, decorators
+from .actions import (
+    ConstantAction,
+    FunctionAction,
+    FunctionCondition,
+    ScriptAction,
+    ScriptCondition,
+    SetBlackboard,
+    Sleep,
+    UnsetBlackboard,
+    WasEntryUpdated,
+)
+from .controls.branches import IfThenElse, Switch, WhileDoElse
+from .controls.parallel import Parallel, ParallelAll
+from .controls.sequences import ReactiveControl, SequentialControl, TryCatch
+from .decorators import (
+    Delay,
+    EntryUpdated,
+    ForceStatus,
+    Inverter,
+    KeepRunningUntilFailure,
+    Loop,
+    Precondition,
+    RepeatUntil,
+    RunOnce,
+    SubTreeNode,
+    Timeout,
+)
 from .errors import BTError
 from .node import TreeNode
 from .ports import PortInfo
@@ -80,7 +106,7 @@ class NodeRegistry:
         description: str = "",
     ) -> NodeModel:
         """Register ``function(node) -> Status`` as a synchronous Action or Condition."""
-        cls = actions.FunctionCondition if kind == "Condition" else actions.FunctionAction
+        cls = FunctionCondition if kind == "Condition" else FunctionAction
         return self.register(
             cls, id, description=description, function=function, ports=tuple(ports)
         )
@@ -107,57 +133,38 @@ def _register_builtins(registry: NodeRegistry) -> None:
     def add(cls, id, **params):
         registry.register(cls, id, builtin=True, **params)
 
-    seq = controls.SequentialControl
+    seq = SequentialControl
     add(seq, "Sequence", stops_on=FAILURE)
     add(seq, "AsyncSequence", stops_on=FAILURE, yields=True)
     add(seq, "SequenceWithMemory", stops_on=FAILURE, yields=True, memory=True)
     add(seq, "SequenceStar", stops_on=FAILURE, yields=True, memory=True)
     add(seq, "Fallback", stops_on=SUCCESS)
     add(seq, "AsyncFallback", stops_on=SUCCESS, yields=True)
-    add(controls.ReactiveControl, "ReactiveSequence", stops_on=FAILURE)
-    add(controls.ReactiveControl, "ReactiveFallback", stops_on=SUCCESS)
-    for cls in (
-        controls.Parallel,
-        controls.ParallelAll,
-        controls.IfThenElse,
-        controls.WhileDoElse,
-        controls.TryCatch,
-    ):
+    add(ReactiveControl, "ReactiveSequence", stops_on=FAILURE)
+    add(ReactiveControl, "ReactiveFallback", stops_on=SUCCESS)
+    for cls in (Parallel, ParallelAll, IfThenElse, WhileDoElse, TryCatch):
         add(cls, cls.__name__)
     for cases in range(2, 7):
-        add(controls.Switch, f"Switch{cases}", cases=cases)
+        add(Switch, f"Switch{cases}", cases=cases)
 
-    add(decorators.Inverter, "Inverter")
-    add(decorators.ForceStatus, "ForceSuccess", forced=SUCCESS)
-    add(decorators.ForceStatus, "ForceFailure", forced=FAILURE)
-    add(decorators.RepeatUntil, "Repeat", count_port="num_cycles", repeat_on=SUCCESS)
-    add(
-        decorators.RepeatUntil, "RetryUntilSuccessful", count_port="num_attempts", repeat_on=FAILURE
-    )
-    for cls in (
-        decorators.KeepRunningUntilFailure,
-        decorators.Timeout,
-        decorators.Delay,
-        decorators.RunOnce,
-        decorators.Precondition,
-    ):
+    add(Inverter, "Inverter")
+    add(ForceStatus, "ForceSuccess", forced=SUCCESS)
+    add(ForceStatus, "ForceFailure", forced=FAILURE)
+    add(RepeatUntil, "Repeat", count_port="num_cycles", repeat_on=SUCCESS)
+    add(RepeatUntil, "RetryUntilSuccessful", count_port="num_attempts", repeat_on=FAILURE)
+    for cls in (KeepRunningUntilFailure, Timeout, Delay, RunOnce, Precondition):
         add(cls, cls.__name__)
-    add(decorators.SubTreeNode, "SubTree")
+    add(SubTreeNode, "SubTree")
     for suffix, item_type in (("Int", int), ("Double", float), ("Bool", bool), ("String", str)):
-        add(decorators.Loop, f"Loop{suffix}", item_type=item_type)
-    add(decorators.EntryUpdated, "SkipUnlessUpdated", if_not_updated=SKIPPED)
-    add(decorators.EntryUpdated, "WaitValueUpdate", if_not_updated=RUNNING)
+        add(Loop, f"Loop{suffix}", item_type=item_type)
+    add(EntryUpdated, "SkipUnlessUpdated", if_not_updated=SKIPPED)
+    add(EntryUpdated, "WaitValueUpdate", if_not_updated=RUNNING)
 
-    add(actions.ConstantAction, "AlwaysSuccess", result=SUCCESS)
-    add(actions.ConstantAction, "AlwaysFailure", result=FAILURE)
-    add(actions.ScriptAction, "Script")
-    add(actions.ScriptCondition, "ScriptCondition")
-    for cls in (
-        actions.SetBlackboard,
-        actions.UnsetBlackboard,
-        actions.Sleep,
-        actions.WasEntryUpdated,
-    ):
+    add(ConstantAction, "AlwaysSuccess", result=SUCCESS)
+    add(ConstantAction, "AlwaysFailure", result=FAILURE)
+    add(ScriptAction, "Script")
+    add(ScriptCondition, "ScriptCondition")
+    for cls in (SetBlackboard, UnsetBlackboard, Sleep, WasEntryUpdated):
         add(cls, cls.__name__)
 
 

@@ -14,8 +14,9 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import JacobianWrtVariable
 
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS, build_skeleton
 from hrc_drake.human.sdf import MODEL_NAME, human_sdf
-from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS, SIDES, build_skeleton
+from hrc_drake.human.skeleton import SIDES
 
 
 def parse_human(plant: MultibodyPlant, height: float, mass: float, name: str = MODEL_NAME):

@@ -18,6 +18,14 @@ import numpy as np
 
 from hrc_drake.human.body import HumanBody, human_body
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.rotations import (
+    AXES,
+    axis_rotation,
+    compose,
+    decompose,
+    minimal_rotation,
+    padded_axes,
+)
 
 BVH_FROM_OURS = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
 """Our frame (x forward, y left, z up) -> BVH frame (X left, Y up, Z forward)."""
@@ -59,59 +67,6 @@ BONES = (
     *_sided_bones("left"),
     *_sided_bones("right"),
 )
-
-
-# --- rotations ---------------------------------------------------------------------------------
-
-_AXES = {"X": np.array([1.0, 0, 0]), "Y": np.array([0, 1.0, 0]), "Z": np.array([0, 0, 1.0])}
-
-
-def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues: rotation by `angle` about the unit vector `axis`."""
-    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k
-
-
-def compose(axes, angles) -> np.ndarray:
-    rotation = np.eye(3)
-    for axis, angle in zip(axes, angles, strict=True):
-        rotation = rotation @ axis_rotation(np.asarray(axis, dtype=float), angle)
-    return rotation
-
-
-def decompose(rotation: np.ndarray, axes) -> list[np.ndarray]:
-    """Both solutions (θ1, θ2, θ3) of R = R_a(θ1) R_b(θ2) R_c(θ3), a, b, c orthonormal."""
-    a, b, c = (np.asarray(v, dtype=float) for v in axes)
-    eps = float(a @ np.cross(b, c))
-    theta2 = np.arcsin(np.clip(eps * a @ rotation @ c, -1.0, 1.0))
-    theta1 = np.arctan2(-eps * b @ rotation @ c, c @ rotation @ c)
-    theta3 = np.arctan2(-eps * a @ rotation @ b, a @ rotation @ a)
-    first = np.array([theta1, theta2, theta3])
-    other = np.array([theta1 + np.pi, np.pi - theta2, theta3 + np.pi])
-    return [first, (other + np.pi) % (2 * np.pi) - np.pi]
-
-
-def _minimal_rotation(source: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """The smallest rotation turning direction `source` into direction `target`."""
-    a, b = source / np.linalg.norm(source), target / np.linalg.norm(target)
-    v, c = np.cross(a, b), float(a @ b)
-    if c < -0.999999:
-        return axis_rotation(
-            np.cross(a, [1.0, 0, 0]) / np.linalg.norm(np.cross(a, [1.0, 0, 0])), np.pi
-        )
-    k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
-    return np.eye(3) + k + k @ k / (1 + c)
-
-
-def _padded_axes(axes: list[np.ndarray]) -> list[np.ndarray]:
-    """Complete one or two orthogonal joint axes to three (the extra angles should be zero)."""
-    axes = list(axes)
-    for candidate in (_AXES["X"], _AXES["Y"], _AXES["Z"]):
-        if len(axes) == 3:
-            break
-        if all(abs(candidate @ axis) < 0.5 for axis in axes):
-            axes.append(candidate)
-    return axes
 
 
 # --- our skeleton as BVH bones -------------------------------------------------------------
@@ -180,7 +135,7 @@ def _bvh_name(bone: Bone) -> str:
 
 def _euler_zxy(rotation_ours: np.ndarray) -> np.ndarray:
     rotation = BVH_FROM_OURS @ rotation_ours @ BVH_FROM_OURS.T
-    return np.degrees(decompose(rotation, [_AXES[a] for a in ROTATION_ORDER])[0])
+    return np.degrees(decompose(rotation, [AXES[a] for a in ROTATION_ORDER])[0])
 
 
 def clip_to_bvh(clip: Clip, body: HumanBody | None = None) -> str:
@@ -317,7 +272,7 @@ def _world_rotations(joints: list[_Joint], frame: np.ndarray) -> list[np.ndarray
         local = np.eye(3)
         for channel in joint.channels:
             if channel.endswith("rotation"):
-                local = local @ axis_rotation(_AXES[channel[0].upper()], np.radians(frame[column]))
+                local = local @ axis_rotation(AXES[channel[0].upper()], np.radians(frame[column]))
             column += 1
         rotations.append(local if joint.parent < 0 else rotations[joint.parent] @ local)
     return rotations
@@ -369,7 +324,7 @@ def bvh_to_clip(
     for bone in BONES[1:]:
         tip = None if bone.tip.startswith("end:") else matched[bone.tip]
         theirs = ours_from_bvh @ _rest_direction(joints, matched[bone.body], tip)
-        rest[bone.body] = _minimal_rotation(rig.tip(bone), theirs)
+        rest[bone.body] = minimal_rotation(rig.tip(bone), theirs)
     root = joints[matched["pelvis"]]
     leg = np.linalg.norm(joints[matched["left_shank"]].offset) + np.linalg.norm(
         joints[matched["left_foot"]].offset
@@ -390,7 +345,7 @@ def bvh_to_clip(
             parent = rig.parent_bone.get(bone.body)
             local = ours[bone.body] if parent is None else ours[parent].T @ ours[bone.body]
             indices, axes = rig.dofs[bone.body]
-            solutions = decompose(local, _padded_axes(axes))
+            solutions = decompose(local, padded_axes(axes))
             angles = _choose(
                 solutions,
                 len(indices),

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hrc_drake.human.skeleton import DEFAULT_HEIGHT
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT
 from hrc_drake.paths import resource_dir
 
 LENGTH_JOINTS = ("base_x", "base_y", "pelvis_height")

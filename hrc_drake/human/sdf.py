@@ -7,7 +7,8 @@ models/human/human.sdf (the 1.75 m, 75 kg adult) is the same text, written by
 
 from xml.sax.saxutils import quoteattr
 
-from hrc_drake.human.skeleton import COLORS, Body, Shape, Skeleton, build_skeleton
+from hrc_drake.human.anthropometry import build_skeleton
+from hrc_drake.human.skeleton import COLORS, Body, Shape, Skeleton
 
 MODEL_NAME = "human"
 REGION_SEPARATOR = "__"

@@ -6,8 +6,8 @@ from collections.abc import Callable
 from functools import partial
 from pathlib import Path
 
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.human.sdf import human_sdf
-from hrc_drake.human.skeleton import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.modelgen.cell import CELL_OBJECTS, cell_sdf
 from hrc_drake.modelgen.robot import robot_sdf

@@ -16,7 +16,7 @@ from hrc_drake.bt import (
     Status,
     SyncActionNode,
 )
-from hrc_drake.bt.controls import SequentialControl
+from hrc_drake.bt.controls.sequences import SequentialControl
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.tree_types import Pose
 

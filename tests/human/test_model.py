@@ -5,9 +5,10 @@ import pytest
 from pydrake.geometry import Role, SceneGraph
 from pydrake.multibody.plant import MultibodyPlant
 
+from hrc_drake.human.anthropometry import build_skeleton
 from hrc_drake.human.body import HumanBody, parse_human
 from hrc_drake.human.sdf import REGION_SEPARATOR
-from hrc_drake.human.skeleton import COLORS, REGIONS, build_skeleton
+from hrc_drake.human.skeleton import COLORS, REGIONS
 
 
 @pytest.mark.parametrize("height", [1.55, 1.75, 1.95])
