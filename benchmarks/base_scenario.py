@@ -21,7 +21,7 @@ from pydrake.systems.primitives import ConstantVectorSource
 from hrc_drake.paths import add_model_package
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
-from hrc_drake.station_models import add_robot, add_station_models, model_parser
+from hrc_drake.station import add_robot, add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 
 
@@ -30,7 +30,7 @@ def bare_diagram(scenario, desired=None, cell: bool = False):
     default a constant set point at the initial configuration): no cell (unless `cell`: the
     scenario's static cell in the plant, as the station's dynamic plant has it), no person,
     no trees, no monitor, no visualizer, no loggers, no runner."""
-    q0 = scenario.configuration(scenario.robot.initial_configuration)
+    q0 = scenario.station.initial_positions
     if desired is None:
         desired = ConstantVectorSource(np.concatenate([q0, 0 * q0]))
     builder = DiagramBuilder()
@@ -39,11 +39,11 @@ def bare_diagram(scenario, desired=None, cell: bool = False):
         builder,
     )
     if cell:
-        arm, _ = add_station_models(plant, model_parser(plant), scenario)
+        arm, _ = add_station_models(plant, model_parser(plant), scenario.station)
     else:
         parser = Parser(plant)
         add_model_package(parser.package_map())
-        arm = add_robot(plant, parser, scenario.robot)
+        arm = add_robot(plant, parser, scenario.station)
     plant.Finalize()
     plant.SetDefaultPositions(arm, q0)
     controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)

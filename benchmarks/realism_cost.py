@@ -56,7 +56,7 @@ def short_run(name: str):
     """CPU seconds of the whole run and of the audit, task events, realism section."""
     seed, duration = SHORT_RUNS[name]
     with AuditClock() as clock:  # the audit binds its update when it is built
-        diagram = build_diagram(load_scenario(name).with_overrides(seed=seed))
+        diagram = build_diagram(load_scenario(name, [("seed", seed)]))
         simulator = Simulator(diagram)
         context = simulator.get_context()
         simulator.Initialize()

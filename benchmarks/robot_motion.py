@@ -91,8 +91,8 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     scenario = load_scenario(args.scenario)
-    planner = MotionPlanner(scenario, MotionOptions())
-    home = scenario.configuration(scenario.robot.initial_configuration)
+    planner = MotionPlanner(scenario.station, MotionOptions())
+    home = scenario.station.initial_positions
     targets = random_targets(planner, args.targets)
     times, failures = planning_times(planner, targets, home)
     ms = 1e3 * np.array(times)

@@ -34,8 +34,8 @@ from hrc_drake.human.body import parse_human
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.scenario import load_scenario
-from hrc_drake.station_models import add_robot, model_parser
-from hrc_drake.sweep.overrides import apply
+from hrc_drake.scenario.overrides import overridden
+from hrc_drake.station import add_robot, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.safety_monitor import add_safety_monitor
 
@@ -72,9 +72,9 @@ def cell(with_monitor: bool, duration: float):
         MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
         builder,
     )
-    arm = add_robot(plant, model_parser(plant), scenario.robot)
+    arm = add_robot(plant, model_parser(plant), scenario.station)
     plant.Finalize()
-    q0 = scenario.configuration("home")
+    q0 = scenario.station.configuration("home")
     plant.SetDefaultPositions(arm, q0)
     controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)
     desired = builder.AddSystem(TrajectorySource(swing(q0, duration)))
@@ -95,7 +95,7 @@ def cell(with_monitor: bool, duration: float):
 def scenario(name: str, with_monitor: bool):
     """The bundled scenario, its monitor measuring (SSM off) or removed."""
     overrides = [("safety.ssm", False), ("safety.enabled", with_monitor)]
-    return build_diagram(apply(load_scenario(name), overrides))
+    return build_diagram(overridden(load_scenario(name), overrides))
 
 
 def simulated(diagram, duration: float) -> tuple[float, np.ndarray]:

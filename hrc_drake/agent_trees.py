@@ -8,42 +8,36 @@ Every tree's root blackboard holds the scenario's locations (as Poses), areas an
 
 import difflib
 from collections.abc import Iterator
-
-from pydrake.common.schema import Rotation
+from dataclasses import dataclass, field
 
 from hrc_drake.bt import BTError, Tree, load_tree, validate
 from hrc_drake.bt.ports import convert_from_string
 from hrc_drake.bt.registry import NodeModel
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
-from hrc_drake.scenario import AgentTree, Scenario
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import COMMANDED_BY
+from hrc_drake.yaml_check import NEW_ENTRIES, REQUIRED
 
 
-def scenario_places(scenario: Scenario) -> Places:
-    return Places(
-        locations={name: location_pose(scenario, name) for name in scenario.locations},
-        areas={name: scenario.area(name) for name in scenario.areas},
-    )
+@dataclass
+class AgentTree:
+    """The behavior tree an agent runs: a BehaviorTree.CPP v4 XML file (relative to the
+    scenario file), which of its trees (default: its main tree), and the tick period.
+
+    `ports` replace port values the XML gives, by node name (every node of that name) and
+    port, e.g. `{walk_in: {animation_distance: "1.9"}}`: a tree exposes a parameter by
+    naming a node, and `--set trees.human.ports.walk_in.animation_distance=1.9` or a
+    `falsify:` parameter can change it without editing the tree."""
+
+    file: str = field(default="", metadata=REQUIRED)
+    tree_id: str = ""
+    period: float = 0.05
+    ports: dict[str, dict[str, str]] = field(default_factory=dict, metadata={NEW_ENTRIES: True})
 
 
-def location_pose(scenario: Scenario, name: str) -> Pose:
-    """A named location as trees see it: a location written without a rotation has no
-    orientation (the robot keeps its tool down, the person faces where they walk)."""
-    pose = Pose.from_transform(scenario.location(name))
-    if isinstance(scenario.locations[name].rotation.value, Rotation.Identity):
-        return Pose(pose.position)
-    return pose
-
-
-def blackboard_entries(scenario: Scenario) -> dict:
-    places = scenario_places(scenario)
-    return {
-        **places.locations,
-        **places.areas,
-        **scenario.parameters,
-    }
+def blackboard_entries(places: Places, parameters: dict[str, str]) -> dict:
+    return {**places.locations, **places.areas, **parameters}
 
 
 class ParameterError(BTError):
@@ -54,11 +48,13 @@ class ParameterError(BTError):
         self.key = key
 
 
-def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, Agent]:
-    """The agent's tree, its Agent, and its root blackboard filled from the scenario; a
-    node that commands an actor the agent may not command is a located BTError."""
-    config = scenario.trees[agent]
-    handle = Agent(agent, scenario_places(scenario))
+def load_agent_tree(
+    config: AgentTree, agent: str, places: Places, parameters: dict[str, str]
+) -> tuple[Tree, Agent]:
+    """The agent's tree, its Agent, and its root blackboard filled with the places and
+    parameters; a node that commands an actor the agent may not command is a located
+    BTError."""
+    handle = Agent(agent, places)
     tree = load_tree(
         config.file,
         hrc_registry(),
@@ -68,7 +64,7 @@ def load_agent_tree(scenario: Scenario, agent: str) -> tuple[Tree, Agent]:
     )
     for error in command_errors(agent, tree):
         raise error
-    for key, value in blackboard_entries(scenario).items():
+    for key, value in blackboard_entries(places, parameters).items():
         try:
             tree.root_blackboard.set(key, value)
         except BTError as error:  # only parameters are text the tree may not read
@@ -96,22 +92,27 @@ def command_errors(agent: str, tree: Tree) -> list[BTError]:
 Problem = tuple[tuple, str]
 
 
-def tree_errors(scenario: Scenario) -> list[BTError | Problem]:
-    """Everything wrong with the scenario's trees, without running them: the engine's
-    checks (unknown nodes, ports, values, scripts, includes, which tree is the main one),
-    names of places that the scenario does not define, and parameters and port values
-    (as a scenario Problem: field names and message) that the trees cannot read."""
+def tree_errors(
+    trees: dict[str, AgentTree], places: Places, parameters: dict[str, str]
+) -> list[BTError | Problem]:
+    """Everything wrong with a scenario's trees, without running them: the engine's checks
+    (unknown nodes, ports, values, scripts, includes, which tree is the main one), nodes
+    that command what their agent may not, names of places that are not defined, and
+    parameters and port values (as a scenario Problem: field names and message) that the
+    trees cannot read."""
     errors: list[BTError | Problem] = []
-    for agent, config in scenario.trees.items():
+    for agent, config in trees.items():
         found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
         if found:
             errors += found
             continue
         try:
             port_problems = list(_port_value_problems(agent, config))
-            errors += port_problems or _place_errors(
-                scenario, agent, load_agent_tree(scenario, agent)[0]
-            )
+            if port_problems:
+                errors += port_problems
+                continue
+            tree = load_agent_tree(config, agent, places, parameters)[0]
+            errors += _place_errors(config, places, tree)
         except ParameterError as error:
             errors.append((("parameters", error.key), error.problem))
         except BTError as error:  # no main tree to run
@@ -159,27 +160,26 @@ def port_value_problem(named: dict, agent: str, name: str, port: str, text: str)
     return ""
 
 
-def _place_errors(scenario: Scenario, agent: str, tree: Tree) -> list[BTError | Problem]:
+def _place_errors(config: AgentTree, places: Places, tree: Tree) -> list[BTError | Problem]:
     """Places the tree names that the scenario lacks: at the tree's node and port, or at
     the scenario's `ports` entry that gave the value."""
     errors = []
-    given = scenario.trees[agent].ports
     for _, _, node in tree.nodes():
         for port, binding in node.config.inputs.items():
             value = getattr(binding, "value", None)
-            problem = _unknown_place(scenario, value)
-            if problem and port in given.get(node.name, {}):
-                errors.append((("trees", agent, "ports", node.name, port), problem))
+            problem = _unknown_place(places, value)
+            if problem and port in config.ports.get(node.name, {}):
+                errors.append((("trees", tree.context.name, "ports", node.name, port), problem))
             elif problem:
                 errors.append(node.error(problem, port=port))
     return errors
 
 
-def _unknown_place(scenario: Scenario, value) -> str:
-    if isinstance(value, Pose) and value.name and value.name not in scenario.locations:
-        return f"unknown location '{value.name}' (scenario locations: {_names(scenario.locations)})"
-    if isinstance(value, AreaRef) and value.name not in scenario.areas:
-        return f"unknown area '{value.name}' (scenario areas: {_names(scenario.areas)})"
+def _unknown_place(places: Places, value) -> str:
+    if isinstance(value, Pose) and value.name and value.name not in places.locations:
+        return f"unknown location '{value.name}' (scenario locations: {_names(places.locations)})"
+    if isinstance(value, AreaRef) and value.name not in places.areas:
+        return f"unknown area '{value.name}' (scenario areas: {_names(places.areas)})"
     return ""
 
 

@@ -36,14 +36,13 @@ from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
-from hrc_drake.agent_trees import load_agent_tree
 from hrc_drake.evaluation.replay import dress_scene
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
-from hrc_drake.scenario import NO_TOOL, Scenario
+from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
-from hrc_drake.station_models import add_station_models, model_parser
+from hrc_drake.station import add_station_models, model_parser
 from hrc_drake.systems.adapters import add_human_hands
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.human_actor import HumanActor, add_human
@@ -120,16 +119,17 @@ def build_diagram(
         builder,
     )
     physics.set_name(PHYSICS_SCENE_GRAPH)
-    arm, _ = add_station_models(plant, model_parser(plant), scenario)
+    spec = scenario.station
+    arm, _ = add_station_models(plant, model_parser(plant), spec)
     plant.Finalize()
-    plant.SetDefaultPositions(arm, scenario.configuration(scenario.robot.initial_configuration))
-    controller = add_robot_controller(builder, scenario, plant, arm)
+    plant.SetDefaultPositions(arm, spec.initial_positions)
+    controller = add_robot_controller(builder, spec, plant, arm)
     scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
     human, human_plant = _add_person(builder, scene_graph, mirror, scenario)
     workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
     motion = add_robot_motion(
-        builder, scenario, plant, arm, controller, scenario.robot.motion, workpieces
+        builder, spec, plant, arm, controller, scenario.robot.motion, workpieces
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
     audit = _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario)
@@ -168,7 +168,7 @@ def _add_world_scene(builder, plant, scenario):
     mirror = MultibodyPlant(0.0)
     mirror.set_name(STATION_MIRROR)
     mirror.RegisterAsSourceForSceneGraph(scene_graph)
-    add_station_models(mirror, model_parser(mirror), scenario)
+    add_station_models(mirror, model_parser(mirror), scenario.station)
     mirror.Finalize()
     to_pose = builder.AddNamedSystem(
         STATION_MIRROR_GEOMETRY, MultibodyPositionToGeometryPose(mirror, True)
@@ -205,7 +205,7 @@ def _add_workpieces(builder, scene_graph, plant, mirror, scenario, human):
     if not scenario.workpieces.types:
         return None
     tool_frame = None
-    if scenario.robot.tool != NO_TOOL:
+    if scenario.station.has_tool:
         tool_frame = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
     workpieces = add_workpieces(
         builder,
@@ -267,7 +267,7 @@ def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, sce
 def _add_tree(builder, scenario, agent: str, sources: dict) -> BehaviorTreeSystem:
     """The agent's tree, reading every status source and commanding the actors it may
     (hrc_drake.wiring.COMMANDED_BY) through their inputs for its issuer."""
-    tree, handle = load_agent_tree(scenario, agent)
+    tree, handle = scenario.agent_tree(agent)
     system = builder.AddNamedSystem(
         tree_system(agent),
         BehaviorTreeSystem(

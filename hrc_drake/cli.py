@@ -276,7 +276,7 @@ def _single_sets(args, command: str, grids: str) -> tuple[tuple, dict]:
     """`--set`, `--seed` and `--duration` as overrides (checked like the scenario's own
     fields), and the options that gave them."""
     from hrc_drake.scenario import Scenario
-    from hrc_drake.sweep.overrides import parse_sets
+    from hrc_drake.scenario.overrides import parse_sets
 
     axes = parse_sets(args.set, Scenario)
     if any(len(values) > 1 for _, values in axes):
@@ -487,7 +487,6 @@ def _check_stand_spots(name_or_path: str, scenario, station) -> None:
 
 
 def _tree(args) -> int:
-    from hrc_drake.agent_trees import load_agent_tree
     from hrc_drake.bt import BTError, load_tree, render_tree
     from hrc_drake.nodes import hrc_registry
     from hrc_drake.scenario import load_scenario
@@ -503,7 +502,7 @@ def _tree(args) -> int:
         if args.agent not in scenario.trees:
             known = ", ".join(scenario.trees) or "none"
             raise InputError(f"{args.source}: give --agent, one of: {known}")
-        tree, _ = load_agent_tree(scenario, args.agent)
+        tree, _ = scenario.agent_tree(args.agent)
     render_tree(tree, args.output)
     print(args.output)
     return 0

@@ -47,7 +47,7 @@ from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.log import write_safety_log
 from hrc_drake.safety.margin import log_of, margin_metrics, reference_model
-from hrc_drake.scenario import Scenario
+from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.wiring import HUMAN_MODEL, RECORDER, SAFETY_MONITOR, VISUAL_PREFIX, tree_system
 from hrc_drake.yaml_check import InputError
 
@@ -95,7 +95,8 @@ def run(
 
     `serve(station)`, if given, starts watchers of the station before the simulation
     (e.g. `hrc_drake.groot.serve_groot`); they are closed when the simulation ends."""
-    scenario = scenario.with_overrides(seed=seed, duration=duration)
+    given = (("seed", seed), ("duration", duration))
+    scenario = overridden(scenario, [(name, value) for name, value in given if value is not None])
     out_dir = Path(out_dir) if out_dir is not None else None
     if out_dir is not None:
         prepare_run_directory(out_dir)
@@ -352,7 +353,7 @@ def _advance(simulator: Simulator, duration: float, progress: bool, name: str) -
 
 
 def _metrics(scenario: Scenario, log) -> dict:
-    q0 = scenario.configuration(scenario.robot.initial_configuration)
+    q0 = scenario.station.initial_positions
     n = len(q0)
     q = log.data()[:n]
     deviation = np.abs(q - q0[:, None]).max() if q.size else 0.0

@@ -15,6 +15,11 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+REQUIRED = {"required": True}
+"""Field metadata: the file must give this field."""
+NEW_ENTRIES = "new_entries"
+"""Field metadata: `--set` may add entries to this mapping (not only change them)."""
+
 
 class InputError(Exception):
     """A user's file is wrong; the message is one self-contained line."""
@@ -233,3 +238,18 @@ def _check_scalar(filename, node, schema, path):
 def a_kind(schema) -> str:
     """`a float`, `an int`: how messages name a scalar type."""
     return f"{'an' if schema.__name__[0] in 'aeiou' else 'a'} {schema.__name__}"
+
+
+def first_line(error: Exception) -> str:
+    """What Drake says, on one line: its first line, and what it was called with when
+    that line only announces a list of signatures (pybind's "incompatible arguments")."""
+    lines = [line.strip() for line in str(error).splitlines() if line.strip()] or [repr(error)]
+    invoked = next((line for line in lines if line.startswith("Invoked with")), "")
+    return f"{lines[0]} {invoked}" if lines[0].endswith(":") and invoked else lines[0]
+
+
+def unknown(what: str, name: str, known) -> str:
+    """`unknown <what> '<name>' (did you mean ...?); known: ...`"""
+    close = difflib.get_close_matches(name, list(known), n=1)
+    hint = f" (did you mean '{close[0]}'?)" if close else ""
+    return f"unknown {what} '{name}'{hint}; known: {', '.join(sorted(known))}"

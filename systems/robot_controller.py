@@ -20,8 +20,7 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.primitives import MatrixGain, Multiplexer
 
 from hrc_drake.iisy import VARIANTS
-from hrc_drake.scenario import Scenario
-from hrc_drake.station_models import make_control_plant
+from hrc_drake.station import StationSpec, make_control_plant
 from hrc_drake.wiring import ROBOT_CONTROLLER
 
 
@@ -62,16 +61,16 @@ def _acceleration_gain(kp, kd, reference_acceleration: bool) -> np.ndarray:
 
 
 def add_robot_controller(
-    builder, scenario: Scenario, plant, arm, reference_acceleration: bool = True
+    builder, station: StationSpec, plant, arm, reference_acceleration: bool = True
 ) -> RobotController:
-    """Adds the scenario robot's controller as "robot_controller", reading the arm's state
-    from `plant` and driving its actuation; the caller connects the desired state."""
-    variant = VARIANTS[scenario.robot.variant]
+    """Adds the station robot's controller as ROBOT_CONTROLLER, reading the arm's state from
+    `plant` and driving its actuation (its model of the robot has the plant's time step);
+    the caller connects the desired state."""
+    variant = VARIANTS[station.variant]
+    control_plant = make_control_plant(station, plant.time_step())
     controller = builder.AddNamedSystem(
         ROBOT_CONTROLLER,
-        RobotController(
-            make_control_plant(scenario), variant.kp, variant.kd, reference_acceleration
-        ),
+        RobotController(control_plant, variant.kp, variant.kd, reference_acceleration),
     )
     builder.Connect(plant.get_state_output_port(arm), controller.GetInputPort("estimated_state"))
     builder.Connect(

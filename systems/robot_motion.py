@@ -50,7 +50,7 @@ from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
 from hrc_drake.ports import message_value, value_or_none
-from hrc_drake.scenario import Scenario
+from hrc_drake.station import StationSpec
 from hrc_drake.wiring import (
     GRIPPER_ISSUER,
     ROBOT,
@@ -125,14 +125,14 @@ class RobotMotion(LeafSystem):
     issuer, or None).
     """
 
-    def __init__(self, scenario: Scenario, options: MotionOptions | None = None):
+    def __init__(self, station: StationSpec, options: MotionOptions | None = None):
         super().__init__()
         self._options = options or MotionOptions()
-        self._planner = MotionPlanner(scenario, self._options)
+        self._planner = MotionPlanner(station, self._options)
         self._model = self._planner.model
-        self._variant = VARIANTS[scenario.robot.variant]
+        self._variant = VARIANTS[station.variant]
         self._n = len(self._variant.joint_names)
-        q0 = scenario.configuration(scenario.robot.initial_configuration)
+        q0 = station.initial_positions
         initial = MotionState(hold=tuple(q0), tool_pose=self._model.tool_pose(q0))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
 
@@ -420,7 +420,7 @@ class RobotMotion(LeafSystem):
 
 def add_robot_motion(
     builder,
-    scenario: Scenario,
+    station: StationSpec,
     plant,
     arm,
     controller,
@@ -435,7 +435,7 @@ def add_robot_motion(
     `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
     commands and reads its status; without, Grip and Release fail with a reason.
     """
-    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(scenario, options))
+    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(station, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
     n = motion.GetOutputPort("desired_acceleration").size()
     split = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, Demultiplexer([2 * n, n]))

@@ -13,8 +13,8 @@ import pytest
 
 from hrc_drake.runner import run
 from hrc_drake.scenario import Scenario, load_scenario, resolve_scenario_path
+from hrc_drake.scenario.overrides import grid, overridden, parse_sets
 from hrc_drake.sweep import parse_seeds, plan, sweep
-from hrc_drake.sweep.overrides import apply, grid, parse_sets
 from hrc_drake.yaml_check import InputError
 
 BASE = resolve_scenario_path("base")
@@ -40,7 +40,7 @@ def test_set_builds_a_typed_grid():
         (("duration", 1.0), ("robot.tool", "none")),
         (("duration", 2.0), ("robot.tool", "none")),
     ]
-    scenario = apply(load_scenario("base"), points[1])
+    scenario = overridden(load_scenario("base"), points[1])
     assert (scenario.duration, scenario.robot.tool) == (2.0, "none")
 
 

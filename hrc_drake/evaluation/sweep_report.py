@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
-from hrc_drake.sweep.overrides import label
+from hrc_drake.scenario.overrides import label
 from hrc_drake.sweep.rows import OK, flatten
 
 PERCENTILES = (0, 5, 25, 50, 75, 95, 100)

@@ -19,10 +19,10 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from hrc_drake.falsify.config import FalsifyConfig, SearchParameter
+from hrc_drake.scenario.falsify import FalsifyConfig, SearchParameter
+from hrc_drake.scenario.overrides import Overrides, field_type, label
 from hrc_drake.sweep import scenario_hash
 from hrc_drake.sweep.execute import LocalPool, connect_dask, run_on_dask
-from hrc_drake.sweep.overrides import Overrides, field_type, label
 from hrc_drake.sweep.rows import OK, RowStore, RunSpec
 from hrc_drake.yaml_check import InputError
 

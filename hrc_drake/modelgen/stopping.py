@@ -44,7 +44,7 @@ from hrc_drake.motion.model import PlanningModel
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.safety.stopping import Stop, stopping_file
-from hrc_drake.scenario import RobotConfig, Scenario
+from hrc_drake.station import StationSpec
 from hrc_drake.systems.robot_motion import RobotMotion
 from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
 
@@ -66,9 +66,9 @@ class _IdealRobot:
     """RobotMotion whose desired state is fed back as the measured state."""
 
     def __init__(self, variant: str, options: MotionOptions):
-        scenario = Scenario(name=f"stopping_{variant}", robot=RobotConfig(variant=variant))
+        station = StationSpec(variant)
         builder = DiagramBuilder()
-        self.motion = builder.AddSystem(RobotMotion(scenario, options))
+        self.motion = builder.AddSystem(RobotMotion(station, options))
         builder.Connect(
             self.motion.GetOutputPort("desired_state"), self.motion.GetInputPort("robot_state")
         )
@@ -248,7 +248,7 @@ def _by_extension(variant: str, extension: float) -> list[np.ndarray]:
 
 @functools.cache
 def _planning_model(variant: str):
-    return PlanningModel(Scenario(name="stopping", robot=RobotConfig(variant=variant)), 0.0)
+    return PlanningModel(StationSpec(variant), 0.0)
 
 
 def measure_variant(variant: str) -> list[Stop]:

@@ -1,4 +1,4 @@
-"""The planner's own model of the robot and the static cell, built from the scenario.
+"""The planner's own model of the robot and the static cell, built from the station spec.
 
 It is a RobotDiagram (plant + SceneGraph) inside a SceneGraphCollisionChecker, separate from
 the simulated station: planning never touches the station's context.
@@ -13,8 +13,7 @@ from pydrake.math import RigidTransform
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
-from hrc_drake.scenario import NO_TOOL, Scenario
-from hrc_drake.station_models import add_station_models
+from hrc_drake.station import StationSpec, add_station_models
 
 EDGE_STEP = 0.01
 """Joint-space resolution (rad) of edge collision checks: about 1 cm at the tool."""
@@ -28,10 +27,10 @@ PERSON_HEIGHT = 1.9
 class PlanningModel:
     """Robot + tool + static cell: kinematics, limits and collision checks for planning."""
 
-    def __init__(self, scenario: Scenario, clearance: float):
-        self.variant = VARIANTS[scenario.robot.variant]
+    def __init__(self, station: StationSpec, clearance: float):
+        self.variant = VARIANTS[station.variant]
         builder = RobotDiagramBuilder(time_step=0.0)
-        arm, robot_instances = add_station_models(builder.plant(), builder.parser(), scenario)
+        arm, robot_instances = add_station_models(builder.plant(), builder.parser(), station)
         builder.plant().Finalize()
         self.checker = SceneGraphCollisionChecker(
             model=builder.Build(),
@@ -47,13 +46,13 @@ class PlanningModel:
         self.arm = arm
         if self.plant.num_positions() != len(self.variant.joint_names):
             raise ValueError("the static cell must be welded: the planner plans the arm alone")
-        self._unpad_mounting(scenario.configuration(scenario.robot.initial_configuration))
+        self._unpad_mounting(station.initial_positions)
         self.checker_context = self.checker.MakeStandaloneModelContext()
         self.diagram_context = self.checker.model().CreateDefaultContext()
         self.plant_context = self.checker.model().mutable_plant_context(self.diagram_context)
         tcp_instance = robot_instances[-1]
         self.tcp = self.plant.GetFrameByName(
-            TCP_FRAME if scenario.robot.tool != NO_TOOL else FLANGE_FRAME, tcp_instance
+            TCP_FRAME if station.has_tool else FLANGE_FRAME, tcp_instance
         )
         self.lower = np.array(self.variant.position_lower)
         self.upper = np.array(self.variant.position_upper)

@@ -17,19 +17,19 @@ from hrc_drake.motion.model import PlanningModel
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.roadmap import collision_free_waypoints
 from hrc_drake.motion.timing import TimedPath, polyline_path, spline_path, time_path
-from hrc_drake.scenario import Scenario
+from hrc_drake.station import StationSpec
 
 ARRIVED = 1e-6
 """Joint distance (rad) below which a target counts as the start: nothing to move."""
 
 
 class MotionPlanner:
-    """Plans the moves of one scenario's robot among its static cell."""
+    """Plans the moves of one station's robot among its static cell."""
 
-    def __init__(self, scenario: Scenario, options: MotionOptions):
-        self.scenario = scenario
+    def __init__(self, station: StationSpec, options: MotionOptions):
+        self.station = station
         self.options = options
-        self.model = PlanningModel(scenario, options.clearance)
+        self.model = PlanningModel(station, options.clearance)
         self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
 
     def plan(self, command, q_start, person_xy=None) -> TimedPath | None:
@@ -93,12 +93,12 @@ class MotionPlanner:
         return q
 
     def _named_configuration(self, name: str | None) -> np.ndarray:
-        known = {"home", *self.scenario.robot.configurations_deg}
+        known = self.station.configuration_names
         if name not in known:
             raise PlanningFailed(
                 f"unknown configuration '{name}' (known: {', '.join(sorted(known))})"
             )
-        return self.scenario.configuration(name)
+        return self.station.configuration(name)
 
     def _linear(self, command: MoveLinear, q_start) -> list[np.ndarray]:
         return linear_waypoints(

@@ -21,7 +21,7 @@ from functools import lru_cache
 from multiprocessing import get_context
 from multiprocessing.connection import wait
 
-from hrc_drake.sweep.overrides import apply
+from hrc_drake.scenario.overrides import overridden
 from hrc_drake.sweep.rows import RunSpec, make_row
 from hrc_drake.yaml_check import InputError
 
@@ -61,7 +61,7 @@ def run_spec(spec: RunSpec) -> dict:
 
     start = time.perf_counter()
     try:
-        scenario = apply(_scenario(spec.scenario_path), spec.overrides)
+        scenario = overridden(_scenario(spec.scenario_path), spec.overrides)
         metrics = run(scenario, seed=spec.seed, out_dir=spec.out_dir or None).metrics
     except Exception as e:  # any failure of one run is that run's result, not the sweep's
         message = " ".join(f"{type(e).__name__}: {e}".split())

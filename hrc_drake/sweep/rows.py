@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import hrc_drake
-from hrc_drake.sweep.overrides import Overrides, label
+from hrc_drake.scenario.overrides import Overrides, label
 from hrc_drake.yaml_check import InputError
 
 OK = "ok"

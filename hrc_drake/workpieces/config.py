@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pydrake.common.schema import Transform
 
 from hrc_drake.workpieces.messages import Attributes
+from hrc_drake.yaml_check import REQUIRED
 
 BOX = "box"
 CYLINDER = "cylinder"
@@ -18,7 +19,6 @@ SHAPES = (BOX, CYLINDER)
 REMOVE = "remove"
 QUEUE = "queue"
 END_ACTIONS = (REMOVE, QUEUE)
-REQUIRED = {"required": True}
 
 
 @dataclass

@@ -215,7 +215,8 @@ def test_a_mistake_in_a_shared_subtree_is_reported_once(name, tmp_path):
     """Reach is used twice; each of its mistakes is one message, not one per instance."""
     scenario = load_scenario(write_workspace(tmp_path))
     write_workspace(tmp_path, CASES[name])  # the loaded scenario now names a bad tree
-    errors = [str(error) for error in tree_errors(scenario)]
+    trees = tree_errors(scenario.trees, scenario.places(), scenario.parameters)
+    errors = [str(error) for error in trees]
     problems = [error.split(": ", 2)[-1] for error in errors]
     assert errors and len(set(problems)) == len(problems), errors
     assert all(error.startswith(f"{tmp_path / 'robot.xml'}:12:") for error in errors)

@@ -14,7 +14,7 @@ from hrc_drake.evaluation.realism import (
     realism_metrics,
     realism_rows,
 )
-from hrc_drake.scenario import HumanConfig, load_scenario
+from hrc_drake.scenario import HumanConfig, load_scenario, overridden
 from hrc_drake.workpieces.geometry import Solid
 
 STRIDE = 1.0
@@ -104,7 +104,7 @@ def test_signed_distance_is_negative_inside_a_box():
 def _audit_of_person_standing_at(x, y) -> dict:
     scenario = load_scenario("base")
     scenario.human = HumanConfig(start=[x, y, 90.0])
-    diagram = build_diagram(scenario.with_overrides(duration=0.3))
+    diagram = build_diagram(overridden(scenario, [("duration", 0.3)]))
     simulator = Simulator(diagram)
     simulator.AdvanceTo(0.3)
     return realism_metrics(diagram.GetOutputPort("realism").Eval(simulator.get_context()))

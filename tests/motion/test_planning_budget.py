@@ -58,7 +58,7 @@ class _Clock:
 
 @pytest.fixture(scope="module")
 def planner():
-    return MotionPlanner(make_scenario(box_at=(0.3, 0.35)), MotionOptions())
+    return MotionPlanner(make_scenario(box_at=(0.3, 0.35)).station, MotionOptions())
 
 
 @pytest.fixture(scope="module")
@@ -87,8 +87,8 @@ def test_plans_are_the_same_whatever_the_clock_says(planner, quiet_outcomes, mon
 def test_budgets_are_counts_from_the_options():
     """A smaller search budget fails a move that needs a search; the default plans it."""
     scenario = make_scenario(box_at=(0.3, 0.35))
-    tight = MotionPlanner(scenario, MotionOptions(search_nodes=2))
+    tight = MotionPlanner(scenario.station, MotionOptions(search_nodes=2))
     home = np.array(tight.model.variant.home)
     with pytest.raises(PlanningFailed, match="no collision-free path"):
         tight.plan(COMMANDS[1], home)
-    assert MotionPlanner(scenario, MotionOptions()).plan(COMMANDS[1], home) is not None
+    assert MotionPlanner(scenario.station, MotionOptions()).plan(COMMANDS[1], home) is not None

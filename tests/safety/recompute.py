@@ -17,7 +17,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.human.body import parse_human
 from hrc_drake.paths import resource_dir
-from hrc_drake.station_models import add_station_models, model_parser
+from hrc_drake.station import add_station_models, model_parser
 
 
 @dataclass
@@ -40,7 +40,7 @@ class Scene:
         self.scene_graph = builder.AddSystem(SceneGraph())
         self.robot = MultibodyPlant(0.0)
         self.robot.RegisterAsSourceForSceneGraph(self.scene_graph)
-        arm, instances = add_station_models(self.robot, model_parser(self.robot), scenario)
+        arm, instances = add_station_models(self.robot, model_parser(self.robot), scenario.station)
         self.robot.Finalize()
         self.human = MultibodyPlant(0.0)
         self.human.RegisterAsSourceForSceneGraph(self.scene_graph)

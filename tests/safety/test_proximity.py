@@ -14,7 +14,7 @@ from hrc_drake.human.body import parse_human
 from hrc_drake.safety.geometry import body_parts, human_parts
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.scenario import load_scenario
-from hrc_drake.station_models import add_robot, model_parser
+from hrc_drake.station import add_robot, model_parser
 from tests.safety.approach_cell import kinematic, walk
 
 PERIOD = 0.01
@@ -32,7 +32,7 @@ class Cell:
 
         def add_robot_plant():
             return kinematic(
-                builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.robot)
+                builder, scene_graph, lambda p: add_robot(p, model_parser(p), scenario.station)
             )
 
         def add_human_plant():
@@ -44,7 +44,7 @@ class Cell:
         else:
             robot_plant, arm, self.robot_pose = add_robot_plant()
             human_plant, human, self.human_pose = add_human_plant()
-        self.q_home = scenario.configuration("home")
+        self.q_home = scenario.station.configuration("home")
         self.diagram = builder.Build()
         self.context = self.diagram.CreateDefaultContext()
         self.query_port = scene_graph.get_query_output_port()

@@ -12,7 +12,7 @@ from hrc_drake.runner import run
 from hrc_drake.safety.log import read_safety_log
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import load_scenario
-from hrc_drake.sweep.overrides import apply
+from hrc_drake.scenario.overrides import overridden
 from tests.safety.recompute import episodes
 
 DURATION = 12.0
@@ -21,7 +21,7 @@ DURATION = 12.0
 @pytest.fixture(scope="module")
 def run_directory(tmp_path_factory):
     out = tmp_path_factory.mktemp("run")
-    scenario = apply(load_scenario("getting_started"), [("safety.ssm", False)])
+    scenario = overridden(load_scenario("getting_started"), [("safety.ssm", False)])
     run(scenario, duration=DURATION, out_dir=out)
     return json.loads((out / "report.json").read_text())["safety"], read_safety_log(
         out / "safety.npz"

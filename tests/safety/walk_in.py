@@ -28,7 +28,7 @@ from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import Scenario
-from hrc_drake.station_models import add_station_models, model_parser
+from hrc_drake.station import add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
@@ -218,11 +218,11 @@ def build(case: Case):
         MultibodyPlantConfig(time_step=scene.time_step, discrete_contact_approximation="sap"),
         builder,
     )
-    arm, _ = add_station_models(plant, model_parser(plant), scene)
+    arm, _ = add_station_models(plant, model_parser(plant), scene.station)
     plant.Finalize()
-    plant.SetDefaultPositions(arm, scene.configuration(scene.robot.initial_configuration))
-    controller = add_robot_controller(builder, scene, plant, arm)
-    motion = add_robot_motion(builder, scene, plant, arm, controller)
+    plant.SetDefaultPositions(arm, scene.station.initial_positions)
+    controller = add_robot_controller(builder, scene.station, plant, arm)
+    motion = add_robot_motion(builder, scene.station, plant, arm, controller)
     shuttle = builder.AddSystem(Shuttle(sweep_goals()))
     builder.Connect(motion.GetOutputPort("robot_status"), shuttle.get_input_port())
     builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_tree_command"))

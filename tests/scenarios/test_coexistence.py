@@ -67,7 +67,7 @@ class Outcome:
 
 def simulate(seed: int, duration: float) -> Outcome:
     """Runs the scenario and samples the statuses."""
-    scenario = load_scenario(SCENARIO).with_overrides(seed=seed)
+    scenario = load_scenario(SCENARIO, [("seed", seed)])
     diagram = build_diagram(scenario)
     simulator = Simulator(diagram)
     context = simulator.get_context()

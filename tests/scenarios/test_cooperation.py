@@ -80,7 +80,7 @@ def in_reject_zone(objects, scenario: Scenario) -> int:
 
 
 def simulate(duration: float, seed: int) -> Outcome:
-    scenario = load_scenario(SCENARIO).with_overrides(seed=seed)
+    scenario = load_scenario(SCENARIO, [("seed", seed)])
     diagram = build_diagram(scenario)
     simulator = Simulator(diagram)
     context = simulator.get_context()

@@ -6,8 +6,9 @@ from pathlib import Path
 
 from pydrake.systems.analysis import Simulator
 
+from hrc_drake.agent_trees import AgentTree
 from hrc_drake.builder import build_diagram
-from hrc_drake.scenario import AgentTree, load_scenario
+from hrc_drake.scenario import load_scenario
 
 HERE = Path(__file__).resolve().parent
 

@@ -4,7 +4,6 @@ person's hands come from HumanActor's status."""
 import numpy as np
 import pytest
 from pydrake.common.eigen_geometry import Quaternion
-from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
@@ -15,8 +14,7 @@ from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.messages import NO_COMMANDS, SUCCEEDED, CommandResult
 from hrc_drake.paths import add_model_package
-from hrc_drake.scenario import RobotConfig
-from hrc_drake.station_models import add_robot
+from hrc_drake.station import StationSpec, add_robot
 from hrc_drake.systems.adapters import hand_poses
 from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.wiring import TOOL_MODEL
@@ -32,7 +30,7 @@ def station():
     plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(time_step=1e-3), builder)
     parser = Parser(plant)
     add_model_package(parser.package_map())
-    robot = RobotConfig(variant="lbr_iisy3_r760", base_pose=Transform(translation=[0, 0, 0.75]))
+    robot = StationSpec("lbr_iisy3_r760", base_pose=RigidTransform([0, 0, 0.75]))
     arm = add_robot(plant, parser, robot)
     plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
     plant.Finalize()

@@ -1,217 +1,39 @@
-"""Scenario files: one YAML file per scenario, read into dataclasses with `yaml_load_typed`.
-
-This follows Drake's `examples/hardware_sim`: the schema is plain dataclasses (plus Drake's
-own `Transform` and `ModelDirective` schemas), and the builder turns a loaded Scenario into
-one Diagram. Every problem in a file is reported as one line naming file, line and field.
+"""Everything a scenario's schema cannot say, checked after reading (and after overrides,
+so a value from the command line meets the same checks as one from the file): the value
+ranges of FIELD_RULES, finite numbers, the robot and its configurations, places, the cell
+(parsed by Drake once per robot and cell), the workpieces, the person's clips, the trees
+(hrc_drake.agent_trees) and the falsify section. Each problem is field names and a message,
+located in the file by hrc_drake.scenario.loading.
 """
 
 import dataclasses
-import difflib
 import itertools
 import math
 import re
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 from pydrake.common.schema import Rotation, Transform
-from pydrake.common.yaml import yaml_load_typed
-from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import ModelDirective, PackageMap
+from pydrake.multibody.plant import MultibodyPlant
 
+from hrc_drake.agent_trees import AgentTree, tree_errors
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
-from hrc_drake.falsify.config import FalsifyConfig, search_problems
 from hrc_drake.human.anthropometry import HEIGHT_RANGE
 from hrc_drake.human.clip_files import read_clip_file
-from hrc_drake.iisy import TOOL_BODY, VARIANTS
-from hrc_drake.motion.options import MotionOptions
-from hrc_drake.paths import add_model_package, resource_dir
-from hrc_drake.safety.config import V_H_RULES, SafetyConfig
-from hrc_drake.sweep.overrides import NEW_ENTRIES, Overrides, apply, field_type
+from hrc_drake.iisy import VARIANTS
+from hrc_drake.paths import add_model_package
+from hrc_drake.safety.config import V_H_RULES
+from hrc_drake.scenario.falsify import search_problems
+from hrc_drake.scenario.overrides import field_kind, field_type, overridden
+from hrc_drake.scenario.schema import RobotConfig, Scenario
+from hrc_drake.station import TOOLS, add_station_models, model_parser
 from hrc_drake.wiring import AGENTS, STATION_MODELS
-from hrc_drake.workpieces.config import WorkpiecesConfig, problems
-from hrc_drake.yaml_check import (
-    InputError,
-    check_node,
-    compose,
-    field_path,
-    located_error,
-    node_at,
-    read_text,
-    schema_fields,
-)
-
-REQUIRED = {"required": True}
-NO_TOOL = "none"
-TOOLS = (TOOL_BODY, NO_TOOL)
-
-
-@dataclass
-class RobotConfig:
-    """The cobot: which iisy, where its base stands, which tool, which configurations."""
-
-    variant: str = field(default="", metadata=REQUIRED)
-    base_pose: Transform = field(default_factory=Transform)
-    tool: str = "vacuum_gripper"
-    initial_configuration: str = "home"
-    configurations_deg: dict[str, list[float]] = field(default_factory=dict)
-    motion: MotionOptions = field(default_factory=MotionOptions)
-
-
-@dataclass
-class VisualizationOptions:
-    """Meshcat settings; `record` keeps an animation for the standalone replay.html."""
-
-    publish_period: float = 1.0 / 32.0
-    record: bool = True
-    show_collision: bool = False
-    camera_position: list[float] = field(default_factory=lambda: [1.7, -1.4, 1.5])
-    camera_target: list[float] = field(default_factory=lambda: [0.0, 0.35, 0.9])
-
-
-@dataclass
-class AgentTree:
-    """The behavior tree an agent runs: a BehaviorTree.CPP v4 XML file (relative to the
-    scenario file), which of its trees (default: its main tree), and the tick period.
-
-    `ports` replace port values the XML gives, by node name (every node of that name) and
-    port, e.g. `{walk_in: {animation_distance: "1.9"}}`: a tree exposes a parameter by
-    naming a node, and `--set trees.human.ports.walk_in.animation_distance=1.9` or a
-    `falsify:` parameter can change it without editing the tree."""
-
-    file: str = field(default="", metadata=REQUIRED)
-    tree_id: str = ""
-    period: float = 0.05
-    ports: dict[str, dict[str, str]] = field(default_factory=dict, metadata={NEW_ENTRIES: True})
-
-
-@dataclass
-class HumanConfig:
-    """The person: body height and mass (segments scale with them) and where they start
-    (x, y in metres, facing yaw in degrees)."""
-
-    height: float = 1.75
-    mass: float = 75.0
-    start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
-    clips: list[str] = field(default_factory=list)
-    """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
-    which trees play by their file names."""
-
-
-@dataclass
-class Scenario:
-    name: str = field(default="", metadata=REQUIRED)
-    description: str = ""
-    seed: int = 0
-    duration: float = 10.0
-    time_step: float = 1e-3
-    robot: RobotConfig = field(default_factory=RobotConfig, metadata=REQUIRED)
-    cell: list[ModelDirective] = field(default_factory=list)
-    areas: dict[str, list[list[float]]] = field(default_factory=dict)
-    locations: dict[str, Transform] = field(default_factory=dict)
-    visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
-    human: HumanConfig | None = None
-    workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
-    safety: SafetyConfig = field(default_factory=SafetyConfig)
-    trees: dict[str, AgentTree] = field(default_factory=dict)
-    parameters: dict[str, str] = field(default_factory=dict)
-    """Root blackboard entries of every tree (converted to each port's type when read)."""
-    falsify: FalsifyConfig | None = None
-    """The behaviour parameters `hrc-drake falsify` searches (hrc_drake.falsify.config)."""
-
-    def area(self, name: str) -> Area:
-        return Area.from_polygon(self.areas[name])
-
-    def location(self, name: str) -> RigidTransform:
-        return self.locations[name].GetDeterministicValue()
-
-    def configuration(self, name: str) -> np.ndarray:
-        """A named joint configuration in radians; `home` defaults to the variant's."""
-        if name in self.robot.configurations_deg:
-            return np.radians(self.robot.configurations_deg[name])
-        return np.array(VARIANTS[self.robot.variant].home)
-
-    def with_overrides(self, **changes) -> "Scenario":
-        """A copy with some top-level fields replaced (e.g. seed, duration)."""
-        given = {k: v for k, v in changes.items() if v is not None}
-        return dataclasses.replace(self, **given)
-
-
-def bundled_scenarios() -> list[str]:
-    return sorted(p.stem for p in resource_dir("scenarios").glob("*.yaml"))
-
-
-def resolve_scenario_path(name_or_path: str) -> Path:
-    """A path to a scenario file, or the name of a bundled one."""
-    path = Path(name_or_path)
-    if path.is_file():
-        return path
-    bundled = resource_dir("scenarios") / f"{name_or_path}.yaml"
-    if bundled.is_file():
-        return bundled
-    known = bundled_scenarios()
-    close = difflib.get_close_matches(name_or_path, known, n=1)
-    hint = f"did you mean '{close[0]}'? " if close else ""
-    raise InputError(
-        f"{name_or_path}: no such scenario file or bundled scenario ({hint}bundled: "
-        f"{', '.join(known)})"
-    )
-
-
-def load_scenario(
-    name_or_path: str | Path, overrides: Overrides = (), options: dict[str, str] | None = None
-) -> Scenario:
-    """Reads and checks a scenario; raises InputError with file, line and field.
-
-    `overrides` ((dotted field, value), ...) replace fields before the checks, so a value
-    from the command line is checked exactly like one from the file; `options` names how
-    the user gave a field (e.g. {"seed": "--seed -1"}), default `--set field=value`.
-    """
-    path = resolve_scenario_path(str(name_or_path))
-    text = read_text(path, "scenario file")
-    root = compose(path, text)
-    if root is None:
-        raise InputError(f"{path}: the file is empty")
-    check_node(path, root, Scenario)
-    try:
-        scenario = yaml_load_typed(schema=Scenario, data=text)
-    except Exception as e:  # Drake's reader; check_node catches the common cases first.
-        raise located_error(path, root, "<document>", _first_line(e)) from None
-    scenario = apply(scenario, overrides)
-    given = {name: f"--set {name}={value}" for name, value in overrides} | (options or {})
-    where = _Where(path, root, given)
-    for names, message in scenario_problems(scenario, path.parent):
-        raise where.error(names, message)
-    return scenario
-
-
-@dataclass
-class _Where:
-    """Where a field was given: the file's line, or the command-line option that set it."""
-
-    path: Path
-    root: object
-    options: dict[str, str]
-
-    def error(self, names: tuple | None, message: str) -> InputError:
-        if names is None:  # the message names its own place (e.g. a tree file's line)
-            return InputError(message)
-        dotted = field_path(names)
-        for name, option in self.options.items():
-            if dotted == name or dotted.startswith(f"{name}."):
-                return InputError(f"{option}: {message}")
-        return located_error(self.path, node_at(self.root, names), dotted, message)
-
-
-def _first_line(error: Exception) -> str:
-    """What Drake says, on one line: its first line, and what it was called with when
-    that line only announces a list of signatures (pybind's "incompatible arguments")."""
-    lines = [line.strip() for line in str(error).splitlines() if line.strip()] or [repr(error)]
-    invoked = next((line for line in lines if line.startswith("Invoked with")), "")
-    return f"{lines[0]} {invoked}" if lines[0].endswith(":") and invoked else lines[0]
-
+from hrc_drake.workpieces.config import problems
+from hrc_drake.yaml_check import InputError, first_line, schema_fields, unknown
 
 Problem = tuple[tuple | None, str]
 """(field names from the scenario's top, message): one thing wrong with a scenario; no
@@ -239,7 +61,7 @@ def within(low: float, high: float, unit: str = "", why: str = "") -> Rule:
 
 
 def one_of(known: Iterable[str]) -> Rule:
-    return lambda value: "" if value in known else _unknown("value", value, known)
+    return lambda value: "" if value in known else unknown("value", value, known)
 
 
 MAX_SEED = 2**63 - 1
@@ -312,7 +134,8 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
 def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     """The search space's own mistakes, then every range end and choice checked like the
     bound field's value in the file (with the first problem it causes)."""
-    found = list(_prefixed("falsify", search_problems(scenario.falsify)))
+    kind_of = partial(field_kind, Scenario)
+    found = list(_prefixed("falsify", search_problems(scenario.falsify, kind_of)))
     yield from found
     if found:
         return
@@ -323,7 +146,7 @@ def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
             where = ("falsify", "parameters", name)
             value = parameter.value(sample, kind)
             try:
-                changed = apply(plain, ((parameter.bind, value),))
+                changed = overridden(plain, ((parameter.bind, value),))
             except InputError as error:  # the bound field is not in the scenario
                 yield (*where, "bind"), str(error).removeprefix("--set ")
                 break
@@ -372,10 +195,10 @@ def _value_problems(value, names: tuple) -> Iterator[Problem]:
 
 def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
     if robot.variant not in VARIANTS:
-        yield ("variant",), _unknown("robot variant", robot.variant, VARIANTS)
+        yield ("variant",), unknown("robot variant", robot.variant, VARIANTS)
         return
     if robot.tool not in TOOLS:
-        yield ("tool",), _unknown("tool", robot.tool, TOOLS)
+        yield ("tool",), unknown("tool", robot.tool, TOOLS)
     joints = len(VARIANTS[robot.variant].joint_names)
     for name, q in robot.configurations_deg.items():
         if len(q) != joints:
@@ -384,25 +207,8 @@ def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
     if robot.initial_configuration not in known:
         yield (
             ("initial_configuration",),
-            _unknown("configuration", robot.initial_configuration, known),
+            unknown("configuration", robot.initial_configuration, known),
         )
-
-
-def _check_human(human: HumanConfig, directory: Path, fail) -> None:
-    low, high = HEIGHT_RANGE
-    if not low <= human.height <= high:
-        fail(("height",), f"must lie within {low}..{high} m, got {human.height}")
-    if not human.mass > 0:
-        fail(("mass",), f"must be positive, got {human.mass}")
-    if len(human.start) != 3:
-        fail(("start",), "needs [x, y, yaw_deg]")
-    for i, clip in enumerate(human.clips):
-        file = (directory / clip).resolve()
-        try:
-            read_clip_file(file)
-        except InputError as error:
-            fail(("clips", i), str(error))
-        human.clips[i] = str(file)
 
 
 def _place_problems(scenario: Scenario) -> Iterator[Problem]:
@@ -433,18 +239,14 @@ def _station_problems(scenario: Scenario) -> Iterator[Problem]:
     """Builds the robot and cell models once (no simulation), so whatever else Drake
     refuses (e.g. a weld to a frame the model lacks) is one line at load time. Parsing
     takes half a second, so each robot and cell is tried once per process."""
-    from pydrake.multibody.plant import MultibodyPlant
-
-    from hrc_drake.station_models import add_station_models, model_parser
-
     key = repr((scenario.robot.variant, scenario.robot.tool, scenario.cell))
     if key not in _STATION_PROBLEMS:
         plant = MultibodyPlant(0.0)
         try:
-            add_station_models(plant, model_parser(plant), scenario)
+            add_station_models(plant, model_parser(plant), scenario.station)
             _STATION_PROBLEMS[key] = ""
         except Exception as e:  # Drake's parser: its first line says what is wrong
-            _STATION_PROBLEMS[key] = _first_line(e)
+            _STATION_PROBLEMS[key] = first_line(e)
     if _STATION_PROBLEMS[key]:
         message = _STATION_PROBLEMS[key].split(" (valid names")[0]
         yield _directive_naming(scenario.cell, message), message
@@ -486,7 +288,7 @@ def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree]) -> Iterato
     the loaded scenario works from any directory (and in sweep workers)."""
     for agent, tree in trees.items():
         if agent not in AGENTS:
-            yield (agent,), _unknown("agent", agent, AGENTS)
+            yield (agent,), unknown("agent", agent, AGENTS)
             continue
         file = (directory / tree.file).resolve()
         if not file.is_file():
@@ -497,13 +299,5 @@ def _resolve_tree_files(directory: Path, trees: dict[str, AgentTree]) -> Iterato
 def tree_problems(scenario: Scenario) -> Iterator[Problem]:
     """The trees' own errors (they name the tree file, line, node and port: the field
     names are empty) and scenario parameters the trees cannot read."""
-    from hrc_drake.agent_trees import tree_errors
-
-    for error in tree_errors(scenario):
+    for error in tree_errors(scenario.trees, scenario.places(), scenario.parameters):
         yield error if isinstance(error, tuple) else (None, str(error))
-
-
-def _unknown(what: str, name: str, known) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1)
-    hint = f" (did you mean '{close[0]}'?)" if close else ""
-    return f"unknown {what} '{name}'{hint}; known: {', '.join(sorted(known))}"

@@ -1,8 +1,12 @@
-"""`--set path=value[,value…]`: dotted scenario fields changed from the command line.
+"""Overrides: dotted scenario fields set from outside the file, the one way the command line
+(`--set path=value[,value…]`, `--seed`, `--duration`), sweeps, searches and notebooks change
+a scenario.
 
 Paths are checked against the Scenario schema and values converted to the field's type, so
 a typo is one clear line (InputError) before any run starts. Several values make a grid
-axis; several `--set` options make the Cartesian product.
+axis; several `--set` options make the Cartesian product. `overridden` layers the values
+over a loaded scenario through Drake's `yaml_load_typed`, the reader of scenario files, so a
+value given here is read exactly like one in the file.
 """
 
 import contextlib
@@ -13,8 +17,9 @@ import types
 import typing
 
 import yaml
+from pydrake.common.yaml import yaml_load_typed
 
-from hrc_drake.yaml_check import InputError, a_kind, schema_fields
+from hrc_drake.yaml_check import NEW_ENTRIES, InputError, a_kind, schema_fields
 
 SCALARS = (bool, int, float, str)
 Overrides = tuple[tuple[str, typing.Any], ...]
@@ -45,16 +50,17 @@ def grid(axes: list[tuple[str, list]]) -> list[Overrides]:
 def field_type(schema, path: str):
     """The type of the scalar field at dotted `path` (a mapping's entry is named by its
     key, e.g. `parameters.robot_speed`); InputError naming the bad part."""
-    kind = _field_type(schema, path)
+    kind = field_kind(schema, path)
     if isinstance(kind, str):
-        raise InputError(f"--set {path}: {kind}")
+        raise InputError(f"--set {kind}")
     return kind
 
 
-def field_problem(schema, path: str) -> str:
-    """Why `path` is not a field `--set` can change ("" when it is)."""
+def field_kind(schema, path: str):
+    """The type of the scalar field at dotted `path`, or why `--set` cannot change it (a
+    str that names the path)."""
     kind = _field_type(schema, path)
-    return f"{path}: {kind}" if isinstance(kind, str) else ""
+    return f"{path}: {kind}" if isinstance(kind, str) else kind
 
 
 def _field_type(schema, path: str):
@@ -92,11 +98,26 @@ def convert(path: str, kind, text: str):
     return value
 
 
-def apply(scenario, overrides: Overrides):
-    """A copy of the scenario dataclass with the dotted fields replaced."""
+def overridden(scenario, overrides: Overrides):
+    """A copy of the scenario with the dotted fields set (typed values, as `parse_sets` and
+    `convert` give them), layered over it by `yaml_load_typed`: mapping entries not named
+    keep their values, and `new_entries` mappings take new keys."""
+    if not overrides:
+        return scenario
+    layer: dict = {}
     for path, value in overrides:
-        scenario = _replace(scenario, path.split("."), value, path)
-    return scenario
+        names = path.split(".")
+        _check_settable(scenario, names, path)
+        node = layer
+        for name in names[:-1]:
+            node = node.setdefault(name, {})
+        node[names[-1]] = value
+    return yaml_load_typed(
+        schema=type(scenario),
+        data=yaml.safe_dump(layer),
+        defaults=scenario,
+        retain_map_defaults=True,
+    )
 
 
 def label(overrides: Overrides) -> str:
@@ -104,11 +125,10 @@ def label(overrides: Overrides) -> str:
     return " ".join(f"{path}={value}" for path, value in overrides)
 
 
-NEW_ENTRIES = "new_entries"
-"""Field metadata: `--set` may add entries to this mapping (not only change them)."""
-
-
-def _replace(obj, names: list[str], value, path: str, new_entries: bool = False):
+def _check_settable(obj, names: list[str], path: str, new_entries: bool = False) -> None:
+    """The entries and sections the path goes through exist in the scenario (a mapping
+    marked `new_entries` may gain keys): a path the schema knows can still name an entry
+    or an optional section this scenario does not have."""
     head, rest = names[0], names[1:]
     if isinstance(obj, dict):
         if head not in obj and not new_entries:
@@ -117,13 +137,14 @@ def _replace(obj, names: list[str], value, path: str, new_entries: bool = False)
                 f"--set {path}: '{'.'.join(done)}' has no entry '{head}'"
                 f"{_close_hint(head, obj)} (it has: {', '.join(obj) or 'none'})"
             )
-        new = _replace(obj.get(head, {}), rest, value, path, new_entries) if rest else value
-        return {**obj, head: new}
+        if rest:
+            _check_settable(obj.get(head, {}), rest, path, new_entries)
+        return
     if rest and getattr(obj, head) is None:
         raise InputError(f"--set {path}: the scenario has no '{head}' section to change")
     opens = any(f.name == head and f.metadata.get(NEW_ENTRIES) for f in dataclasses.fields(obj))
-    new = _replace(getattr(obj, head), rest, value, path, opens) if rest else value
-    return dataclasses.replace(obj, **{head: new})
+    if rest:
+        _check_settable(getattr(obj, head), rest, path, opens)
 
 
 def _close_hint(name: str, known) -> str:

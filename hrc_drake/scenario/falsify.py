@@ -14,10 +14,11 @@ falsify:
 ```
 """
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
-from hrc_drake.sweep.overrides import convert, scalar_of
+from hrc_drake.scenario.overrides import convert, scalar_of
+from hrc_drake.yaml_check import REQUIRED
 
 SAMPLERS = ("tpe", "cmaes", "random")
 
@@ -27,7 +28,7 @@ class SearchParameter:
     """One parameter: the field it sets (`bind`, a `--set` path) and its values, either a
     range `low`..`high` (with `step`: low, low + step, ... up to high) or `choices`."""
 
-    bind: str = field(default="", metadata={"required": True})
+    bind: str = field(default="", metadata=REQUIRED)
     low: float | None = None
     high: float | None = None
     step: float | None = None
@@ -76,9 +77,7 @@ class FalsifyConfig:
     trials are run again into run directories.
     """
 
-    parameters: dict[str, SearchParameter] = field(
-        default_factory=dict, metadata={"required": True}
-    )
+    parameters: dict[str, SearchParameter] = field(default_factory=dict, metadata=REQUIRED)
     sampler: str = "tpe"
     batch: int = 4
     startup_trials: int = 8
@@ -91,11 +90,10 @@ FORBIDDEN_BINDS = ("seed", "falsify")
 Problem = tuple[tuple, str]
 
 
-def search_problems(config: FalsifyConfig) -> Iterator[Problem]:
-    """The section's own mistakes: ranges, choices, what a parameter may bind."""
-    from hrc_drake.scenario import Scenario
-    from hrc_drake.sweep.overrides import field_problem, field_type
-
+def search_problems(config: FalsifyConfig, kind_of: Callable[[str], object]) -> Iterator[Problem]:
+    """The section's own mistakes: ranges, choices, what a parameter may bind. `kind_of`
+    gives the type of the scenario field a parameter binds, or what is wrong with the
+    binding (a str)."""
     if config.sampler not in SAMPLERS:
         yield ("sampler",), f"unknown sampler '{config.sampler}'; known: {', '.join(SAMPLERS)}"
     if not config.parameters:
@@ -105,10 +103,9 @@ def search_problems(config: FalsifyConfig) -> Iterator[Problem]:
         bind = parameter.bind
         if bind.split(".")[0] in FORBIDDEN_BINDS:
             yield (*where, "bind"), f"cannot search '{bind}' (the search chooses the seed)"
-        elif problem := field_problem(Scenario, bind):
-            yield (*where, "bind"), problem
+        elif isinstance(kind := kind_of(bind), str):
+            yield (*where, "bind"), kind
         else:
-            kind = field_type(Scenario, bind)
             found = [*_values(parameter), *_kind_problems(parameter, kind)]
             yield from (((*where, *names), message) for names, message in found)
 

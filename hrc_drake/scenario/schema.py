@@ -1,0 +1,122 @@
+"""The scenario file's schema: plain dataclasses read with Drake's `yaml_load_typed`, as in
+Drake's `examples/hardware_sim`, with Drake's own config structs (`Transform`,
+`ModelDirective`) where Drake has one. Each section's schema lives with the part it
+configures (`robot.motion`: hrc_drake.motion.options, `safety`: hrc_drake.safety.config,
+`workpieces`: hrc_drake.workpieces.config, `trees`: hrc_drake.agent_trees, `falsify`:
+hrc_drake.scenario.falsify); this module ties them into one Scenario.
+"""
+
+from dataclasses import dataclass, field
+
+from pydrake.common.schema import Rotation, Transform
+from pydrake.math import RigidTransform
+from pydrake.multibody.parsing import ModelDirective
+
+from hrc_drake.agent_trees import AgentTree, load_agent_tree
+from hrc_drake.areas import Area
+from hrc_drake.iisy import TOOL_BODY
+from hrc_drake.motion.options import MotionOptions
+from hrc_drake.nodes.agent import Places
+from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.scenario.falsify import FalsifyConfig
+from hrc_drake.station import HOME, StationSpec
+from hrc_drake.tree_types import Pose
+from hrc_drake.workpieces.config import WorkpiecesConfig
+from hrc_drake.yaml_check import REQUIRED
+
+
+@dataclass
+class RobotConfig:
+    """The cobot: which iisy, where its base stands, which tool, which configurations."""
+
+    variant: str = field(default="", metadata=REQUIRED)
+    base_pose: Transform = field(default_factory=Transform)
+    tool: str = TOOL_BODY
+    initial_configuration: str = HOME
+    configurations_deg: dict[str, list[float]] = field(default_factory=dict)
+    motion: MotionOptions = field(default_factory=MotionOptions)
+
+
+@dataclass
+class VisualizationOptions:
+    """Meshcat settings; `record` keeps an animation for the standalone replay.html."""
+
+    publish_period: float = 1.0 / 32.0
+    record: bool = True
+    show_collision: bool = False
+    camera_position: list[float] = field(default_factory=lambda: [1.7, -1.4, 1.5])
+    camera_target: list[float] = field(default_factory=lambda: [0.0, 0.35, 0.9])
+
+
+@dataclass
+class HumanConfig:
+    """The person: body height and mass (segments scale with them) and where they start
+    (x, y in metres, facing yaw in degrees)."""
+
+    height: float = 1.75
+    mass: float = 75.0
+    start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
+    clips: list[str] = field(default_factory=list)
+    """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
+    which trees play by their file names."""
+
+
+@dataclass
+class Scenario:
+    name: str = field(default="", metadata=REQUIRED)
+    description: str = ""
+    seed: int = 0
+    duration: float = 10.0
+    time_step: float = 1e-3
+    robot: RobotConfig = field(default_factory=RobotConfig, metadata=REQUIRED)
+    cell: list[ModelDirective] = field(default_factory=list)
+    areas: dict[str, list[list[float]]] = field(default_factory=dict)
+    locations: dict[str, Transform] = field(default_factory=dict)
+    visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
+    human: HumanConfig | None = None
+    workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
+    safety: SafetyConfig = field(default_factory=SafetyConfig)
+    trees: dict[str, AgentTree] = field(default_factory=dict)
+    parameters: dict[str, str] = field(default_factory=dict)
+    """Root blackboard entries of every tree (converted to each port's type when read)."""
+    falsify: FalsifyConfig | None = None
+    """The behaviour parameters `hrc-drake falsify` searches (hrc_drake.scenario.falsify)."""
+
+    def area(self, name: str) -> Area:
+        return Area.from_polygon(self.areas[name])
+
+    def location(self, name: str) -> RigidTransform:
+        return self.locations[name].GetDeterministicValue()
+
+    @property
+    def station(self) -> StationSpec:
+        """What the station's models are built from (the robot section and the cell)."""
+        robot = self.robot
+        return StationSpec(
+            variant=robot.variant,
+            base_pose=robot.base_pose.GetDeterministicValue(),
+            tool=robot.tool,
+            cell=tuple(self.cell),
+            configurations_deg=dict(robot.configurations_deg),
+            initial_configuration=robot.initial_configuration,
+        )
+
+    def agent_tree(self, agent: str):
+        """The agent's tree and its Agent, the root blackboard filled with the places and
+        parameters (hrc_drake.agent_trees.load_agent_tree)."""
+        return load_agent_tree(self.trees[agent], agent, self.places(), self.parameters)
+
+    def places(self) -> Places:
+        """The named locations and areas as trees see them: a location written without a
+        rotation has no orientation (the robot keeps its tool down, the person faces where
+        they walk)."""
+        return Places(
+            locations={name: self._location_pose(name) for name in self.locations},
+            areas={name: self.area(name) for name in self.areas},
+        )
+
+    def _location_pose(self, name: str) -> Pose:
+        pose = Pose.from_transform(self.location(name))
+        if isinstance(self.locations[name].rotation.value, Rotation.Identity):
+            return Pose(pose.position)
+        return pose

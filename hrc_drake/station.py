@@ -1,0 +1,94 @@
+"""The models of a station: the robot (arm + tool, welded at its base pose) and the static
+cell, described by a StationSpec. The simulation plant, the world scene's mirror, the
+controller's plant and the planner's collision model are all built from one spec, so they
+agree; none of them needs the rest of the scenario."""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.parsing import (
+    ModelDirective,
+    ModelDirectives,
+    Parser,
+    ProcessModelDirectives,
+)
+from pydrake.multibody.plant import MultibodyPlant
+
+from hrc_drake.iisy import BASE_FRAME, TOOL_BODY, VARIANTS, add_iisy, add_tool
+from hrc_drake.paths import add_model_package
+from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
+
+NO_TOOL = "none"
+TOOLS = (TOOL_BODY, NO_TOOL)
+HOME = "home"
+
+
+@dataclass(frozen=True)
+class StationSpec:
+    """Which iisy stands where with which tool, the static cell around it, and the robot's
+    named joint configurations (degrees; `home` defaults to the variant's)."""
+
+    variant: str
+    base_pose: RigidTransform = field(default_factory=RigidTransform)
+    tool: str = TOOL_BODY
+    cell: tuple[ModelDirective, ...] = ()
+    configurations_deg: dict[str, list[float]] = field(default_factory=dict)
+    initial_configuration: str = HOME
+
+    @property
+    def has_tool(self) -> bool:
+        return self.tool != NO_TOOL
+
+    @property
+    def configuration_names(self) -> set[str]:
+        return {HOME, *self.configurations_deg}
+
+    def configuration(self, name: str) -> np.ndarray:
+        """A named joint configuration in radians."""
+        if name in self.configurations_deg:
+            return np.radians(self.configurations_deg[name])
+        if name != HOME:
+            raise KeyError(f"unknown configuration '{name}'")
+        return np.array(VARIANTS[self.variant].home)
+
+    @property
+    def initial_positions(self) -> np.ndarray:
+        return self.configuration(self.initial_configuration)
+
+
+def model_parser(plant: MultibodyPlant) -> Parser:
+    """A parser that resolves `package://hrc_drake_models/...` offline."""
+    parser = Parser(plant)
+    add_model_package(parser.package_map())
+    return parser
+
+
+def add_robot(plant: MultibodyPlant, parser: Parser, spec: StationSpec):
+    """Adds the iisy (and its tool on the flange), base welded at the spec's pose."""
+    arm = add_iisy(plant, spec.variant, parser)
+    plant.RenameModelInstance(arm, ROBOT_MODEL)
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(BASE_FRAME, arm), spec.base_pose)
+    if spec.has_tool:
+        plant.RenameModelInstance(add_tool(plant, arm, parser), TOOL_MODEL)
+    return arm
+
+
+def add_station_models(plant: MultibodyPlant, parser: Parser, spec: StationSpec):
+    """The robot and the static cell; returns the arm and the robot's model instances (arm,
+    then tool if any). Does not finalize."""
+    add_model_package(parser.package_map())
+    arm = add_robot(plant, parser, spec)
+    directives = ModelDirectives()
+    directives.directives = list(spec.cell)
+    ProcessModelDirectives(directives, plant, parser)
+    names = [ROBOT_MODEL] + ([TOOL_MODEL] if spec.has_tool else [])
+    return arm, [plant.GetModelInstanceByName(name) for name in names]
+
+
+def make_control_plant(spec: StationSpec, time_step: float) -> MultibodyPlant:
+    """The arm and tool alone, for inverse dynamics (the controller's model of the robot)."""
+    control_plant = MultibodyPlant(time_step=time_step)
+    add_robot(control_plant, model_parser(control_plant), spec)
+    control_plant.Finalize()
+    return control_plant
