@@ -59,7 +59,7 @@ def load_agent_tree(
         config.file,
         hrc_registry(),
         tree_id=config.tree_id or None,
-        context=handle,
+        agent=handle,
         port_values=config.ports,
     )
     for error in command_errors(agent, tree):
@@ -169,7 +169,7 @@ def _place_errors(config: AgentTree, places: Places, tree: Tree) -> list[BTError
             value = getattr(binding, "value", None)
             problem = _unknown_place(places, value)
             if problem and port in config.ports.get(node.name, {}):
-                errors.append((("trees", tree.context.name, "ports", node.name, port), problem))
+                errors.append((("trees", tree.agent.name, "ports", node.name, port), problem))
             elif problem:
                 errors.append(node.error(problem, port=port))
     return errors

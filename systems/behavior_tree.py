@@ -63,7 +63,7 @@ class BehaviorTreeSystem(LeafSystem):
         super().__init__()
         self.tree = tree
         self.agent = agent
-        self.tree.context = agent
+        self.tree.agent = agent
         self.seed = seed
         self.counters = NodeCounters()
         self.tree.add_observer(self.counters)

@@ -21,8 +21,8 @@ Writing nodes: subclass ``SyncActionNode``/``ConditionNode`` (``tick``),
 ``StatefulActionNode`` (``on_start``/``on_running``/``on_halted``), ``ControlNode`` or
 ``DecoratorNode``; declare ``ports = (InputPort("target", type=Pose), OutputPort(...))``;
 inside, use ``get_input(name)``, ``set_output(name, value)``, ``self.now``, ``self.rng``
-(the tree's Generator) and ``self.context`` (whatever the application set as
-``tree.context``, e.g. actor status and a command outbox). Register with
+(the tree's Generator) and ``self.agent`` (whatever the application set as
+``tree.agent``: the agent the tree drives, e.g. actor status and a command outbox). Register with
 ``registry.register(MyNode)`` or ``registry.register_function("Id", fn, kind=...)``;
 enums for scripts with ``registry.register_enum(E)``; port types read from XML text with
 ``register_type(Pose, Pose.from_string, "Pose")``.

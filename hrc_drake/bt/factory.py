@@ -118,7 +118,7 @@ class TreeFactory:
         *,
         rng: np.random.Generator | None = None,
         seed: int = 0,
-        context: Any = None,
+        agent: Any = None,
         port_values: Mapping[str, Mapping[str, str]] | None = None,
     ) -> Tree:
         """Build the tree ``tree_id`` (default: the main tree); randomness comes from
@@ -126,7 +126,7 @@ class TreeFactory:
         attributes of the XML: {node name: {port: text}}."""
         main_id = self._main_id(tree_id)
         tree = Tree(
-            main_id, self.registry, rng if rng is not None else np.random.default_rng(seed), context
+            main_id, self.registry, rng if rng is not None else np.random.default_rng(seed), agent
         )
         builder = TreeBuilder(
             self.registry, self.definitions, tree, collect=False, port_values=port_values or {}
@@ -187,15 +187,13 @@ def load_tree(
     tree_id: str | None = None,
     rng: np.random.Generator | None = None,
     seed: int = 0,
-    context: Any = None,
+    agent: Any = None,
     port_values: Mapping[str, Mapping[str, str]] | None = None,
 ) -> Tree:
     """Build a tree from an XML file path or an XML string (``port_values``: see
     `TreeFactory.create_tree`)."""
     factory = _factory_for(source, registry)
-    return factory.create_tree(
-        tree_id, rng=rng, seed=seed, context=context, port_values=port_values
-    )
+    return factory.create_tree(tree_id, rng=rng, seed=seed, agent=agent, port_values=port_values)
 
 
 def validate(

@@ -30,12 +30,12 @@ PostTickHook = Callable[["TreeNode", Status], Status]
 
 class HostTree(Protocol):
     """What a node uses of the tree that holds it (``bt.tree.Tree`` is one): the time of
-    the tick, the random generator, the application's context, the enums scripts know and
+    the tick, the random generator, the application's agent, the enums scripts know and
     the observers it notifies of its transitions."""
 
     now: float
     rng: np.random.Generator
-    context: Any
+    agent: Any
     enums: dict[str, int]
     observers: list[Any]
 
@@ -140,9 +140,9 @@ class TreeNode(ABC):
         return self.tree.rng
 
     @property
-    def context(self) -> Any:
+    def agent(self) -> Any:
         """The application's object set on the tree (e.g. robot status, command outbox)."""
-        return self.tree.context
+        return self.tree.agent
 
     @property
     def script_env(self) -> ScriptEnv:

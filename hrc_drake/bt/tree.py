@@ -41,16 +41,17 @@ class SubtreeInstance:
 
 class Tree:
     """Nodes built by a TreeFactory. Deterministic: time comes only from ``tick(now)``,
-    randomness only from ``rng``; ``context`` is the application's handle for nodes."""
+    randomness only from ``rng``; ``agent`` is the application's handle for nodes (the agent
+    the tree drives)."""
 
     def __init__(
-        self, tree_id: str, registry: NodeRegistry, rng: np.random.Generator, context: Any = None
+        self, tree_id: str, registry: NodeRegistry, rng: np.random.Generator, agent: Any = None
     ):
         self.id = tree_id
         self.registry = registry
         self.enums = registry.enums
         self.rng = rng
-        self.context = context
+        self.agent = agent
         self.now = 0.0
         self.observers: list[TransitionObserver] = []
         self.monitors: list[TickMonitor] = []

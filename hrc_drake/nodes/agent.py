@@ -1,7 +1,7 @@
 """What a behavior tree node sees of the simulation: its agent, with statuses in and
 commands out.
 
-The BehaviorTreeSystem gives its tree one Agent (`tree.context`). Before each tick it stores
+The BehaviorTreeSystem gives its tree one Agent (`tree.agent`). Before each tick it stores
 the latest status of every source (hrc_drake.wiring.STATUS_SOURCES); nodes read them and
 send commands to the actors the agent may command, numbered in the agent's own steps. After
 the tick the system publishes the commands on its output ports. Named places of the

@@ -33,7 +33,7 @@ class CommandNode(StatefulActionNode):
 
     def result(self):
         """The actor's CommandResult for this node's command (None until it has one)."""
-        status = self.context.statuses[self.actor]
+        status = self.agent.statuses[self.actor]
         return self.results(status).result_of(self.seq) if status is not None else None
 
     def outcome(self) -> str | None:
@@ -45,7 +45,7 @@ class CommandNode(StatefulActionNode):
         return Status.SUCCESS
 
     def on_start(self) -> Status:
-        self.seq = self.context.send(self.actor, self.command)
+        self.seq = self.agent.send(self.actor, self.command)
         return Status.RUNNING
 
     def on_running(self) -> Status:
@@ -60,4 +60,4 @@ class CommandNode(StatefulActionNode):
 
     def on_halted(self) -> None:
         if self.cancel_command is not None:
-            self.context.send(self.actor, self.cancel_command)
+            self.agent.send(self.actor, self.cancel_command)

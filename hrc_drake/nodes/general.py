@@ -34,7 +34,7 @@ class GenerateXYPose(SyncActionNode):
     )
 
     def tick(self) -> Status:
-        x, y = self.context.area(self.get_input("area")).sample(self.rng)
+        x, y = self.agent.area(self.get_input("area")).sample(self.rng)
         self.set_output("pose", Pose((float(x), float(y), 0.0)))
         return Status.SUCCESS
 
@@ -48,8 +48,8 @@ class InAreaTest(ConditionNode):
     )
 
     def tick(self) -> Status:
-        pose = self.context.resolve_pose(self.get_input("pose"))
-        return _status(self.context.in_area(pose.xy, self.get_input("area")))
+        pose = self.agent.resolve_pose(self.get_input("pose"))
+        return _status(self.agent.in_area(pose.xy, self.get_input("area")))
 
 
 class OffsetPose(SyncActionNode):
@@ -63,7 +63,7 @@ class OffsetPose(SyncActionNode):
     )
 
     def tick(self) -> Status:
-        pose = self.context.resolve_pose(self.get_input("input"))
+        pose = self.agent.resolve_pose(self.get_input("input"))
         offset = np.array(self.get_input("offset").position)
         text = self.get_input("orientation").strip()
         quaternion = tuple(float(v) for v in text.split(";")) if text else pose.quaternion
@@ -138,7 +138,7 @@ class Emit(SyncActionNode):
     )
 
     def tick(self) -> Status:
-        self.context.emit(self.get_input("event"), value_to_text(self.get_input("value")))
+        self.agent.emit(self.get_input("event"), value_to_text(self.get_input("value")))
         return Status.SUCCESS
 
 

@@ -38,10 +38,10 @@ class ObjectsNode(SyncActionNode):
     def free_objects_in(self, area_port: str, filter_port: str) -> list[wp.ObjectStatus]:
         """Objects not held by anyone, lying in the area and matching the filter, oldest
         first."""
-        status = self.context.workpieces
+        status = self.agent.workpieces
         if status is None:
             return []
-        area = self.context.area(self.get_input(area_port))
+        area = self.agent.area(self.get_input(area_port))
         try:
             wanted = parse_filter(self.get_input(filter_port))
         except ValueError as error:
@@ -100,7 +100,7 @@ class ObjectAttribute(ObjectsNode):
     )
 
     def tick(self) -> Status:
-        status = self.context.workpieces
+        status = self.agent.workpieces
         obj = status.object(self.get_input("object_id")) if status is not None else None
         name = self.get_input("attribute")
         value = obj.type if obj is not None and name == "type" else None
@@ -127,7 +127,7 @@ class HeldObject(ObjectsNode):
         holder = self.get_input("holder")
         if holder not in wp.HOLDERS:
             raise self.error(f"unknown holder '{holder}'; known: {', '.join(wp.HOLDERS)}", "holder")
-        status = self.context.workpieces
+        status = self.agent.workpieces
         held = status.held_by(holder) if status is not None else None
         if held is None:
             return Status.FAILURE
@@ -143,7 +143,7 @@ class WorkpiecesCommandNode(CommandNode):
     commands = (WORKPIECES,)
 
     def results(self, status) -> ResultLog:
-        return status.results_of(self.context.issuer)
+        return status.results_of(self.agent.issuer)
 
 
 class SpawnObject(WorkpiecesCommandNode):
@@ -163,7 +163,7 @@ class SpawnObject(WorkpiecesCommandNode):
         return wp.Spawn(
             seq,
             self.get_input("type"),
-            pose=self.context.transform(pose) if pose is not None else None,
+            pose=self.agent.transform(pose) if pose is not None else None,
             area=self.get_input("area"),
             attributes=parse_filter(self.get_input("attributes")),
         )

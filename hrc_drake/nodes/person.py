@@ -36,7 +36,7 @@ class PersonCommandNode(CommandNode):
 
     def held(self) -> wp.ObjectStatus | None:
         """The object in the person's hands, if any."""
-        status = self.context.workpieces
+        status = self.agent.workpieces
         if status is None:
             return None
         return next((o for o in status.objects if o.holder in HANDS_OF), None)
@@ -49,7 +49,7 @@ class PersonCommandNode(CommandNode):
         return hold_of(grasp_of(obj, HANDS_OF[obj.holder]), self._heading())
 
     def _heading(self) -> float:
-        status = self.context.human
+        status = self.agent.human
         return status.base_pose[2] if status is not None else 0.0
 
 
@@ -94,7 +94,7 @@ class ActorMovement(PersonCommandNode):
     )
 
     def command(self, seq: int):
-        target = self.context.resolve_pose(self.get_input("target"))
+        target = self.agent.resolve_pose(self.get_input("target"))
         distance = self.get_input("animation_distance")
         return human.MoveCommand(
             seq,
@@ -119,7 +119,7 @@ class IsCalled(ConditionNode):
     """SUCCESS while the person is being called (by the robot)."""
 
     def tick(self) -> Status:
-        status = self.context.human
+        status = self.agent.human
         return Status.SUCCESS if status is not None and status.called else Status.FAILURE
 
 
@@ -131,7 +131,7 @@ class SetCalledTo(SyncActionNode):
 
     def tick(self) -> Status:
         called = self.get_input("state")
-        self.context.send(HUMAN, lambda seq: human.SetCalledCommand(seq, called))
+        self.agent.send(HUMAN, lambda seq: human.SetCalledCommand(seq, called))
         return Status.SUCCESS
 
 
@@ -167,7 +167,7 @@ class TargetedAction(PersonCommandNode):
 
     def on_running(self) -> Status:
         if self.contact_seq is None and self._contact_event_fired():
-            self.contact_seq = self.context.send(WORKPIECES, self.object_command)
+            self.contact_seq = self.agent.send(WORKPIECES, self.object_command)
         status = super().on_running()
         if status is not Status.SUCCESS or not self.contact_event:
             return status
@@ -176,7 +176,7 @@ class TargetedAction(PersonCommandNode):
         return self._contact_result()
 
     def _contact_event_fired(self) -> bool:
-        status = self.context.human
+        status = self.agent.human
         return (
             bool(self.contact_event)
             and self.outcome() == RUNNING
@@ -184,14 +184,14 @@ class TargetedAction(PersonCommandNode):
         )
 
     def _contact_result(self) -> Status:
-        status = self.context.workpieces
-        outcome = status.results_of(self.context.issuer).outcome_of(self.contact_seq)
+        status = self.agent.workpieces
+        outcome = status.results_of(self.agent.issuer).outcome_of(self.contact_seq)
         if outcome is None:
             return Status.RUNNING
         return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
 
     def taken(self) -> wp.ObjectStatus:
-        obj = self.context.workpieces.object(self.get_input("object_id"))
+        obj = self.agent.workpieces.object(self.get_input("object_id"))
         if obj is None:
             raise self.error(f"no object {self.get_input('object_id')}", port="object_id")
         return obj
@@ -253,7 +253,7 @@ class ActorPlace(TargetedAction):
         return "place_table" if self.target_point()[2] >= TABLE_HEIGHT else "place_floor"
 
     def target_point(self):
-        return tuple(self.context.transform(self.get_input("target")).translation())
+        return tuple(self.agent.transform(self.get_input("target")).translation())
 
     def object_command(self, seq: int):
         held = self.held()
@@ -269,7 +269,7 @@ class ActorReach(TargetedAction):
         return "reach"
 
     def target_point(self):
-        return tuple(self.context.transform(self.get_input("target")).translation())
+        return tuple(self.agent.transform(self.get_input("target")).translation())
 
 
 class ActorHandOver(TargetedAction):

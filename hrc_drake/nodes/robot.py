@@ -27,7 +27,7 @@ class RobotCommandNode(CommandNode):
     def tool_target(self, port: str) -> tuple[RigidTransform, bool]:
         """The target pose; a pose without orientation points the tool down and leaves
         the rotation about the tool axis free."""
-        pose: Pose = self.context.resolve_pose(self.get_input(port))
+        pose: Pose = self.agent.resolve_pose(self.get_input(port))
         if pose.quaternion is not None:
             return pose.to_transform(), False
         return RigidTransform(TOOL_DOWN, pose.position), True
@@ -51,8 +51,8 @@ class RobotMoveLinear(RobotCommandNode):
     ports = (InputPort("target", Pose, description="tool pose, x;y;z[;qw;qx;qy;qz] or name"),)
 
     def command(self, seq: int):
-        pose: Pose = self.context.resolve_pose(self.get_input("target"))
-        status = self.context.robot
+        pose: Pose = self.agent.resolve_pose(self.get_input("target"))
+        status = self.agent.robot
         if pose.quaternion is not None or status is None:
             return robot.MoveLinear(seq, self.tool_target("target")[0])
         return robot.MoveLinear(seq, RigidTransform(status.tool_pose.rotation(), pose.position))
@@ -105,7 +105,7 @@ class SetRobotVelocity(SyncActionNode):
         fraction = self.get_input("velocity")
         if not 0.0 <= fraction <= 1.0:
             raise self.error(f"must be within 0..1, got {fraction}", port="velocity")
-        self.context.send(ROBOT, lambda seq: robot.SetSpeed(seq, fraction))
+        self.agent.send(ROBOT, lambda seq: robot.SetSpeed(seq, fraction))
         return Status.SUCCESS
 
 

@@ -13,8 +13,8 @@ class HumanInArea(ConditionNode):
     ports = (InputPort("area", Area, description="area name or triangles"),)
 
     def tick(self) -> Status:
-        status = self.context.human
-        inside = status is not None and self.context.in_area(
+        status = self.agent.human
+        inside = status is not None and self.agent.in_area(
             status.base_pose[:2], self.get_input("area")
         )
         return Status.SUCCESS if inside else Status.FAILURE
@@ -27,8 +27,8 @@ class RobotInArea(ConditionNode):
     ports = (InputPort("area", Area, description="area name or triangles"),)
 
     def tick(self) -> Status:
-        status = self.context.robot
-        inside = status is not None and self.context.in_area(
+        status = self.agent.robot
+        inside = status is not None and self.agent.in_area(
             status.tool_pose.translation()[:2], self.get_input("area")
         )
         return Status.SUCCESS if inside else Status.FAILURE
@@ -40,7 +40,7 @@ class RobotAtRest(ConditionNode):
     person waiting for it to reach its waiting pose must not reach in yet."""
 
     def tick(self) -> Status:
-        status = self.context.robot
+        status = self.agent.robot
         return Status.SUCCESS if status is not None and status.mode == IDLE else Status.FAILURE
 
 
@@ -50,7 +50,7 @@ class SeparationBelow(ConditionNode):
     ports = (InputPort("distance", float, description="threshold in metres"),)
 
     def tick(self) -> Status:
-        status = self.context.safety
+        status = self.agent.safety
         close = status is not None and status.separation < self.get_input("distance")
         return Status.SUCCESS if close else Status.FAILURE
 

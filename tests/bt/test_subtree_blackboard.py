@@ -158,18 +158,18 @@ def test_nodes_are_numbered_depth_first_with_subtrees_expanded():
     ]
 
 
-def test_context_now_and_rng_reach_nodes():
+def test_agent_now_and_rng_reach_nodes():
     seen = {}
 
     def remember(node):
-        seen.update(context=node.context, now=node.now, draw=node.rng.integers(100))
+        seen.update(agent=node.agent, now=node.now, draw=node.rng.integers(100))
         return S
 
     reg = registry()
     reg.register_function("Remember", remember)
-    tree = tree_of("<Remember/>", reg, seed=3, context="ctx")
+    tree = tree_of("<Remember/>", reg, seed=3, agent="the agent")
     tree.tick(2.5)
-    assert seen["context"] == "ctx" and seen["now"] == 2.5
+    assert seen["agent"] == "the agent" and seen["now"] == 2.5
     import numpy as np
 
     assert seen["draw"] == np.random.default_rng(3).integers(100)

@@ -16,7 +16,7 @@ CHI2_999 = {2: 13.82, 11: 31.26}  # chi-square critical values at p = 0.001
 def make_tree(body: str, registry=None, seed=0):
     xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{body}</BehaviorTree></root>'
     agent = Agent("robot", Places(areas={"L": L_SHAPE}))
-    return load_tree(xml, registry or hrc_registry(), seed=seed, context=agent)
+    return load_tree(xml, registry or hrc_registry(), seed=seed, agent=agent)
 
 
 def chi_square(counts, expected) -> float:

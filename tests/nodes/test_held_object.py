@@ -35,7 +35,7 @@ def tick_held_object(status, holder="robot"):
     )
     agent = Agent("human", Places())
     agent.statuses["workpieces"] = status
-    tree = load_tree(xml, hrc_registry(), context=agent)
+    tree = load_tree(xml, hrc_registry(), agent=agent)
     return tree.tick(0.0), tree.root_blackboard
 
 

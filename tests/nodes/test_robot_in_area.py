@@ -29,7 +29,7 @@ def tick_condition(node: str, status) -> Status:
     xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{node}</BehaviorTree></root>'
     agent = Agent("human", Places(areas={"tray": TRAY}))
     agent.statuses["robot"] = status
-    return load_tree(xml, hrc_registry(), context=agent).tick(0.0)
+    return load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
 
 
 def tick_robot_in_area(status) -> Status:
