@@ -45,8 +45,11 @@ def test_wheel_installed_elsewhere_validates_a_bundled_scenario(tmp_path):
     work = tmp_path / "elsewhere"
     work.mkdir()
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    packages = sorted(p.parent.name for p in (ROOT / "hrc_drake").glob("*/__init__.py"))
-    imports = ", ".join(f"hrc_drake.{name}" for name in packages)
+    packages = sorted(
+        ".".join(p.parent.relative_to(ROOT).parts)
+        for p in (ROOT / "hrc_drake").rglob("__init__.py")
+    )
+    imports = ", ".join(packages)
     where = subprocess.check_output(
         [
             python,

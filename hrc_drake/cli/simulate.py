@@ -1,0 +1,253 @@
+"""`hrc-drake run`, `sweep` and `falsify`: the commands that simulate, and what they print."""
+
+import sys
+from functools import partial
+from pathlib import Path
+
+from hrc_drake.bt.groot2 import DEFAULT_PORT
+from hrc_drake.cli.arguments import (
+    PROG,
+    add_execution_options,
+    add_set_option,
+    port_number,
+    positive_float,
+    positive_int,
+    single_sets,
+)
+from hrc_drake.yaml_check import InputError
+
+
+def add_commands(commands) -> None:
+    run = commands.add_parser("run", help="simulate a scenario and write its run directory")
+    run.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
+    run.add_argument("--seed", type=int, help="random seed (default: the scenario's)")
+    run.add_argument("--duration", type=float, help="simulated seconds")
+    run.add_argument(
+        "--out",
+        type=Path,
+        help="run directory, new or empty (default: runs/<scenario>-seed<N>, or -2, -3... "
+        "if that holds an earlier run)",
+    )
+    run.add_argument(
+        "--meshcat", action="store_true", help="show the run live in Meshcat, at real time"
+    )
+    run.add_argument(
+        "--groot",
+        nargs="?",
+        const=DEFAULT_PORT,
+        type=port_number,
+        metavar="PORT",
+        help=f"serve the trees live to Groot2 at real time: the robot's on PORT "
+        f"(default {DEFAULT_PORT}), the person's on the next free pair",
+    )
+    run.add_argument(
+        "--groot-host",
+        metavar="ADDRESS",
+        help="address the Groot2 servers listen on (default 127.0.0.1: this machine only)",
+    )
+    run.add_argument(
+        "--realtime",
+        type=positive_float,
+        metavar="RATE",
+        help="simulated seconds per wall-clock second (default 1 with --meshcat or "
+        "--groot, else as fast as it goes)",
+    )
+    add_set_option(run)
+    run.set_defaults(command=_run)
+
+    sweep = commands.add_parser("sweep", help="run many seeds (and parameter grids) of a scenario")
+    sweep.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
+    sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
+    add_set_option(sweep)
+    add_execution_options(sweep, "sweep", "sweeps")
+    sweep.add_argument(
+        "--retry-failed", action="store_true", help="run the failed runs of an earlier sweep again"
+    )
+    sweep.set_defaults(command=_sweep)
+
+    falsify = commands.add_parser(
+        "falsify", help="search the person's behaviour for the smallest safety margin"
+    )
+    falsify.add_argument("scenario", help="a scenario with a falsify: section (file or name)")
+    falsify.add_argument("--budget", type=positive_int, required=True, help="runs to spend")
+    falsify.add_argument("--seed", type=int, help="seed of the runs and the search")
+    falsify.add_argument("--duration", type=float, help="simulated seconds of each run")
+    add_set_option(falsify)
+    add_execution_options(falsify, "search", "searches")
+    falsify.add_argument(
+        "--retry-failed", action="store_true", help="run the failed trials of an earlier search"
+    )
+    falsify.set_defaults(command=_falsify)
+
+
+def _run(args) -> int:
+    from pydrake.geometry import Meshcat
+
+    from hrc_drake.runner import RunStopped, run
+    from hrc_drake.scenario import load_scenario
+
+    overrides, options = single_sets(args, "run", "use sweep for grids")
+    scenario = load_scenario(args.scenario, overrides, options)
+    out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
+    if args.groot_host is not None and args.groot is None:
+        raise InputError("run: --groot-host goes with --groot")
+    meshcat = Meshcat() if args.meshcat else None
+    if meshcat is not None:
+        print(f"Meshcat: {meshcat.web_url()}")
+    live = args.meshcat or args.groot is not None
+    serve = None if args.groot is None else partial(_serve_groot, args.groot, args.groot_host)
+    try:
+        report = run(
+            scenario,
+            out_dir=out,
+            meshcat=meshcat,
+            progress=True,
+            realtime_rate=args.realtime or (1.0 if live else 0.0),
+            serve=serve,
+        )
+    except RunStopped as stopped:
+        _print_node_failures(stopped.report.metrics)
+        raise
+    print(
+        f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
+        f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
+    )
+    for line in key_metrics(report.metrics):
+        print(f"  {line}")
+    _print_node_failures(report.metrics)
+    print_files(report.files)
+    return 0
+
+
+def _serve_groot(port: int, host: str | None, station):
+    """Groot2 servers for the run's trees, bound before anything is simulated or written."""
+    from hrc_drake.bt.groot2 import ServeError
+    from hrc_drake.groot import LOCALHOST, serve_groot
+
+    try:
+        servers = serve_groot(station, port, host or LOCALHOST)
+    except ServeError as error:
+        raise InputError(str(error)) from None
+    print(servers, flush=True)
+    return servers
+
+
+def _fresh_directory(path: Path) -> Path:
+    """`path`, or `path-2`, `path-3`... : the first that is missing or empty."""
+    candidate, n = path, 1
+    while candidate.is_dir() and any(candidate.iterdir()) or candidate.is_file():
+        n += 1
+        candidate = path.with_name(f"{path.name}-{n}")
+    return candidate
+
+
+def _print_node_failures(metrics: dict) -> None:
+    from hrc_drake.evaluation.metrics import node_failures
+
+    failures = node_failures(metrics.get("bt", {}))
+    if failures:
+        print("  tree nodes that failed:")
+    for line in failures:
+        print(f"    {line}")
+
+
+def _sweep(args) -> int:
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
+    from hrc_drake.sweep import parse_seeds, plan, sweep
+
+    scenario = load_scenario(args.scenario)
+    specs = plan(resolve_scenario_path(args.scenario), parse_seeds(args.seeds), args.set)
+    out = args.out or Path("sweeps") / scenario.name
+    result = sweep(
+        specs,
+        out,
+        args.workers,
+        args.dask,
+        progress=True,
+        scenario_name=scenario.name,
+        retry_failed=args.retry_failed,
+    )
+    for warning in result.warnings:
+        print(f"{PROG}: warning: {warning}", file=sys.stderr)
+    print(
+        f"{scenario.name}: {len(result.rows)} runs ({result.skipped} already done, "
+        f"{len(result.failed)} failed)"
+    )
+    print_files(result.files)
+    return 0
+
+
+def _falsify(args) -> int:
+    from hrc_drake.falsify import falsify, prepare
+
+    overrides, options = single_sets(args, "falsify", "a falsify: parameter searches a field")
+    search = prepare(args.scenario, args.seed, overrides, options)
+    name = search.scenario_path.stem
+    out = args.out or Path("searches") / name
+    result = falsify(
+        search,
+        args.budget,
+        out,
+        args.workers,
+        args.dask,
+        progress=True,
+        retry_failed=args.retry_failed,
+    )
+    for warning in result.warnings:
+        print(f"{PROG}: warning: {warning}", file=sys.stderr)
+    for line in falsify_lines(name, result):
+        print(line)
+    print_files(result.files)
+    return 0
+
+
+def falsify_lines(name: str, result) -> list[str]:
+    """What a search found, in a few lines: the verdict and the worst cases."""
+    verdict = (
+        f"{len(result.violations)} violate ISO/TS 15066" if result.violations else "no violation"
+    )
+    lines = [f"{name}: {len(result.trials)} trials ({len(result.failed)} failed), {verdict}"]
+    for trial in result.worst:
+        margin = trial.margin
+        at = margin.get("at")
+        where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
+        lines.append(f"  trial {trial.number}: margin {_metres(margin.get('value'))}{where}")
+        if trial.number in result.cases:
+            lines.append(f"    {result.cases[trial.number]}")
+        lines.append(f"    {result.search.command(trial.values)}")
+    return lines
+
+
+def _metres(value) -> str:
+    return "none (the robot never moved near the person)" if value is None else f"{value:.3f} m"
+
+
+def key_metrics(metrics: dict) -> list[str]:
+    """The figures a user looks at first: output, safety, how much the robot was slowed."""
+    lines = [
+        f"{name}: {count} ({metrics['tasks']['throughput_per_hour'][name]:g}/h)"
+        for name, count in metrics.get("tasks", {}).get("events", {}).items()
+    ]
+    safety = metrics.get("safety") or {}
+    if safety.get("min_separation"):
+        closest = safety["min_separation"]
+        lines += [
+            f"min separation: {closest['distance']:.3f} m ({closest['region']} / "
+            f"{closest['link']} at {closest['time']:.1f} s)",
+            f"SSM violations: {safety['ssm_violations']['count']}, "
+            f"contacts: {safety['contacts']['robot_moving']} by the moving robot, "
+            f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
+            f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
+        ]
+    margin = metrics.get("margin") or {}
+    if "value" in margin:
+        at = margin.get("at")
+        where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
+        lines.append(f"safety margin: {_metres(margin['value'])}{where}")
+    return lines
+
+
+def print_files(files: dict[str, Path]) -> None:
+    width = max(map(len, files), default=0)
+    for name, path in files.items():
+        print(f"  {name:{width}s} {path}")
