@@ -6,9 +6,9 @@ of recent commands; each issuer's new commands are handled in order (the robot's
 call the person while the person's own tree directs them).
 Outputs, both computed from state only: `human_positions` (the kinematic human plant's q,
 for MultibodyPositionToGeometryPose) and `human_status` (HumanStatus). A periodic
-unrestricted update (60 Hz by default, above Meshcat's frame rate) runs the protocol and
-samples the pose; between updates the pose is held, so the diagram pays for the person only
-at that rate.
+unrestricted update (60 Hz by default, above Meshcat's frame rate) runs the protocol
+(hrc_drake.human.protocol, plain Python) and samples the pose; between updates the pose is
+held, so the diagram pays for the person only at that rate.
 """
 
 import numpy as np
@@ -22,8 +22,9 @@ from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.human.body import HumanBody, human_body, parse_human
 from hrc_drake.human.clip import Clip, load_clips, scaled_clips
 from hrc_drake.human.messages import HumanStatus
-from hrc_drake.human.motion import ActorState, Context, advance, pose_at, status
 from hrc_drake.human.navigation import NavigationMap
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.protocol import ActorState, advance, pose_at, status
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scene_geometry import collision_geometries, filter_against
 from hrc_drake.wiring import (
@@ -59,9 +60,9 @@ class HumanActor(LeafSystem):
         navigation: NavigationMap | None = None,
     ):
         LeafSystem.__init__(self)
-        self._ctx = Context(body or human_body(), clips or load_clips(), navigation)
+        self._performer = Performer(body or human_body(), clips or load_clips(), navigation)
         self.period = period
-        self.stride_time = self._ctx.clips[WALK_CLIP].duration
+        self.stride_time = self._performer.clips[WALK_CLIP].duration
         """One gait cycle of the walk clip (s)."""
         initial = ActorState(start_pose=tuple(float(v) for v in start_pose))
         self._commands = {
@@ -72,9 +73,9 @@ class HumanActor(LeafSystem):
         self._status = self.DeclareAbstractState(
             AbstractValue.Make(HumanStatus(base_pose=initial.start_pose))  # before its first update
         )
-        first_pose = self._ctx.body.plant_positions(pose_at(self._ctx, initial, 0.0))
+        first_pose = self._performer.body.plant_positions(pose_at(self._performer, initial, 0.0))
         self._positions = self.DeclareDiscreteState(first_pose)
-        plant = self._ctx.body.plant
+        plant = self._performer.body.plant
         self._reported = tuple(plant.GetFrameByName(name) for name in REPORTED_FRAMES)
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
         self.DeclareStateOutputPort("human_positions", self._positions)
@@ -82,24 +83,25 @@ class HumanActor(LeafSystem):
 
     @property
     def body(self) -> HumanBody:
-        return self._ctx.body
+        return self._performer.body
 
     @property
     def navigation(self) -> NavigationMap | None:
-        return self._ctx.navigation
+        return self._performer.navigation
 
     def _frames(self, positions: np.ndarray) -> tuple[tuple[float, ...], ...]:
         """The hands' and head's poses at the plant's `positions`: one forward kinematics."""
-        return tuple(map(_pose_tuple, self._ctx.body.world_poses(self._reported, positions)))
+        return tuple(map(_pose_tuple, self._performer.body.world_poses(self._reported, positions)))
 
     def _update(self, context, state) -> None:
         t = context.get_time()
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
-        actor = advance(self._ctx, context.get_abstract_state(self._actor).get_value(), t, commands)
+        previous = context.get_abstract_state(self._actor).get_value()
+        actor = advance(self._performer, previous, t, commands)
         state.get_mutable_abstract_state(self._actor).set_value(actor)
-        positions = self._ctx.body.plant_positions(actor.pose)
+        positions = self._performer.body.plant_positions(actor.pose)
         state.get_mutable_discrete_state(self._positions).set_value(positions)
-        message = status(self._ctx, actor, t, self._frames(positions))
+        message = status(self._performer, actor, t, self._frames(positions))
         state.get_mutable_abstract_state(self._status).set_value(message)
 
 

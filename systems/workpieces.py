@@ -5,7 +5,7 @@ The objects are a SceneGraph source of their own (proximity + illustration geome
 bodies of the dynamic plant, so they must be collision-filtered against everything else
 that has proximity geometry (the discrete plant throws on contact pairs it does not own);
 `add_workpieces` does that and the wiring. The physics is deliberately light (see
-`hrc_drake.workpieces.world`): carried objects follow their holder's grasp frame, released
+`hrc_drake.workpieces.update`): carried objects follow their holder's grasp frame, released
 ones fall and rest on the highest support below them, belts move what rests on them.
 
 Geometry cannot be added once a Context exists, so capacity is fixed: every object type
@@ -38,6 +38,7 @@ from hrc_drake.wiring import WORKPIECES, WORKPIECES_SYSTEM, command_input, issue
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
+from hrc_drake.workpieces.update import initial_world, next_world
 from hrc_drake.workpieces.world import Workcell, World, holder_frames, since
 
 PARKING_DEPTH = -1000.0
@@ -87,7 +88,7 @@ class Workpieces(LeafSystem):
             self._poses.set_value(frame_id, X_WS)
         self._written = [None] * len(self.frame_ids)  # the piece each slot's pose is of
         self._resting = (None, [])
-        initial = self.cell.initial_world()
+        initial = initial_world(self.cell)
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
             issuer: self.DeclareAbstractInputPort(command_input(issuer), message_value())
@@ -140,9 +141,8 @@ class Workpieces(LeafSystem):
     def _update(self, context: Context, state) -> None:
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
         tool, hands = value_or_none(self._tool, context), value_or_none(self._hands, context)
-        world = self.cell.update(
-            self.world(context), context.get_time(), commands, holder_frames(tool, hands)
-        )
+        frames = holder_frames(tool, hands)
+        world = next_world(self.cell, self.world(context), context.get_time(), commands, frames)
         state.get_mutable_abstract_state(self._state).set_value(world)
 
     def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:

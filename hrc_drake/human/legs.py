@@ -19,6 +19,7 @@ from math import acos, asin, atan2, cos, pi, sin, sqrt
 
 import numpy as np
 
+from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.skeleton import SIDES
 
 LEG_JOINTS = ("hip_flexion", "hip_abduction", "hip_rotation", "knee_flexion", "ankle_flexion")
@@ -44,10 +45,6 @@ def rotation_y(a: float) -> np.ndarray:
 def rotation_z(a: float) -> np.ndarray:
     c, s = cos(a), sin(a)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-
-
-def _wrap(angle: float) -> float:
-    return (angle + pi) % (2 * pi) - pi
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -202,7 +199,7 @@ class Legs:
         spread = acos(wanted / amplitude)
         current = float(q[self.joints[side][4]])
         return min(
-            (_wrap(knee - beta - spread), _wrap(knee - beta + spread)),
+            (wrap_angle(knee - beta - spread), wrap_angle(knee - beta + spread)),
             key=lambda a: abs(a - current),
         )
 
@@ -226,7 +223,7 @@ class Legs:
         up = R_p.T @ np.array([0.0, 0.0, 1.0])
         best = None
         for knee in (atan2(w[2], w[0]) + bend, atan2(w[2], w[0]) + pi - bend):
-            knee = min(max(_wrap(knee), STRAIGHTEST_KNEE), self.upper[side][3])
+            knee = min(max(wrap_angle(knee), STRAIGHTEST_KNEE), self.upper[side][3])
             u = np.array([0.0, 0.0, -L1]) + rotation_y(knee) @ w
             forward = h
             for _ in range(4):

@@ -1,10 +1,18 @@
 """Rotations about joint axes: a chain of axis rotations composed into one rotation matrix,
 and a rotation split back into the angles of three orthonormal axes (both solutions), as
-joint angles need for any axis order, not only roll-pitch-yaw."""
+joint angles need for any axis order, not only roll-pitch-yaw; and angles wrapped into
+[-π, π) for headings compared or turned the short way round."""
+
+from math import pi
 
 import numpy as np
 
 AXES = {"X": np.array([1.0, 0, 0]), "Y": np.array([0, 1.0, 0]), "Z": np.array([0, 0, 1.0])}
+
+
+def wrap_angle(angle: float) -> float:
+    """`angle` in [-π, π): the same direction, the short way round from 0."""
+    return (angle + pi) % (2 * pi) - pi
 
 
 def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:

@@ -14,13 +14,14 @@ time at the clip's cadence) and how each foot pitches, lifts and travels through
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from itertools import pairwise
-from math import cos, inf, pi, sin, sqrt
+from math import cos, inf, sin, sqrt
 
 import numpy as np
 
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.legs import Legs
+from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.skeleton import SIDES
 
 PROFILE_SAMPLES = 240
@@ -63,10 +64,6 @@ FIRST_RISE = 0.1
 LOWEST_LIFT = 0.35
 
 """A short step lifts the foot this fraction of a full stride's lift at least."""
-
-
-def _wrap(angle: float) -> float:
-    return (angle + pi) % (2 * pi) - pi
 
 
 @dataclass(frozen=True, eq=False)
@@ -305,7 +302,7 @@ def sole_target(
     off = place(land.along, land.lateral)  # a step placed off the path (facing the goal)
     x = spot.x + p * (land.x - off.x)
     y = spot.y + p * (land.y - off.y)
-    yaw = lift.yaw + p * _wrap(land.yaw - lift.yaw)
+    yaw = lift.yaw + p * wrap_angle(land.yaw - lift.yaw)
     rolled = stance.leaving if stance.first else 1.0  # how far it rolled leaving the floor
     unrolling = minimum_jerk((u - STANCE) / (UNROLLING - STANCE))
     pitch = (scale + (rolled - scale) * (1.0 - unrolling)) * profile.at(profile.pitch, u)

@@ -16,7 +16,9 @@ from hrc_drake.human.messages import (
     MoveCommand,
     SetCalledCommand,
 )
-from hrc_drake.human.motion import ActorState, Context, TurnSegment, advance, pose_at
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.protocol import ActorState, advance, pose_at
+from hrc_drake.human.segments import TurnSegment
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.ports import message_value
@@ -303,16 +305,16 @@ def test_transition_speeds_stay_bounded(first):
     assert _max_speed(poses) < 10.0
 
 
-def _pose_jump(ctx, state, t, command):
+def _pose_jump(performer, state, t, command):
     """Joint jump (rad) when `command` is handled at time t, compared at the same instant."""
-    before = pose_at(ctx, state, t)
-    state = advance(ctx, state, t, {"human": command})
-    return state, np.abs(pose_at(ctx, state, t) - before)[3:].max()
+    before = pose_at(performer, state, t)
+    state = advance(performer, state, t, {"human": command})
+    return state, np.abs(pose_at(performer, state, t) - before)[3:].max()
 
 
 def test_transitions_between_every_pair_of_clips_have_no_jump():
-    ctx = Context(human_body(), load_clips())
-    state, seq, worst = advance(ctx, ActorState(), 0.0, {}), 0, 0.0
+    performer = Performer(human_body(), load_clips())
+    state, seq, worst = advance(performer, ActorState(), 0.0, {}), 0, 0.0
     t = 0.0
     for first, second in itertools.product(ANIMATIONS, ANIMATIONS):
         for command, wait in (
@@ -320,11 +322,11 @@ def test_transitions_between_every_pair_of_clips_have_no_jump():
             (CancelCommand(seq + 2), 0.2),
             (AnimateCommand(seq + 3, second), 0.0),
         ):
-            state, jump = _pose_jump(ctx, state, t, command)
+            state, jump = _pose_jump(performer, state, t, command)
             worst = max(worst, jump)
             t += wait
-        t += ctx.clips[second].duration / 1.0 + 0.05
-        state, jump = _pose_jump(ctx, state, t, None)
+        t += performer.clips[second].duration / 1.0 + 0.05
+        state, jump = _pose_jump(performer, state, t, None)
         worst = max(worst, jump)
         seq += 3
     assert worst < np.radians(0.5)

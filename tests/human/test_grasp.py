@@ -9,7 +9,8 @@ from hrc_drake.human.body import human_body
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import carry_arms, grasp_hands, hold_of, palm_targets
 from hrc_drake.human.messages import AnimateCommand, Grasp, Hold, MoveCommand
-from hrc_drake.human.motion import ActorState, Context, advance
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.protocol import ActorState, advance
 from hrc_drake.workpieces.geometry import Solid
 
 CARTON = (0.3, 0.3, 0.2)
@@ -56,8 +57,8 @@ def test_the_carry_posture_holds_the_object_in_front_between_the_palms():
         assert near_face > 0.16  # in front of the chest
 
 
-def _palm_spacing(ctx, state, t):
-    body = ctx.body
+def _palm_spacing(performer, state, t):
+    body = performer.body
     left, right = (
         body.frame_pose(f"{s}_hand_grasp", state.pose).translation() for s in ("left", "right")
     )
@@ -67,10 +68,10 @@ def _palm_spacing(ctx, state, t):
 def test_the_palms_keep_hold_through_pick_turn_walk_and_standing():
     """After the grasp the palms stay as far apart as the carton is wide, however the
     person moves: lifting, turning round, walking, standing."""
-    ctx = Context(human_body(), load_clips())
+    performer = Performer(human_body(), load_clips())
     grasp = Grasp("both", (0.55, 0.0, 0.85), 0.0, CARTON)
     hold = hold_of(grasp, 0.0)
-    state = advance(ctx, ActorState(), 0.0, {})
+    state = advance(performer, ActorState(), 0.0, {})
     schedule = {
         0.1: AnimateCommand(1, "pick_table", grasp=grasp),
         3.0: MoveCommand(2, (-1.5, 1.0, 0.0), hold=hold),
@@ -80,8 +81,8 @@ def test_the_palms_keep_hold_through_pick_turn_walk_and_standing():
     for k in range(1, int(9.0 * 60)):
         t = k / 60
         command = schedule.get(round(t, 2)) if round(t * 60) % 6 == 0 else None
-        state = advance(ctx, state, t, {"human": command} if command else {})
+        state = advance(performer, state, t, {"human": command} if command else {})
         if t > grasped + 0.05:
-            spacings.append(_palm_spacing(ctx, state, t))
+            spacings.append(_palm_spacing(performer, state, t))
     assert state.state == "IDLE" and state.results.last.outcome == "succeeded"
     assert max(abs(s - CARTON[1]) for s in spacings) < 0.02

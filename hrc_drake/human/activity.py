@@ -1,0 +1,98 @@
+"""An activity: the plan of segments the person follows, and the fades that keep the pose
+continuous where segments join and where one activity takes over from another."""
+
+from dataclasses import dataclass, replace
+from itertools import pairwise
+
+import numpy as np
+
+from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.rotations import wrap_angle
+from hrc_drake.human.segments import Segment
+
+BLEND_TIME = 0.5
+"""Shortest cross-fade between activities (s)."""
+BLEND_SPEED = 3.0
+"""Longer fades for bigger pose changes keep the fade's peak joint speed under this (rad/s)."""
+MINIMUM_JERK_PEAK = 1.875
+"""Peak speed of a minimum-jerk fade relative to its average."""
+SEGMENT_BLEND = 0.3
+"""Cross-fade between the turn and walk parts of one movement (s)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Activity:
+    """A plan of segments; a pose offset left over from the previous activity fades out.
+
+    Fading the offset (rather than mixing two moving poses) keeps the pose continuous when a
+    new activity starts and adds no more speed than the offset's own minimum-jerk decay.
+    Make one with `Activity.plan`, which works out once what depends on the plan alone.
+    """
+
+    segments: tuple[Segment, ...]
+    joins: tuple[np.ndarray, ...]
+    """At each join between segments, the earlier segment's pose minus the later one's: the
+    offset that fades out after the join."""
+    end: float
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    blend_offset: np.ndarray | None = None
+    blend_start: float = 0.0
+    blend_time: float = BLEND_TIME
+
+    @classmethod
+    def plan(
+        cls, performer: Performer, segments, final_pose: tuple[float, float, float]
+    ) -> "Activity":
+        """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
+        its joins are worked out here, once, rather than at every update that needs them."""
+        segments = tuple(segments)
+        joins = tuple(_join(performer, before, after) for before, after in pairwise(segments))
+        return cls(segments, joins, segments[-1].end(performer), final_pose)
+
+    def blended_from(self, performer: Performer, pose: np.ndarray, t: float) -> "Activity":
+        """This activity taking over at t from `pose`: the difference fades out, over longer
+        than BLEND_TIME where the pose changes so much that the fade would be too fast."""
+        offset = difference(performer, pose, self.planned_pose(performer, t))
+        change = float(np.max(np.abs(offset[3:])))
+        duration = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
+        return replace(self, blend_offset=offset, blend_start=t, blend_time=duration)
+
+    def start(self) -> float:
+        return self.segments[0].start
+
+    def planned_pose(self, performer: Performer, t: float) -> np.ndarray:
+        """The plan's pose; the joins between its segments fade the same way."""
+        k = 0
+        while k + 1 < len(self.segments) and t >= self.segments[k + 1].start:
+            k += 1
+        q = self.segments[k].pose(performer, t)
+        join = self.segments[k].start
+        if k > 0 and t < join + SEGMENT_BLEND:
+            q = q + fade(t - join, SEGMENT_BLEND) * self.joins[k - 1]
+        return q
+
+    def pose(self, performer: Performer, t: float) -> np.ndarray:
+        q = self.planned_pose(performer, t)
+        if self.blend_offset is not None and t < self.blend_start + self.blend_time:
+            q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset
+        return q
+
+
+def fade(elapsed: float, duration: float) -> float:
+    """1 at the start of a fade, 0 at its end, minimum-jerk in between."""
+    return 1.0 - minimum_jerk(elapsed / duration)
+
+
+def _join(performer: Performer, before: Segment, after: Segment) -> np.ndarray:
+    """Where `after` starts, the pose `before` would have there minus its own."""
+    t = after.start
+    return difference(performer, before.pose(performer, t), after.pose(performer, t))
+
+
+def difference(performer: Performer, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a - b, with the yaw difference taken the short way round."""
+    offset = a - b
+    iyaw = performer.root[2]
+    offset[iyaw] = wrap_angle(float(offset[iyaw]))
+    return offset

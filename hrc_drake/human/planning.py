@@ -1,0 +1,216 @@
+"""What the person does for a command, planned once when it arrives: the Activity of a
+movement (turn towards the path, walk it round sharp corners and the cell's geometry, turn
+to the target orientation), of an animation (a clip, aimed at a target or grasp with
+inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
+
+from math import atan2, hypot
+
+import numpy as np
+
+from hrc_drake.human.activity import Activity
+from hrc_drake.human.clip import Clip
+from hrc_drake.human.grasp import (
+    CarryArms,
+    carry_arms,
+    hold_of,
+    palm_targets,
+    reach_target,
+    release_targets,
+)
+from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
+from hrc_drake.human.performer import IDLE_CLIP, Performer, place
+from hrc_drake.human.rotations import wrap_angle
+from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
+from hrc_drake.human.skeleton import SIDES
+from hrc_drake.human.targeting import TARGETED, Unreachable, aim_clip
+from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
+
+MIN_LEG = 0.3
+"""m: shorter legs between waypoints are dropped."""
+
+
+def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
+    """Turn towards the path, walk it, then turn to the target orientation. Without given
+    waypoints the path goes round the cell's geometry (the navigation map); a place to
+    stand (a target with an orientation) that is not clear moves to the nearest that is."""
+    clip = performer.clips.get(command.animation_name)
+    if clip is None or not clip.loop or clip.animation_distance <= 0:
+        raise Unreachable(f"'{command.animation_name}' is not a walking animation")
+    x, y, yaw = pose
+    goal = tuple(command.target_position[:2])
+    waypoints = command.waypoints
+    standing = _yaw_of(command.target_quaternion)
+    oriented = tuple(command.target_quaternion) != NULL_QUATERNION
+    if performer.navigation is not None:
+        if oriented:
+            goal = performer.navigation.clear_spot(*goal, standing)
+        if not waypoints:
+            waypoints = performer.navigation.path((x, y), goal)
+    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
+    segments: list[Segment] = []
+    start = t
+    heading = yaw
+    carry = _carry(performer, command.hold)
+    distance = command.animation_distance or clip.animation_distance
+    speed = distance / clip.duration
+    stretches = _stretches(path)
+    for k, stretch in enumerate(stretches):
+        first = atan2(stretch[1][1] - stretch[0][1], stretch[1][0] - stretch[0][0])
+        facing = heading + wrap_angle(first - heading)
+        if abs(facing - heading) > MIN_TURN:
+            segments.append(
+                TurnSegment.between(performer, start, stretch[0], heading, facing, carry)
+            )
+            start = segments[-1].end(performer)
+        walk = WalkSegment(start, tuple(stretch), clip.name, distance, speed, carry)
+        if oriented and k == len(stretches) - 1:
+            walk = walk.facing_at_the_end(standing)
+        walk = walk.stepped(performer)
+        segments.append(walk)
+        start = walk.end(performer)
+        heading = facing + wrap_angle(walk.heading(walk.lengths[-1]) - facing)
+    final_yaw = heading
+    if oriented:
+        final_yaw = heading + wrap_angle(standing - heading)
+        if abs(final_yaw - heading) > MIN_TURN:
+            segments.append(
+                TurnSegment.between(performer, start, path[-1], heading, final_yaw, carry)
+            )
+    if not segments:
+        segments.append(TurnSegment.between(performer, t, (x, y), yaw, yaw, carry))
+    return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
+
+
+def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float) -> Activity:
+    """Play a clip where the person stands (`pose`); with a target or a grasp, aimed at it by
+    inverse kinematics, taking hold of what it grasps."""
+    clip = performer.clips.get(command.animation_name)
+    if clip is None:
+        raise Unreachable(f"no animation named '{command.animation_name}'")
+    if command.animation_speed <= 0:
+        raise Unreachable("animation_speed must be positive")
+    aim, carry = None, _carry(performer, command.hold)
+    if command.target is not None or command.grasp is not None:
+        if clip.name not in TARGETED:
+            raise Unreachable(f"'{clip.name}' takes no target")
+        hands, takes = _aimed_hands(performer, clip, command, pose)
+        if takes:
+            carry = _carry(performer, hold_of(command.grasp, pose[2]))
+        placed = lambda q: place(performer, q, *pose)  # noqa: E731
+        aim = aim_clip(performer.body, clip, placed, hands, pose[2], carry, takes)
+    segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
+    return Activity.plan(performer, (segment,), pose)
+
+
+def _aimed_hands(
+    performer: Performer, clip: Clip, command: AnimateCommand, pose
+) -> tuple[dict, bool]:
+    """Each aiming hand's target (position, orientation or None), and whether the clip
+    takes an object: the palms on the faces of what it takes, on the faces of what they
+    put down at the target, or (holding nothing) the right hand's edge of a reach on the
+    target and both hands of other clips either side of it, as far apart as the clip has
+    them."""
+    if command.grasp is not None:
+        return palm_targets(command.grasp, pose[2]), True
+    if command.hold is not None:
+        return release_targets(command.hold, command.target, pose[2]), False
+    target = np.asarray(command.target, dtype=float)
+    if clip.name == "reach":
+        return reach_target(performer.body, target, pose[2]), False
+    q = place(performer, clip.sample(clip.events[TARGETED[clip.name]]), *pose)
+    hands = {s: performer.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES}
+    middle = np.mean(list(hands.values()), axis=0)
+    return {s: (target + p - middle, None) for s, p in hands.items()}, False
+
+
+def plan_idle(
+    performer: Performer, pose: tuple[float, float, float], t: float, hold=None
+) -> Activity:
+    """Standing at ease at `pose` from t on, for as long as no command comes (the arms in
+    the carry posture while the hands `hold` something)."""
+    segment = ClipSegment(IDLE_CLIP, t, pose, forever=True, carry=_carry(performer, hold))
+    return Activity.plan(performer, (segment,), pose)
+
+
+def plan_stop(
+    performer: Performer, activity: Activity | None, base, hold: Hold | None, t: float
+) -> Activity:
+    """Standing idle after a cancel: at once, or a walk under way first comes to a stop in
+    a step or two and a turn on the spot finishes the step it is taking (stopping dead
+    would slide the feet). `base` is where the person stands, `hold` what the hands hold."""
+    stepping = _stepping_at(performer, activity, t)
+    if stepping is None:
+        return plan_idle(performer, base, t, hold)
+    if isinstance(stepping, TurnSegment):
+        stop = stepping.finishing(t)
+        pose = (*stop.position, wrap_angle(stop.yaw_to))
+    else:
+        stop = stepping.halted(performer, t)
+        along = stop.distance(stop.over)
+        pose = (*stop.point(along), wrap_angle(stop.heading(along)))
+    carry = _carry(performer, hold)
+    rest = ClipSegment(IDLE_CLIP, stop.end(performer), pose, forever=True, carry=carry)
+    return Activity.plan(performer, (stop, rest), pose)
+
+
+def still_stepping(performer: Performer, activity: Activity | None, t: float):
+    """A walk or turn coming to a stop (after a cancel) that what comes next must wait
+    for: its segment and when it is over (none and t when nothing is under way)."""
+    stepping = _stepping_at(performer, activity, t)
+    return ((stepping,), stepping.end(performer)) if stepping is not None else ((), t)
+
+
+def _stepping_at(performer: Performer, activity: Activity | None, t: float):
+    """The walk or turn on the spot the activity is in at t (None: standing or playing a
+    clip): the feet are stepping, so it cannot stop dead."""
+    if activity is None:
+        return None
+    current = [s for s in activity.segments if s.start <= t]
+    segment = current[-1] if current else None
+    if isinstance(segment, WalkSegment | TurnSegment) and t < segment.end(performer):
+        return segment
+    return None
+
+
+def _carry(performer: Performer, hold: Hold | None) -> CarryArms | None:
+    return None if hold is None else carry_arms(performer.body, hold)
+
+
+def _yaw_of(quaternion) -> float:
+    w, x, y, z = quaternion
+    return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+
+
+def _without_short_legs(path: list) -> list:
+    """The path without waypoints closer than MIN_LEG to the point before them (the goal
+    stays): a short leg would make the person swing round on the spot while walking."""
+    kept = [path[0]]
+    for point in path[1:-1]:
+        if hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) >= MIN_LEG:
+            kept.append(point)
+    goal = path[-1]
+    if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:
+        kept.append(goal)
+    return kept
+
+
+def _stretches(path: list) -> list[list]:
+    """The path cut at its sharp corners: walked through round a corner, the stance foot
+    would have to twist further than a hip turns, so the person stops there and turns on
+    the spot. A corner is sharp beyond SHARP_CORNER where the heading can turn over
+    2 * CORNER_RADIUS, and in proportion beyond less where a short leg leaves less room
+    (the heading turns over half the shorter leg on either side)."""
+    stretches, current = [], [path[0]]
+    for before, corner, after in zip(path, path[1:], path[2:], strict=False):
+        current.append(corner)
+        turn = wrap_angle(
+            atan2(after[1] - corner[1], after[0] - corner[0])
+            - atan2(corner[1] - before[1], corner[0] - before[0])
+        )
+        room = min(CORNER_RADIUS, hypot(*np.subtract(corner, before)) / 2)
+        room = min(room, hypot(*np.subtract(after, corner)) / 2)
+        if not walkable_turn(turn, room):
+            stretches.append(current)
+            current = [corner]
+    current.append(path[-1])
+    return [*stretches, current] if len(path) > 1 else []

@@ -1,0 +1,111 @@
+"""The segments an activity is planned from: a clip played in place, a turn on the spot,
+and a walk (hrc_drake.human.walking). Each gives the pose at any time from its own data and
+the Performer, and when it ends."""
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from math import ceil, copysign, degrees, inf, radians
+
+import numpy as np
+
+from hrc_drake.human.body import HumanBody
+from hrc_drake.human.clip import Clip
+from hrc_drake.human.grasp import CarryArms
+from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
+from hrc_drake.human.performer import IDLE_CLIP, Performer, carried, place
+from hrc_drake.human.targeting import AimedMotion
+from hrc_drake.human.walking import WalkSegment
+
+MAX_TURN_PER_CYCLE = radians(90.0)
+"""A turn on the spot takes two steps of at most half this each per cycle."""
+TURN_ROUNDING = 3.0
+"""Degrees: turn clips are authored (once per angle) for multiples of this."""
+MIN_TURN = radians(3.0)
+"""Smaller changes of heading need no turn on the spot."""
+
+
+@dataclass(frozen=True, eq=False)
+class ClipSegment:
+    """A clip played in place (idle loops for ever), optionally aimed at a target."""
+
+    clip: str
+    start: float
+    anchor: tuple[float, float, float]
+    speed: float = 1.0
+    forever: bool = False
+    aim: AimedMotion | None = None
+    carry: CarryArms | None = None
+    """Arms held in the carry posture (not with `aim`, which blends them itself)."""
+
+    def end(self, performer: Performer) -> float:
+        if self.forever:
+            return inf
+        return self.start + performer.clips[self.clip].duration / self.speed
+
+    def clip_time(self, performer: Performer, t: float) -> float:
+        clip_time = (t - self.start) * self.speed
+        if self.forever:
+            return clip_time
+        return min(max(clip_time, 0.0), performer.clips[self.clip].duration)
+
+    def pose(self, performer: Performer, t: float) -> np.ndarray:
+        clip_time = self.clip_time(performer, t)
+        q = performer.clips[self.clip].sample(clip_time)
+        placed = place(performer, q, *self.anchor)
+        if self.aim is not None:
+            return self.aim.pose(placed, clip_time)
+        return carried(placed, self.carry)
+
+
+@dataclass(frozen=True, eq=False)
+class TurnSegment:
+    """Step round on the spot from one heading to another: `cycles` cycles of a turn clip
+    authored for the angle (rounded to TURN_ROUNDING; the rest of the angle eases in)."""
+
+    start: float
+    position: tuple[float, float]
+    yaw_from: float
+    yaw_to: float
+    clip: Clip
+    cycles: int
+    carry: CarryArms | None = None
+
+    @classmethod
+    def between(cls, performer: Performer, start, position, yaw_from, yaw_to, carry=None):
+        change = yaw_to - yaw_from
+        cycles = ceil(abs(change) / MAX_TURN_PER_CYCLE) if abs(change) >= MIN_TURN else 0
+        if cycles == 0:
+            return cls(start, position, yaw_from, yaw_to, performer.clips[IDLE_CLIP], 0, carry)
+        step = round(degrees(change / cycles) / TURN_ROUNDING) * TURN_ROUNDING
+        clip = _turn_clip(performer.body, step or copysign(TURN_ROUNDING, change))
+        return cls(start, position, yaw_from, yaw_to, clip, cycles, carry)
+
+    def end(self, performer: Performer) -> float:
+        return self.start + self.cycles * self.clip.duration
+
+    def finishing(self, t: float) -> "TurnSegment":
+        """This turn cut short after the cycle (two steps) under way at t, turned as far as
+        those cycles step."""
+        cycles = min(max(ceil((t - self.start) / self.clip.duration), 1), self.cycles)
+        if cycles == self.cycles:
+            return self
+        stepped = cycles * float(self.clip.root_shift[self.clip.joint_names.index("base_yaw")])
+        return replace(self, yaw_to=self.yaw_from + stepped, cycles=cycles)
+
+    def pose(self, performer: Performer, t: float) -> np.ndarray:
+        total = self.cycles * self.clip.duration
+        clip_time = min(max(t - self.start, 0.0), total)
+        q = self.clip.sample(clip_time)
+        stepped = float(q[performer.root[2]]) if self.cycles else 0.0
+        authored = self.cycles * float(self.clip.root_shift[performer.root[2]])
+        rest = self.yaw_to - self.yaw_from - authored
+        q[performer.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
+        return carried(place(performer, q, *self.position, self.yaw_from), self.carry)
+
+
+@lru_cache(maxsize=256)
+def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
+    return turn_clip(body, step_degrees)
+
+
+Segment = ClipSegment | TurnSegment | WalkSegment

@@ -1,0 +1,109 @@
+"""How free workpieces move between updates: what each rests on (the highest support under
+its footprint: a surface, a belt, another piece, the floor), and the velocity it keeps until
+the next update: its support's (a belt's speed as the belt queues its riders), or falling
+with gravity to land exactly on the support. A piece found below its support's top is
+lifted onto it (never sinks); pieces past the end of a removing belt leave."""
+
+import dataclasses
+
+import numpy as np
+from pydrake.multibody.math import SpatialVelocity
+
+from hrc_drake.workpieces.geometry import with_height
+from hrc_drake.workpieces.messages import object_id_of_support
+from hrc_drake.workpieces.step import Step
+from hrc_drake.workpieces.surfaces import Surface
+from hrc_drake.workpieces.world import Piece
+
+GRAVITY = 9.81
+"""m/s²: free pieces fall with it until they land."""
+REST_TOLERANCE = 1e-6
+"""m: an object this close above its support rests on it."""
+
+
+def remove_past_belt_ends(step: Step) -> None:
+    """Pieces carried past the end of a belt that removes them (rather than queueing them)
+    leave the world."""
+    for piece in list(step.pieces.values()):
+        belt = step.cell.belts.get(piece.support)
+        if belt is not None and not belt.queues and belt.past_end(piece.pose.translation()):
+            del step.pieces[piece.id]
+            step.changed = True
+
+
+def settle(step: Step, instantly: bool) -> None:
+    """Find the supports of the free pieces that may move and plan their motion (or, at
+    the start, drop every piece onto its support at once).
+
+    Only commands and removals change what rests on what; otherwise a piece at rest on
+    something fixed stays put, so only moving pieces and belt riders are looked at."""
+    free = [p for p in step.pieces.values() if p.holder is None]
+    if instantly or step.changed:
+        active = free
+    else:
+        active = [p for p in free if _moving(p) or p.support in step.cell.belts]
+    if not active:
+        return
+    active.sort(key=lambda p: (p.bottom, p.id))
+    active_ids = {p.id for p in active}
+    tops = [p.top for p in free if p.id not in active_ids]
+    supports = {}
+    for piece in active:
+        supports[piece.id] = _support(step, step.pieces[piece.id], tops, instantly)
+        tops.append(step.pieces[piece.id].top)
+    belt_speeds = _belt_speeds(step)
+    for piece in active:
+        _plan(step, step.pieces[piece.id], supports[piece.id], belt_speeds)
+
+
+def _moving(piece: Piece) -> bool:
+    return piece.support is None or bool(piece.velocity.get_coeffs().any())
+
+
+def _support(step: Step, piece: Piece, others: list[Surface], instantly: bool) -> Surface:
+    """What is under the piece: the highest support up to its top face, so that a piece
+    resting on it or sunk into it is put on top of it. `others` are the tops of the
+    pieces at rest and of those below this one (a piece placed into another of the same
+    height lands on the older one)."""
+    top = piece.bottom + piece.solid.height + REST_TOLERANCE
+    support = step.cell.supports.under(piece.footprint, top, others)
+    if instantly or piece.bottom <= support.height + REST_TOLERANCE:
+        pose = with_height(piece.pose, support.height + piece.solid.height / 2)
+        step.pieces[piece.id] = dataclasses.replace(piece, pose=pose, support=support.name)
+    else:
+        step.pieces[piece.id] = dataclasses.replace(piece, support=None)
+    return support
+
+
+def _belt_speeds(step: Step) -> dict[int, float]:
+    speeds = {}
+    for name, belt in step.cell.belts.items():
+        riders = {
+            p.id: p.footprint
+            for p in step.pieces.values()
+            if p.holder is None and p.support == name
+        }
+        speeds |= belt.plan(riders, step.config.update_period)
+    return speeds
+
+
+def _plan(step: Step, piece: Piece, support: Surface, belt_speeds: dict[int, float]) -> None:
+    """The piece's velocity until the next update: its support's, or falling onto it."""
+    below = _support_velocity(step, support, belt_speeds, piece.id)
+    if piece.support is not None:
+        v = below
+    else:
+        dt = step.config.update_period
+        landing = support.height + below[2] * dt
+        accelerated = piece.velocity.translational()[2] - GRAVITY * dt
+        v = np.array([0.0, 0.0, max(accelerated, (landing - piece.bottom) / dt)])
+    velocity = SpatialVelocity(np.zeros(3), v)
+    step.pieces[piece.id] = dataclasses.replace(piece, velocity=velocity)
+
+
+def _support_velocity(step: Step, support: Surface, belt_speeds: dict, piece_id: int) -> np.ndarray:
+    belt = step.cell.belts.get(support.name)
+    if belt is not None:
+        return belt.velocity(belt_speeds.get(piece_id, 0.0))
+    below = step.pieces.get(object_id_of_support(support.name))
+    return below.velocity.translational() if below is not None else np.zeros(3)
