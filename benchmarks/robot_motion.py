@@ -27,6 +27,8 @@ from hrc_drake.motion.messages import MoveTo
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.scenario import load_scenario
+from hrc_drake.seeding import stream
+from hrc_drake.wiring import ROBOT_MOTION
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "motion")]
@@ -91,7 +93,7 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     scenario = load_scenario(args.scenario)
-    planner = MotionPlanner(scenario.station, MotionOptions())
+    planner = MotionPlanner(scenario.station, MotionOptions(), stream(scenario.seed, ROBOT_MOTION))
     home = scenario.station.initial_positions
     targets = random_targets(planner, args.targets)
     times, failures = planning_times(planner, targets, home)

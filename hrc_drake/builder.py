@@ -59,6 +59,7 @@ from hrc_drake.wiring import (
     PHYSICS_SCENE_GRAPH,
     RECORDER,
     ROBOT,
+    ROBOT_MOTION,
     SAFETY,
     SCENE_GRAPH,
     STATION_MIRROR,
@@ -67,6 +68,7 @@ from hrc_drake.wiring import (
     VISUAL_PREFIX,
     VISUALIZER,
     WORKPIECES,
+    WORKPIECES_SYSTEM,
     command_input,
     command_output,
     status_port,
@@ -129,7 +131,14 @@ def build_diagram(
     human, human_plant = _add_person(builder, scene_graph, mirror, scenario)
     workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
     motion = add_robot_motion(
-        builder, spec, plant, arm, controller, scenario.robot.motion, workpieces
+        builder,
+        spec,
+        stream(scenario.seed, ROBOT_MOTION),
+        plant,
+        arm,
+        controller,
+        scenario.robot.motion,
+        workpieces,
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
     audit = _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario)
@@ -212,7 +221,7 @@ def _add_workpieces(builder, scene_graph, plant, mirror, scenario, human):
         scene_graph,
         mirror,
         scenario.workpieces,
-        seed=stream(scenario.seed, "workpieces"),
+        seed=stream(scenario.seed, WORKPIECES_SYSTEM),
         tool_frame=tool_frame,
         areas={name: scenario.area(name) for name in scenario.areas},
     )

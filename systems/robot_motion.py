@@ -47,10 +47,16 @@ class RobotMotion(LeafSystem):
     issuer, or None).
     """
 
-    def __init__(self, station: StationSpec, options: MotionOptions | None = None):
+    def __init__(
+        self,
+        station: StationSpec,
+        seed: np.random.SeedSequence,
+        options: MotionOptions | None = None,
+    ):
+        """`seed`: the planner's stream of the run's seed."""
         super().__init__()
         self._options = options or MotionOptions()
-        self._planner = MotionPlanner(station, self._options)
+        self._planner = MotionPlanner(station, self._options, seed)
         self._machine = MotionStateMachine(self._planner)
         self._n = len(VARIANTS[station.variant].joint_names)
         initial = self._machine.initial(station.initial_positions)
@@ -151,13 +157,15 @@ class RobotMotion(LeafSystem):
 def add_robot_motion(
     builder,
     station: StationSpec,
+    seed: np.random.SeedSequence,
     plant,
     arm,
     controller,
     options: MotionOptions | None = None,
     workpieces=None,
 ) -> RobotMotion:
-    """Adds RobotMotion as "robot_motion" between the plant and its RobotController.
+    """Adds RobotMotion as ROBOT_MOTION between the plant and its RobotController; `seed`
+    is the planner's stream of the run's seed.
 
     The controller reads the desired motion at every plant step: one Python output
     (`desired_motion`), split into state and acceleration in C++, not three Python calls.
@@ -165,7 +173,7 @@ def add_robot_motion(
     `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
     commands and reads its status; without, Grip and Release fail with a reason.
     """
-    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(station, options))
+    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(station, seed, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
     n = motion.GetOutputPort("desired_acceleration").size()
     split = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, Demultiplexer([2 * n, n]))

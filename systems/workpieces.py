@@ -50,10 +50,6 @@ def parked_pose(slot: int) -> RigidTransform:
     return RigidTransform([PARKING_SPACING * slot, 0.0, PARKING_DEPTH])
 
 
-def seed_sequence(seed: int | np.random.SeedSequence) -> np.random.SeedSequence:
-    return seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
-
-
 class Workpieces(LeafSystem):
     """Moving objects of a scenario.
 
@@ -69,7 +65,7 @@ class Workpieces(LeafSystem):
         self,
         config: WorkpiecesConfig,
         scene_graph: SceneGraph,
-        seed: int | np.random.SeedSequence = 0,
+        seed: np.random.SeedSequence,
         issuers: tuple[str, ...] = issuers_of(WORKPIECES),
         surfaces: list[Surface] = (),
         areas: dict[str, Area] | None = None,
@@ -77,7 +73,7 @@ class Workpieces(LeafSystem):
     ):
         super().__init__()
         all_surfaces = [*surfaces, *named_surfaces(config.surfaces)]
-        self.cell = Workcell(config, all_surfaces, seed_sequence(seed), issuers, areas)
+        self.cell = Workcell(config, all_surfaces, seed, issuers, areas)
         self.source_id = scene_graph.RegisterSource(name)
         self.frame_ids = self._register_slots(scene_graph, config)
         inspector = scene_graph.model_inspector()
@@ -187,7 +183,7 @@ def add_workpieces(
     scene_graph: SceneGraph,
     plant: MultibodyPlant,
     config: WorkpiecesConfig,
-    seed: int | np.random.SeedSequence = 0,
+    seed: np.random.SeedSequence,
     tool_frame: Frame | None = None,
     areas: dict[str, Area] | None = None,
     issuers: tuple[str, ...] = issuers_of(WORKPIECES),

@@ -44,9 +44,10 @@ from hrc_drake.motion.model import PlanningModel
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.safety.stopping import Stop, stopping_file
+from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec
 from hrc_drake.systems.robot_motion import RobotMotion
-from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
+from hrc_drake.wiring import ROBOT_MODEL, ROBOT_MOTION, TOOL_MODEL
 
 AXES = ("A1", "A2", "A3")
 SPEEDS = (0.33, 0.66, 1.0)
@@ -68,7 +69,7 @@ class _IdealRobot:
     def __init__(self, variant: str, options: MotionOptions):
         station = StationSpec(variant)
         builder = DiagramBuilder()
-        self.motion = builder.AddSystem(RobotMotion(station, options))
+        self.motion = builder.AddSystem(RobotMotion(station, stream(0, ROBOT_MOTION), options))
         builder.Connect(
             self.motion.GetOutputPort("desired_state"), self.motion.GetInputPort("robot_state")
         )

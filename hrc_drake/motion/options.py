@@ -19,7 +19,6 @@ class MotionOptions:
     settle_tolerance: joint error (rad) below which a finished move counts as arrived.
     settle_timeout: seconds a finished move may take to arrive before it fails.
     gripper_timeout: seconds to wait for the workpieces system to answer Grip/Release.
-    seed: seed of the planner's random sampling (the plan is deterministic).
     avoid_person: plan around the person where they stand when the move is planned (a
         vertical capsule of `person_radius` around them), the "environment perception" the
         thesis system wanted (docs/thesis-system.md); off, the planner sees the static cell
@@ -35,6 +34,5 @@ class MotionOptions:
     settle_tolerance: float = 1e-3
     settle_timeout: float = 2.0
     gripper_timeout: float = 0.5
-    seed: int = 0
     avoid_person: bool = False
     person_radius: float = 0.35

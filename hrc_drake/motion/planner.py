@@ -2,7 +2,8 @@
 
 `MotionPlanner.plan(command, q_start)` turns a move command into a TimedPath at nominal
 speed, or raises PlanningFailed with a reason a person can act on. Planning is deterministic:
-its random sampling draws from a Generator seeded afresh for every plan, and its budgets are
+its random sampling draws from a Generator seeded afresh for every plan from the planner's
+stream of the run's seed (hrc_drake.seeding), and its budgets are
 counts (inverse-kinematics starts, search-tree nodes, TOPP-RA grid points), never wall time,
 so a plan comes out the same on a busy machine or a loaded sweep worker.
 """
@@ -26,9 +27,10 @@ ARRIVED = 1e-6
 class MotionPlanner:
     """Plans the moves of one station's robot among its static cell."""
 
-    def __init__(self, station: StationSpec, options: MotionOptions):
+    def __init__(self, station: StationSpec, options: MotionOptions, seed: np.random.SeedSequence):
         self.station = station
         self.options = options
+        self.seed = seed
         self.model = PlanningModel(station, options.clearance)
         self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
 
@@ -56,7 +58,7 @@ class MotionPlanner:
 
     def _plan(self, command, q_start) -> TimedPath | None:
         q_start = np.asarray(q_start, dtype=float)
-        rng = np.random.default_rng(self.options.seed)
+        rng = np.random.default_rng(self.seed)
         if isinstance(command, MoveLinear):
             waypoints = self._linear(command, q_start)
             return self._timed(spline_path(waypoints)) if len(waypoints) > 1 else None

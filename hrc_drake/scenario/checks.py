@@ -78,7 +78,6 @@ FIELD_RULES: dict[str, Rule] = {
     "robot.motion.settle_tolerance": positive,
     "robot.motion.settle_timeout": positive,
     "robot.motion.gripper_timeout": positive,
-    "robot.motion.seed": within(0, MAX_SEED),
     "robot.motion.person_radius": positive,
     "visualization.publish_period": positive,
     "human.height": within(*HEIGHT_RANGE, " m"),

@@ -21,6 +21,7 @@ from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.areas import Area
 from hrc_drake.messages import ResultLog
+from hrc_drake.seeding import substream
 from hrc_drake.workpieces.config import WorkpiecesConfig, problems
 from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import Drift, Solid, footprint, twist_between
@@ -162,8 +163,7 @@ class Workcell:
 
     def random(self, *key: int) -> np.random.Generator:
         """A Generator of its own for `key` below the workpieces' seed."""
-        seed = np.random.SeedSequence(self.seed.entropy, spawn_key=(*self.seed.spawn_key, *key))
-        return np.random.default_rng(seed)
+        return np.random.default_rng(substream(self.seed, *key))
 
     def pose_at(self, piece: Piece, world: World, time: float) -> RigidTransform:
         return piece.drift.after(since(world, time))

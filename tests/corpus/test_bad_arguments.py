@@ -106,9 +106,9 @@ CASES = {
         ("run", "{s}", "--set", "human.height=2.5"),
         ("--set human.height=2.5: must lie within",),
     ),
-    "set motion seed negative": (
-        ("run", "{s}", "--set", "robot.motion.seed=-3"),
-        ("--set robot.motion.seed=-3: must lie within",),
+    "set the planner's seed (it derives from the run's)": (
+        ("run", "{s}", "--set", "robot.motion.seed=3"),
+        ("--set robot.motion.seed: unknown field 'seed'",),
     ),
     "set bool as number": (
         ("run", "{s}", "--set", "safety.ssm=3"),

@@ -13,7 +13,12 @@ from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.seeding import stream
+from hrc_drake.wiring import ROBOT_MOTION
 from tests.motion.motion_helpers import make_scenario
+
+SEED = stream(0, ROBOT_MOTION)
+"""The planner's stream of seed 0, as a run of seed 0 gives it."""
 
 TOOL_DOWN = RollPitchYaw(np.pi, 0.0, 0.0)
 COMMANDS = (
@@ -58,7 +63,7 @@ class _Clock:
 
 @pytest.fixture(scope="module")
 def planner():
-    return MotionPlanner(make_scenario(box_at=(0.3, 0.35)).station, MotionOptions())
+    return MotionPlanner(make_scenario(box_at=(0.3, 0.35)).station, MotionOptions(), SEED)
 
 
 @pytest.fixture(scope="module")
@@ -87,8 +92,10 @@ def test_plans_are_the_same_whatever_the_clock_says(planner, quiet_outcomes, mon
 def test_budgets_are_counts_from_the_options():
     """A smaller search budget fails a move that needs a search; the default plans it."""
     scenario = make_scenario(box_at=(0.3, 0.35))
-    tight = MotionPlanner(scenario.station, MotionOptions(search_nodes=2))
+    tight = MotionPlanner(scenario.station, MotionOptions(search_nodes=2), SEED)
     home = np.array(tight.model.variant.home)
     with pytest.raises(PlanningFailed, match="no collision-free path"):
         tight.plan(COMMANDS[1], home)
-    assert MotionPlanner(scenario.station, MotionOptions()).plan(COMMANDS[1], home) is not None
+    assert (
+        MotionPlanner(scenario.station, MotionOptions(), SEED).plan(COMMANDS[1], home) is not None
+    )

@@ -18,7 +18,8 @@ from hrc_drake.motion.messages import IDLE, MOVING, STOPPING, Grip, MoveJoints, 
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import MotionInputs, MotionStateMachine
-from hrc_drake.wiring import GRIPPER_ISSUER
+from hrc_drake.seeding import stream
+from hrc_drake.wiring import GRIPPER_ISSUER, ROBOT_MOTION
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, WorkpiecesStatus
 from tests.motion.motion_helpers import make_scenario
 
@@ -29,7 +30,9 @@ SILENT = WorkpiecesStatus(0.0, (), {}, {})
 
 @pytest.fixture(scope="module")
 def machine():
-    return MotionStateMachine(MotionPlanner(make_scenario().station, MotionOptions()))
+    return MotionStateMachine(
+        MotionPlanner(make_scenario().station, MotionOptions(), stream(0, ROBOT_MOTION))
+    )
 
 
 @pytest.fixture(scope="module")

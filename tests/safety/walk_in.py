@@ -28,10 +28,12 @@ from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import Scenario
+from hrc_drake.seeding import stream
 from hrc_drake.station import add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
+from hrc_drake.wiring import ROBOT_MOTION
 from tests.safety.approach_cell import keep_person_out_of_contact, kinematic
 
 WALK_SPEED = 1.6
@@ -222,7 +224,8 @@ def build(case: Case):
     plant.Finalize()
     plant.SetDefaultPositions(arm, scene.station.initial_positions)
     controller = add_robot_controller(builder, scene.station, plant, arm)
-    motion = add_robot_motion(builder, scene.station, plant, arm, controller)
+    seed = stream(scene.seed, ROBOT_MOTION)
+    motion = add_robot_motion(builder, scene.station, seed, plant, arm, controller)
     shuttle = builder.AddSystem(Shuttle(sweep_goals()))
     builder.Connect(motion.GetOutputPort("robot_status"), shuttle.get_input_port())
     builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_tree_command"))

@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 from pydrake.geometry import SceneGraph
 
+from hrc_drake.seeding import stream
 from hrc_drake.systems.workpieces import Workpieces
+from hrc_drake.wiring import WORKPIECES_SYSTEM
 from hrc_drake.workpieces.config import GridLayout
 from hrc_drake.workpieces.layouts import grid_placements
 from tests.workpieces.workpieces_rig import load_example
@@ -16,7 +18,7 @@ CARTON_HEIGHT = 0.2
 
 
 def pallet(seed: int) -> list:
-    workpieces = Workpieces(load_example(), SceneGraph(), seed=seed)
+    workpieces = Workpieces(load_example(), SceneGraph(), stream(seed, WORKPIECES_SYSTEM))
     status = workpieces.GetOutputPort("workpieces_status").Eval(workpieces.CreateDefaultContext())
     return [o for o in status.objects if o.type == "carton"]
 

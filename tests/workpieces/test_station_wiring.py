@@ -14,10 +14,11 @@ from hrc_drake.human.messages import HumanStatus
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.messages import NO_COMMANDS, SUCCEEDED, CommandResult
 from hrc_drake.paths import add_model_package
+from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec, add_robot
 from hrc_drake.systems.adapters import hand_poses
 from hrc_drake.systems.workpieces import add_workpieces
-from hrc_drake.wiring import TOOL_MODEL
+from hrc_drake.wiring import TOOL_MODEL, WORKPIECES_SYSTEM
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Spawn
 from tests.workpieces.workpieces_rig import PART_HEIGHT, TimedValue, config_with, script
 
@@ -38,7 +39,8 @@ def station():
     tcp = plant.GetFrameByName(TCP_FRAME, plant.GetModelInstanceByName(TOOL_MODEL))
     X_WT = tcp.CalcPoseInWorld(plant.CreateDefaultContext())
     under_cup = RigidTransform(X_WT.translation() - [0.0, 0.0, PART_HEIGHT / 2])
-    workpieces = add_workpieces(builder, scene_graph, plant, config_with(), tool_frame=tcp)
+    seed = stream(0, WORKPIECES_SYSTEM)
+    workpieces = add_workpieces(builder, scene_graph, plant, config_with(), seed, tool_frame=tcp)
     spawn = builder.AddSystem(TimedValue(script([(0.0, Spawn(1, "part", under_cup))]), NO_COMMANDS))
     builder.Connect(spawn.get_output_port(), workpieces.GetInputPort("robot_tree_command"))
     grip = Attach(seq=5, holder=ROBOT_HOLDER, max_mass=3.0)

@@ -5,7 +5,9 @@ import dataclasses
 import pytest
 from pydrake.geometry import SceneGraph
 
+from hrc_drake.seeding import stream
 from hrc_drake.systems.workpieces import Workpieces
+from hrc_drake.wiring import WORKPIECES_SYSTEM
 from hrc_drake.workpieces.config import (
     ConveyorConfig,
     GridLayout,
@@ -123,4 +125,4 @@ def test_problems_name_the_field(config, path, message):
 def test_the_system_refuses_a_config_with_problems():
     config = config_with_problem(objects=[PlacedObject(type="crate")])
     with pytest.raises(ValueError, match=r"workpieces.objects\[0\].type: unknown object type"):
-        Workpieces(config, SceneGraph())
+        Workpieces(config, SceneGraph(), stream(0, WORKPIECES_SYSTEM))

@@ -22,7 +22,9 @@ from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from hrc_drake.areas import Area
 from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.paths import MODEL_PACKAGE, add_model_package
+from hrc_drake.seeding import stream
 from hrc_drake.systems.workpieces import add_workpieces
+from hrc_drake.wiring import WORKPIECES_SYSTEM
 from hrc_drake.workpieces.config import ConveyorConfig, ObjectType, PlacedObject, WorkpiecesConfig
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, HandPoses
 from hrc_drake.yaml_check import check_node, compose
@@ -157,7 +159,8 @@ def build_rig(
     plant, scene_graph = AddMultibodyPlant(plant_config, builder)
     _add_cell(plant)
     plant.Finalize()
-    workpieces = add_workpieces(builder, scene_graph, plant, config, seed, areas=areas)
+    seed_stream = stream(seed, WORKPIECES_SYSTEM)
+    workpieces = add_workpieces(builder, scene_graph, plant, config, seed_stream, areas=areas)
     for issuer, timed in (commands or {}).items():
         source = builder.AddSystem(TimedValue(script(timed), NO_COMMANDS))
         builder.Connect(source.get_output_port(), workpieces.GetInputPort(f"{issuer}_command"))
