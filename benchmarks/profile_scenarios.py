@@ -3,11 +3,11 @@
 Each scenario runs once under cProfile (`hrc_drake.runner.run` without a run directory, as
 a sweep runs it: no replay recorder; the simulation only, not building nor reporting).
 Every function's own time is charged to the system whose callback it ran for: a function
-of a `systems/` file (or the runner's loggers) is that system's; any other (library code,
-numpy, Drake's Python bindings, C++ called from Python such as a QueryObject lookup) is
-shared among its callers' systems in proportion to the time they spent in it. What the
-simulator spends in C++ outside any Python callback (the plant, the controller,
-SceneGraph, the C++ loggers, event dispatch) is "Drake (C++)".
+of a `systems/` file (the runner's state-change sampler among them: "loggers") is that
+system's; any other (library code, numpy, Drake's Python bindings, C++ called from Python
+such as a QueryObject lookup) is shared among its callers' systems in proportion to the
+time they spent in it. What the simulator spends in C++ outside any Python callback (the
+plant, the controller, SceneGraph, the C++ loggers, event dispatch) is "Drake (C++)".
 Profiling inflates Python's share (every Python call is timed); the shares rank the parts,
 `benchmarks/scenarios.py` measures the cost.
 
@@ -33,7 +33,7 @@ PARTS = {
     "human_actor.py": "HumanActor",
     "behavior_tree.py": "trees",
     "realism_audit.py": "realism audit",
-    "runner.py": "loggers",
+    "state_changes.py": "loggers",
 }
 SYSTEMS = Path(__file__).resolve().parent.parent / "systems"
 
@@ -49,7 +49,7 @@ def own_part(function) -> str | None:
     path = Path(filename)
     if is_simulation(function):
         return DRAKE
-    if path.parent == SYSTEMS or path.name == "runner.py":
+    if path.parent == SYSTEMS:
         return PARTS.get(path.name, path.stem)
     return None
 

@@ -17,16 +17,19 @@ from pydrake.geometry import Meshcat
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
+from hrc_drake.evaluation.recording import meshcat_path
 from hrc_drake.evaluation.replay import animation_message, write_replay
 from hrc_drake.scenario import load_scenario
-from hrc_drake.wiring import HUMAN_MODEL, RECORDER, VISUAL_PREFIX
+from hrc_drake.wiring import HUMAN_MODEL, VISUAL_PREFIX
 
 
 def simulate(scenario, duration: float, meshcat: Meshcat | None):
-    diagram = build_diagram(scenario, meshcat)
+    """CPU seconds of the run, and the station's parts (its recorder holds the replay)."""
+    parts = []
+    diagram = build_diagram(scenario, meshcat, attach=lambda _, station: parts.append(station))
     start = time.process_time()
     Simulator(diagram).AdvanceTo(duration)
-    return time.process_time() - start, diagram
+    return time.process_time() - start, parts[0]
 
 
 def main() -> None:
@@ -40,7 +43,7 @@ def main() -> None:
     for _ in range(args.repeats):
         plain.append(simulate(scenario, args.duration, None)[0])
         meshcat = Meshcat()
-        seconds, diagram = simulate(scenario, args.duration, meshcat)
+        seconds, station = simulate(scenario, args.duration, meshcat)
         recorded.append(seconds)
     print(f"{args.scenario}, {args.duration:g} s simulated, best of {args.repeats}:")
     print(f"  without Meshcat   {min(plain):7.2f} s CPU (median {statistics.median(plain):.2f})")
@@ -48,13 +51,13 @@ def main() -> None:
         f"  drawn + recorded  {min(recorded):7.2f} s CPU (median {statistics.median(recorded):.2f})"
     )
     print(f"  ratio             {min(recorded) / min(plain):7.3f}")
-    recording = diagram.GetSubsystemByName(RECORDER).recording
+    recording = station.recorder.recording
     with tempfile.TemporaryDirectory() as folder:
         path = write_replay(
             Path(folder) / "replay.html",
             meshcat,
             recording,
-            f"/drake/{VISUAL_PREFIX}/{HUMAN_MODEL}",
+            meshcat_path(VISUAL_PREFIX, HUMAN_MODEL),
         )
         megabytes = path.stat().st_size / 1e6
     animation = len(animation_message(recording)) * 4 / 3 / 1e6  # base64 in the page

@@ -91,6 +91,9 @@ SAFETY_MONITOR = "safety"
 REALISM_AUDIT = "realism_audit"
 VISUALIZER = "meshcat_visualizer"
 RECORDER = "replay_recorder"
+STATE_CHANGES = "state_changes"
+ROBOT_STATE_LOG = "robot_state_log"
+SAFETY_SIGNALS_LOG = "safety_signals_log"
 
 
 def tree_system(agent: str) -> str:

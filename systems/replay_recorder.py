@@ -2,56 +2,24 @@
 
 Drake's MeshcatVisualizer records every frame of the scene at every publish, hidden workpiece
 slots and the static cell included, as JSON-like keys of doubles. The recorder keeps the same
-samples as arrays instead, so that `hrc_drake.evaluation.replay` can keep only the keys that
-change what is seen. Besides the frames' world poses it samples, when the station has them,
-the robot's safety state (from the monitor's speed scale) and who holds which workpiece
-(from the workpieces' status), so the replay can show the one and tests can find the other.
+samples as arrays instead (`hrc_drake.evaluation.recording.Recording`), so that
+`hrc_drake.evaluation.replay` can keep only the keys that change what is seen. Besides the
+frames' world poses it samples, when the station has them, the robot's safety state (from the
+monitor's speed scale) and who holds which workpiece (from the workpieces' status), so the
+replay can show the one and tests can find the other.
 
 Frames are named as MeshcatVisualizer names them: `/drake/<prefix>/<frame name>` with `::`
 turned into `/`, for every frame with geometry of the visualizer's role.
 """
-
-from dataclasses import dataclass, field
 
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import QueryObject, Role
 from pydrake.systems.framework import LeafSystem
 
+from hrc_drake.evaluation.recording import Recording, meshcat_path, safety_state
 from hrc_drake.ports import message_value, value_or_none
-from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.workpieces.messages import WorkpiecesStatus
-
-MESHCAT_ROOT = "/drake"
-
-FULL_SPEED, REDUCED, STOPPED = "full speed", "reduced speed", "stopped"
-SAFETY_STATES = (FULL_SPEED, REDUCED, STOPPED)
-
-
-def safety_state(status: SafetyStatus) -> str:
-    """The robot's state as the monitor commands it: full speed, reduced or stopped."""
-    if status.scale >= 1.0:
-        return FULL_SPEED
-    return STOPPED if status.scale <= 0.0 else REDUCED
-
-
-def meshcat_path(prefix: str, frame_name: str) -> str:
-    """Where MeshcatVisualizer draws a SceneGraph frame (MultibodyPlant's `::` -> `/`)."""
-    return f"{MESHCAT_ROOT}/{prefix}/{frame_name.replace('::', '/')}"
-
-
-@dataclass
-class Recording:
-    """Samples at `times`: per Meshcat path its poses (rows x, y, z, qw, qx, qy, qz), the
-    safety state, and the held workpieces as {object path: holder}."""
-
-    times: list[float] = field(default_factory=list)
-    poses: dict[str, list[np.ndarray]] = field(default_factory=dict)
-    safety: list[str] = field(default_factory=list)
-    held: list[dict[str, str]] = field(default_factory=list)
-
-    def pose_array(self, path: str) -> np.ndarray:
-        return np.array(self.poses[path])
 
 
 class ReplayRecorder(LeafSystem):

@@ -16,7 +16,11 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
-from hrc_drake.evaluation.sweep_report import html_table, page
+from hrc_drake.evaluation.html import html_table, page
+from hrc_drake.evaluation.margin import margin_model
+from hrc_drake.evaluation.record import RunSetup
+from hrc_drake.safety.log import read_safety_log
+from hrc_drake.safety.reference import reference_protective
 
 KEY_METRICS = (
     ("margin", ("margin", "value")),
@@ -100,15 +104,22 @@ def write_trials(out_dir: Path, trials) -> Path:
     return path
 
 
-def write_falsify_report(out_dir: Path, search, result) -> dict[str, Path]:
+def write_falsify_report(
+    out_dir: Path, search, result, setups: dict[int, RunSetup]
+) -> dict[str, Path]:
+    """`setups`: of each worst case's run, by trial number."""
     found = summary(search, result)
     files = {"trials": write_trials(out_dir, result.trials), "summary": out_dir / "falsify.json"}
     files["summary"].write_text(json.dumps(found, indent=2, sort_keys=True) + "\n")
     if any(t.ok for t in result.trials):
         files["margin_plot"] = plot_margins(result.trials, out_dir / "margin.png")
-    cases = [(t, result.cases[t.number]) for t in result.worst if t.number in result.cases]
+    cases = [
+        (t, result.cases[t.number], setups[t.number])
+        for t in result.worst
+        if t.number in result.cases
+    ]
     if cases:
-        files["worst_plot"] = plot_worst_cases(search, cases, out_dir / "worst_cases.png")
+        files["worst_plot"] = plot_worst_cases(cases, out_dir / "worst_cases.png")
     files["report_html"] = out_dir / "falsify.html"
     files["report_html"].write_text(falsify_html(found, files, out_dir))
     return files
@@ -137,30 +148,26 @@ def plot_margins(trials, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def plot_worst_cases(search, cases, path: Path) -> Path:
-    """Per worst case over time: the separation, S_p as the margin takes it and as the
-    monitor had it, when the robot moved; the least margin marked."""
+def plot_worst_cases(cases: list[tuple], path: Path) -> Path:
+    """Per worst case (trial, run directory, RunSetup) over time: the separation, S_p as
+    the margin takes it and as the monitor had it, when the robot moved; the least margin
+    marked."""
     import matplotlib.pyplot as plt
 
-    from hrc_drake.safety.log import read_safety_log
-    from hrc_drake.safety.margin import reference_model, reference_protective
-    from hrc_drake.scenario import load_scenario
-
     fig, axes = plt.subplots(len(cases), 1, figsize=(9, 2.8 * len(cases)), squeeze=False)
-    for ax, (trial, directory) in zip(axes[:, 0], cases, strict=True):
-        scenario = load_scenario(search.scenario_path, search.spec(trial.values).overrides)
+    for ax, (trial, directory, setup) in zip(axes[:, 0], cases, strict=True):
         log = read_safety_log(directory / "safety.npz")
         time = log["time"]
         ax.plot(time, log["separation"], color="tab:blue", lw=1, label="separation")
         ax.plot(
             time,
-            reference_protective(log, reference_model(scenario)),
+            reference_protective(log, margin_model(setup)),
             color="tab:orange",
             lw=1,
             label="S_p (ISO 13855 v_h)",
         )
         ax.plot(time, log["protective"], color="tab:orange", lw=0.8, ls=":", label="S_p (monitor)")
-        moving = log["robot_speed"] > scenario.safety.moving_speed
+        moving = log["robot_speed"] > setup.safety.moving_speed
         ax.fill_between(
             time,
             0,

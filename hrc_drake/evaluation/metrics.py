@@ -1,5 +1,6 @@
-"""Run metrics for report.json, from the monitor's final status and logged signals and,
-when the scenario has them, the behavior trees' task events and node statistics.
+"""Run metrics for report.json, from the robot's logged state, the monitor's final status
+and logged signals and, when the scenario has them, the behavior trees' task events and
+node statistics.
 
 Every value is rounded (`rounded`) so the report is byte-identical for the same scenario and
 seed. Sections whose source is absent are empty, never missing.
@@ -10,7 +11,8 @@ import math
 import numpy as np
 
 from hrc_drake.messages import TaskEvent
-from hrc_drake.safety.messages import SIGNALS, ContactRecord, SafetyStatus, ViolationEpisode
+from hrc_drake.safety.log import signal
+from hrc_drake.safety.messages import ContactRecord, SafetyStatus, ViolationEpisode
 from hrc_drake.safety.ssm import ZONES
 
 WAITING_SPEED = 0.05
@@ -22,6 +24,18 @@ def rounded(x: float, digits: int = 9):
     """Stable across platforms' last-bit differences; infinities and NaN become None."""
     x = float(x)
     return round(x, digits) + 0.0 if math.isfinite(x) else None
+
+
+def robot_metrics(variant: str, initial: tuple[float, ...], states: np.ndarray) -> dict:
+    """How far the arm strayed from its initial joint positions (`initial`, rad), and where
+    it ended; `states` are its logged states (positions, then velocities; x samples)."""
+    q = states[: len(initial)]
+    deviation = np.abs(q - np.array(initial)[:, None]).max() if q.size else 0.0
+    return {
+        "variant": variant,
+        "max_deviation_from_initial_rad": rounded(deviation),
+        "final_joint_positions_rad": [rounded(x) for x in q[:, -1]],
+    }
 
 
 def safety_metrics(status: SafetyStatus | None, moving_speed: float) -> dict:
@@ -105,8 +119,8 @@ def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: fl
     if times.size < 2:
         return {}
     dt = np.diff(times)
-    moving = _signal(signals, "robot_speed")[:-1] > moving_speed
-    stopped = (_signal(signals, "zone")[:-1] == ZONES.index("stopped")) & ~moving
+    moving = signal(signals, "robot_speed")[:-1] > moving_speed
+    stopped = (signal(signals, "zone")[:-1] == ZONES.index("stopped")) & ~moving
     total = dt.sum()
     return {
         "moving": rounded(dt[moving].sum() / total),
@@ -117,13 +131,13 @@ def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: fl
 
 def person_metrics(times: np.ndarray, signals: np.ndarray) -> dict:
     """The person's walking distance (floor plane) and time standing still."""
-    xy = np.stack([_signal(signals, "person_x"), _signal(signals, "person_y")])
+    xy = np.stack([signal(signals, "person_x"), signal(signals, "person_y")])
     known = np.all(np.isfinite(xy), axis=0)
     if times.size < 2 or not known.any():
         return {}
     steps = np.linalg.norm(np.diff(xy[:, known], axis=1), axis=0)
     dt = np.diff(times)
-    still = (_signal(signals, "human_speed")[1:] < WAITING_SPEED) & known[1:]
+    still = (signal(signals, "human_speed")[1:] < WAITING_SPEED) & known[1:]
     return {"walking_distance": rounded(steps.sum()), "waiting_time": rounded(dt[still].sum())}
 
 
@@ -159,13 +173,21 @@ def node_failures(bt: dict) -> list[str]:
     ]
 
 
+def flatten(metrics: dict, prefix: str = "") -> dict:
+    """Nested metrics → `{"a.b.c": value}`; lists stay whole."""
+    flat = {}
+    for name, value in metrics.items():
+        path = f"{prefix}{name}"
+        if isinstance(value, dict):
+            flat.update(flatten(value, f"{path}."))
+        else:
+            flat[path] = value
+    return flat
+
+
 def _rounded_tree(value):
     if isinstance(value, dict):
         return {str(k): _rounded_tree(v) for k, v in sorted(value.items())}
     if isinstance(value, float):
         return rounded(value)
     return value
-
-
-def _signal(signals: np.ndarray, name: str) -> np.ndarray:
-    return signals[SIGNALS.index(name)]

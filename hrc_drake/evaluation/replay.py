@@ -27,7 +27,7 @@ import numpy as np
 from pydrake.geometry import Meshcat, Rgba
 from pydrake.math import RigidTransform
 
-from hrc_drake.systems.replay_recorder import (
+from hrc_drake.evaluation.recording import (
     FULL_SPEED,
     MESHCAT_ROOT,
     REDUCED,

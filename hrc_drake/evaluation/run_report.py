@@ -5,9 +5,9 @@ every node folded away below."""
 from html import escape
 from pathlib import Path
 
+from hrc_drake.evaluation.html import html_table, page
+from hrc_drake.evaluation.metrics import flatten
 from hrc_drake.evaluation.realism import realism_rows
-from hrc_drake.evaluation.sweep_report import html_table, page
-from hrc_drake.sweep.rows import flatten
 
 SUMMARY_DEPTH = 2
 """Tree nodes down to this depth (the tree's top loop and its activities) are summarised..."""

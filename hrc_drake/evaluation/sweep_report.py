@@ -13,8 +13,10 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
+from hrc_drake.evaluation.html import html_table, page
+from hrc_drake.evaluation.metrics import flatten
+from hrc_drake.evaluation.rows import OK
 from hrc_drake.scenario.overrides import label
-from hrc_drake.sweep.rows import OK, flatten
 
 PERCENTILES = (0, 5, 25, 50, 75, 95, 100)
 WORST_CRITERIA = (
@@ -140,26 +142,6 @@ def sweep_html(summary: dict, histograms: Path | None) -> str:
     return page(f"sweep {summary['scenario']}", "\n".join(parts))
 
 
-def html_table(header: list[str], rows: list[list]) -> str:
-    head = "".join(f"<th>{escape(str(h))}</th>" for h in header)
-    body = "".join(
-        "<tr>" + "".join(f"<td>{escape(_cell(c))}</td>" for c in row) + "</tr>" for row in rows
-    )
-    return f"<table><tr>{head}</tr>{body}</table>"
-
-
-def page(title: str, body: str) -> str:
-    style = (
-        "body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:1em 0}"
-        "td,th{border:1px solid #ccc;padding:2px 8px;font-size:13px;text-align:right}"
-        "td:first-child,th:first-child{text-align:left}"
-    )
-    return (
-        f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{escape(title)}</title>"
-        f"<style>{style}</style></head><body>{body}</body></html>\n"
-    )
-
-
 def _comparison_table(groups: dict[str, dict]) -> str:
     """Metric rows; per grid point the median and the 5–95 % range."""
     points = list(groups)
@@ -207,7 +189,3 @@ def _varies(by_point: dict[str, list[float]]) -> bool:
 
 def _point(row: dict) -> str:
     return label(tuple(row["set"].items()))
-
-
-def _cell(value) -> str:
-    return f"{value:.6g}" if isinstance(value, float) else str(value)

@@ -8,17 +8,13 @@ import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
 from hrc_drake.messages import TaskEvent
-from hrc_drake.safety.messages import SIGNALS
+from hrc_drake.safety.log import signal
 
 HEAT_CELL = 0.1
 """m per heat-map cell."""
 LEGEND_COLUMNS = 4
 LEGEND_ROW = 0.22
 """Height of a legend row, in the figure's height ratios."""
-
-
-def _signal(signals: np.ndarray, name: str) -> np.ndarray:
-    return signals[SIGNALS.index(name)]
 
 
 def plot_timeline(
@@ -42,12 +38,12 @@ def timeline_figure(times, signals, states=None, events=None):
     for ax in axes[1:4]:
         ax.sharex(axes[0])
     _separation_panel(axes[0], times, signals)
-    axes[1].step(times, _signal(signals, "scale"), where="post", color="tab:green")
+    axes[1].step(times, signal(signals, "scale"), where="post", color="tab:green")
     axes[1].set_ylim(-0.05, 1.05)
     axes[1].set_ylabel("speed scale")
     for name, color in (("robot_speed", "tab:blue"), ("approach_speed", "tab:cyan")):
-        axes[2].plot(times, _signal(signals, name), color=color, label=name.replace("_", " "))
-    axes[2].plot(times, _signal(signals, "human_speed"), color="tab:orange", label="person speed")
+        axes[2].plot(times, signal(signals, name), color=color, label=name.replace("_", " "))
+    axes[2].plot(times, signal(signals, "human_speed"), color="tab:orange", label="person speed")
     axes[2].set_ylabel("m/s")
     axes[2].legend(fontsize=7, loc="upper right")
     end = float(times[-1]) if times.size else 0.0
@@ -61,10 +57,10 @@ def timeline_figure(times, signals, states=None, events=None):
 
 
 def _separation_panel(ax, times, signals) -> None:
-    ax.plot(times, _signal(signals, "separation"), label="separation", color="black")
-    ax.plot(times, _signal(signals, "protective"), label="S_p", color="tab:red", ls="--")
-    _shade(ax, times, _signal(signals, "violation") > 0, "tab:red", "SSM violation")
-    _shade(ax, times, _signal(signals, "contact") > 0, "purple", "contact")
+    ax.plot(times, signal(signals, "separation"), label="separation", color="black")
+    ax.plot(times, signal(signals, "protective"), label="S_p", color="tab:red", ls="--")
+    _shade(ax, times, signal(signals, "violation") > 0, "tab:red", "SSM violation")
+    _shade(ax, times, signal(signals, "contact") > 0, "purple", "contact")
     ax.set_ylabel("m")
     ax.legend(fontsize=7, loc="upper right")
 
@@ -157,13 +153,13 @@ def plot_heatmap(path: Path, times: np.ndarray, signals: np.ndarray) -> Path | N
     """Time the person spent per floor cell, and the smallest separation seen from it."""
     import matplotlib.pyplot as plt
 
-    x, y = _signal(signals, "person_x"), _signal(signals, "person_y")
+    x, y = signal(signals, "person_x"), signal(signals, "person_y")
     known = np.isfinite(x) & np.isfinite(y)
     if times.size < 2 or not known.any():
         return None
     dt = np.append(np.diff(times), 0.0)[known]
     x, y = x[known], y[known]
-    separation = _signal(signals, "separation")[known]
+    separation = signal(signals, "separation")[known]
     edges_x, edges_y = _edges(x), _edges(y)
     time_spent, _, _ = np.histogram2d(x, y, [edges_x, edges_y], weights=dt)
     closest = np.full(time_spent.shape, np.nan)

@@ -1,5 +1,5 @@
 """The search for the worst case: an Optuna study over the scenario's `falsify:` parameters
-that minimises each run's safety margin (`hrc_drake.safety.margin`).
+that minimises each run's safety margin (`hrc_drake.evaluation.margin`).
 
 Trials are asked in rounds of `batch`, run on the sweep's workers (local processes or a
 Dask cluster) and told in trial order, so one seed gives the same trials on any number of
@@ -19,11 +19,12 @@ from pathlib import Path
 
 from tqdm import tqdm
 
+from hrc_drake.evaluation.rows import OK
 from hrc_drake.scenario.falsify import FalsifyConfig, SearchParameter
 from hrc_drake.scenario.overrides import Overrides, field_type, label
 from hrc_drake.sweep import scenario_hash
 from hrc_drake.sweep.execute import LocalPool, connect_dask, run_on_dask
-from hrc_drake.sweep.rows import OK, RowStore, RunSpec
+from hrc_drake.sweep.rows import RowStore, RunSpec
 from hrc_drake.yaml_check import InputError
 
 NO_ENCOUNTER = 100.0
@@ -144,7 +145,8 @@ def falsify(
         result = FalsifyResult(search, trials, worst, warnings=list(store.warnings))
         result.cases = _cases(search, worst, store.out_dir / CASES, execute, result.warnings)
     result.files = {"rows": store.jsonl, "csv": store.csv}
-    result.files.update(write_falsify_report(store.out_dir, search, result))
+    setups = _case_setups(search, result)
+    result.files.update(write_falsify_report(store.out_dir, search, result, setups))
     return result
 
 
@@ -307,6 +309,21 @@ def _cases(search: Search, worst: list[Trial], cases_dir: Path, execute, notes) 
         (partial[trial.number] / COMMAND).write_text(search.command(trial.values) + "\n")
         partial[trial.number].rename(directories[trial.number])
     return {n: d for n, d in directories.items() if (d / "report.json").is_file()}
+
+
+def _case_setups(search: Search, result: FalsifyResult) -> dict:
+    """Each worst case's RunSetup (its S_p model and moving speed, for the report), by
+    trial number."""
+    from hrc_drake.runner import run_setup
+    from hrc_drake.scenario import load_scenario
+
+    return {
+        trial.number: run_setup(
+            load_scenario(search.scenario_path, search.spec(trial.values).overrides)
+        )
+        for trial in result.worst
+        if trial.number in result.cases
+    }
 
 
 def _same(a, b) -> bool:

@@ -15,11 +15,21 @@ from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.safety.ssm import ZONES
 
 
+def signal(signals: np.ndarray, name: str) -> np.ndarray:
+    """One signal of the logged `safety_signals` (SIGNALS x samples), over the samples."""
+    return signals[SIGNALS.index(name)]
+
+
+def log_of(signals: np.ndarray) -> dict[str, np.ndarray]:
+    """The logged `safety_signals` by name, as safety.npz holds them."""
+    return {name: signals[k] for k, name in enumerate(SIGNALS)}
+
+
 def write_safety_log(path: Path, signals: np.ndarray, parts) -> Path:
     """`signals`: the logged `safety_signals` (SIGNALS × samples). Samples of the same time
     are written once, the last: a logger faster than the monitor repeats updates, and the
     first sample (the initial values, time 0) is followed by the update at 0."""
-    times = signals[SIGNALS.index("time")]
+    times = signal(signals, "time")
     updates = np.flatnonzero(np.diff(times, append=np.inf) != 0.0)
     np.savez_compressed(
         path,

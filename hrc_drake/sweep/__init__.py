@@ -16,9 +16,10 @@ from pathlib import Path
 from tqdm import tqdm
 
 import hrc_drake
+from hrc_drake.evaluation.rows import OK
 from hrc_drake.scenario.overrides import Overrides, grid, parse_sets
 from hrc_drake.sweep.execute import connect_dask, run_in_pool, run_on_dask
-from hrc_drake.sweep.rows import OK, RowStore, RunSpec, row_identity
+from hrc_drake.sweep.rows import RowStore, RunSpec, row_identity
 from hrc_drake.yaml_check import InputError
 
 __all__ = ["RunSpec", "Seeds", "SweepPlan", "SweepResult", "parse_seeds", "plan", "sweep"]

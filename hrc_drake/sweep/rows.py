@@ -12,11 +12,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import hrc_drake
+from hrc_drake.evaluation.metrics import flatten
+from hrc_drake.evaluation.rows import FAILED, OK
 from hrc_drake.scenario.overrides import Overrides, label
 from hrc_drake.yaml_check import InputError
 
-OK = "ok"
-FAILED = "failed"
 FIXED_COLUMNS = ("key", "seed", "status", "error", "wall_time", "scenario_hash", "version")
 ROW_FIELDS = {"key": str, "seed": int, "set": dict, "status": str, "error": str, "metrics": dict}
 
@@ -72,18 +72,6 @@ def make_row(spec: RunSpec, metrics: dict | None, error: str = "", wall_time: fl
         "wall_time": round(wall_time, 3),
         "metrics": metrics or {},
     }
-
-
-def flatten(metrics: dict, prefix: str = "") -> dict:
-    """Nested metrics → `{"a.b.c": value}`; lists stay whole."""
-    flat = {}
-    for name, value in metrics.items():
-        path = f"{prefix}{name}"
-        if isinstance(value, dict):
-            flat.update(flatten(value, f"{path}."))
-        else:
-            flat[path] = value
-    return flat
 
 
 class RowStore:

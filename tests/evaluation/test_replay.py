@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from pydrake.common.eigen_geometry import Quaternion
 
+from hrc_drake.evaluation.recording import FULL_SPEED, REDUCED, STOPPED
 from hrc_drake.evaluation.replay import (
     ANGLE_TOLERANCE,
     CAMERA_FOV,
@@ -17,7 +18,6 @@ from hrc_drake.evaluation.replay import (
     ring_tracks,
 )
 from hrc_drake.scenario import bundled_scenarios, load_scenario
-from hrc_drake.systems.replay_recorder import FULL_SPEED, REDUCED, STOPPED
 
 TIMES = np.arange(0, 20.0, 1 / 32)
 

@@ -152,15 +152,11 @@ def build_station(scenario: Scenario, workpieces=None) -> Station:
     """The scenario's station; with a WorkpiecesConfig, also the workpieces and the vacuum."""
     if workpieces is not None:
         scenario = dataclasses.replace(scenario, workpieces=workpieces)
-    diagram = build_diagram(scenario)
+    parts = []
+    diagram = build_diagram(scenario, attach=lambda _, station: parts.append(station))
     simulator = Simulator(diagram)
     simulator.Initialize()
-    return Station(
-        diagram,
-        simulator,
-        diagram.GetSubsystemByName("robot_motion"),
-        diagram.GetSubsystemByName("plant"),
-    )
+    return Station(diagram, simulator, parts[0].robot_motion, parts[0].plant)
 
 
 def distance_to_polyline(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:

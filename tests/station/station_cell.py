@@ -25,7 +25,9 @@ class Simulation:
     """A scenario's station simulated step by step, with its outputs at hand."""
 
     def __init__(self, scenario):
-        self.diagram = build_diagram(scenario)
+        parts = []
+        self.diagram = build_diagram(scenario, attach=lambda _, station: parts.append(station))
+        self.station = parts[0]  # its parts (hrc_drake.builder.Station)
         self.simulator = Simulator(self.diagram)
         self.simulator.Initialize()
 
@@ -40,4 +42,4 @@ class Simulation:
         return [e.name for e in self[f"{agent}_task_events"]]
 
     def tree(self, agent: str):
-        return self.diagram.GetSubsystemByName(f"bt_{agent}").tree
+        return self.station.trees[agent].tree

@@ -20,8 +20,7 @@ def highest(surfaces, name: str):
 
 
 def test_cell_surfaces_are_the_top_faces_of_static_collision_boxes(rig):
-    plant = rig.diagram.GetSubsystemByName("plant")
-    surfaces = cell_surfaces(plant, rig.scene_graph)
+    surfaces = cell_surfaces(rig.plant, rig.scene_graph)
     table = highest(surfaces, "work_table")
     assert table.height == pytest.approx(TABLE_TOP)
     np.testing.assert_allclose(table.bounds[0], [-0.6, 0.5])

@@ -131,6 +131,7 @@ class Rig:
     diagram: object
     workpieces: object
     scene_graph: object
+    plant: object
 
     def advance(self, t: float):
         """Simulates until `t` and returns the workpieces' status there."""
@@ -172,7 +173,7 @@ def build_rig(
     diagram = builder.Build()
     simulator = Simulator(diagram)
     simulator.Initialize()
-    return Rig(simulator, diagram, workpieces, scene_graph)
+    return Rig(simulator, diagram, workpieces, scene_graph, plant)
 
 
 def _add_cell(plant) -> None:

@@ -12,66 +12,33 @@ A contact at its limit thus scores like a moving robot right at S_p, and every 1
 the limit like 5 cm closer than S_p. Without contacts the margin is the SSM margin; a run in
 which the robot never moved while the person was there has none (null).
 
-S_p is recomputed from the safety log (`safety.npz`: the robot's speed fraction, its
-fastest point's speed, the directed speeds at the closest pair) with ISO 13855's approach
-speeds, whatever the monitor's `safety` section assumes: `reference_model`. A monitor that
-assumes a slower person (`safety.v_h_rule: constant`, `v_h: 0.8`) thus shows its
-violations here even where its own verdict sees none. With the default rule the two S_p
-are the same numbers.
+S_p is recomputed from the safety log with ISO 13855's approach speeds, whatever the
+monitor's `safety` section assumes (`hrc_drake.safety.reference`), so a monitor that
+assumes a slower person shows its violations here even where its own verdict sees none.
 """
 
-import dataclasses
 import math
 
 import numpy as np
 
+from hrc_drake.evaluation.metrics import rounded
+from hrc_drake.evaluation.record import RunSetup
 from hrc_drake.human.skeleton import REGIONS
-from hrc_drake.safety.config import SafetyConfig
-from hrc_drake.safety.messages import SIGNALS, ContactRecord
+from hrc_drake.safety.messages import ContactRecord
 from hrc_drake.safety.pfl import REGION_LIMITS
-from hrc_drake.safety.ssm import SsmModel, protective_separation
+from hrc_drake.safety.reference import reference_model, reference_protective
+from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 
 CONTACT_SCALE = 0.5
 """Metres of margin per unit of contact ratio below its limit."""
-ISO_APPROACH = ("v_h_rule", "v_h", "v_h_near", "near_distance")
-"""The monitor's settings the margin replaces by ISO 13855's (SafetyConfig's defaults)."""
 
 
-def reference_model(scenario) -> SsmModel:
-    """S_p's model with the scenario's reaction time, stop and margins, and ISO 13855's
-    approach speeds (2.0 m/s where S_p is at most 0.5 m, else 1.6 m/s)."""
-    iso = {name: getattr(SafetyConfig(), name) for name in ISO_APPROACH}
-    config = dataclasses.replace(scenario.safety, **iso)
-    return SsmModel.from_config(
-        config,
-        StopModel.of_variant(scenario.robot.variant),
-        scenario.robot.motion.update_period,
-    )
-
-
-def log_of(signals: np.ndarray) -> dict[str, np.ndarray]:
-    """The logged `safety_signals` (SIGNALS x samples) by name, as safety.npz holds them."""
-    return {name: signals[k] for k, name in enumerate(SIGNALS)}
-
-
-def reference_protective(log: dict[str, np.ndarray], model: SsmModel) -> np.ndarray:
-    """S_p at every logged update, recomputed with `model` (NaN without a person)."""
-    inputs = zip(
-        log["path_rate"],
-        log["robot_speed"],
-        log["approach_speed"],
-        log["human_approach"],
-        log["separation"],
-        strict=True,
-    )
-    return np.array(
-        [
-            protective_separation(model, rate, speed, v_r, v_h).total
-            if math.isfinite(separation)
-            else math.nan
-            for rate, speed, v_r, v_h, separation in inputs
-        ]
+def margin_model(setup: RunSetup) -> SsmModel:
+    """The S_p model a run's margin is judged by: the run's reaction time, its robot's stop
+    and command latency, ISO 13855's approach speeds."""
+    return reference_model(
+        setup.safety, StopModel.of_variant(setup.robot_variant), setup.command_latency
     )
 
 
@@ -104,8 +71,6 @@ def margin_metrics(
     parts: tuple[str, ...],
 ) -> dict:
     """The run's margin (m), its parts and where the SSM margin was least."""
-    from hrc_drake.evaluation.metrics import rounded
-
     margins = ssm_margins(log, model, moving_speed)
     ratio = contact_ratio(records)
     ssm = float(np.nanmin(margins)) if np.isfinite(margins).any() else math.inf

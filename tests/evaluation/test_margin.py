@@ -7,17 +7,12 @@ import json
 import numpy as np
 import pytest
 
-from hrc_drake.runner import run
+from hrc_drake.evaluation.margin import CONTACT_SCALE, contact_ratio, margin_metrics, margin_model
+from hrc_drake.runner import run, run_setup
 from hrc_drake.safety.log import read_safety_log
-from hrc_drake.safety.margin import (
-    CONTACT_SCALE,
-    contact_ratio,
-    margin_metrics,
-    reference_model,
-    reference_protective,
-)
 from hrc_drake.safety.messages import ContactRecord
 from hrc_drake.safety.pfl import QUASI_STATIC, TRANSIENT, assess_contact
+from hrc_drake.safety.reference import reference_protective
 from hrc_drake.scenario import load_scenario
 
 BESIDE = (
@@ -55,7 +50,7 @@ def least_margin(log, protective, moving_speed):
 def test_with_the_iso_rule_the_margin_uses_the_monitors_own_s_p(correct):
     scenario, report, log = correct
     person = np.isfinite(log["separation"])
-    recomputed = reference_protective(log, reference_model(scenario))
+    recomputed = reference_protective(log, margin_model(run_setup(scenario)))
     np.testing.assert_allclose(recomputed[person], log["protective"][person], rtol=0, atol=1e-12)
     margin = report["margin"]
     assert margin["ssm"] == pytest.approx(
@@ -73,7 +68,7 @@ def test_a_monitor_assuming_a_slower_person_shows_its_violation(weak, correct):
     smaller S_p allows. Judged with ISO 13855's speeds, the run violates SSM."""
     scenario, report, log = weak
     assert report["safety"]["ssm_violations"]["count"] == 0
-    reference = reference_protective(log, reference_model(scenario))
+    reference = reference_protective(log, margin_model(run_setup(scenario)))
     moving = (log["robot_speed"] > scenario.safety.moving_speed) & np.isfinite(log["separation"])
     assert np.all(reference[moving] > log["protective"][moving])
     margin = report["margin"]
@@ -108,7 +103,7 @@ def test_a_contact_the_region_must_never_have_counts_over_its_limit():
 
 def test_the_margin_is_the_lower_of_ssm_and_contact(correct):
     scenario, _, log = correct
-    model = reference_model(scenario)
+    model = margin_model(run_setup(scenario))
     contact = record(assess_contact("hand", "link_6", 0.4, 10.0, 1.0, QUASI_STATIC))
     ratio = contact_ratio((contact,))
     found = margin_metrics(log, model, scenario.safety.moving_speed, (contact,), ("x",) * 20)
@@ -120,6 +115,6 @@ def test_the_margin_is_the_lower_of_ssm_and_contact(correct):
 def test_no_margin_where_the_robot_never_moved_near_a_person(correct):
     scenario, _, log = correct
     still = {**log, "robot_speed": np.zeros_like(log["robot_speed"])}
-    found = margin_metrics(still, reference_model(scenario), 0.01, (), ("x",) * 20)
+    found = margin_metrics(still, margin_model(run_setup(scenario)), 0.01, (), ("x",) * 20)
     assert found == {"value": None, "ssm": None, "contact_ratio": 0.0, "violation": False}
     assert run(load_scenario("base"), duration=0.1).metrics["margin"] == {}  # no monitor

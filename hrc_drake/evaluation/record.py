@@ -1,0 +1,80 @@
+"""What a run recorded: `hrc_drake.runner.simulate` returns a `RunRecord`, and
+`hrc_drake.evaluation.report` turns it into report.json's metrics and the run directory's
+files. The record is data (arrays, final statuses, events); only the diagram (for
+diagram.svg) and the Meshcat the replay was drawn in (for replay.html's scene) are Drake
+objects.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.geometry import Meshcat
+from pydrake.systems.framework import Diagram
+
+from hrc_drake.evaluation.realism import AuditState
+from hrc_drake.evaluation.recording import Recording
+from hrc_drake.messages import TaskEvent
+from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.messages import SafetyStatus
+
+
+@dataclass(frozen=True)
+class RunSetup:
+    """What the run was asked to be, as far as its evaluation needs it (the runner takes it
+    from the scenario)."""
+
+    scenario: str
+    seed: int
+    duration: float
+    time_step: float
+    robot_variant: str
+    initial_positions: tuple[float, ...]
+    """rad: the arm's joint positions at the start"""
+    safety: SafetyConfig
+    """the monitor's settings (whether or not the station has a monitor)"""
+    command_latency: float
+    """s: the robot's command update period, part of S_p's reaction time"""
+
+
+@dataclass(frozen=True)
+class Fault:
+    """A tree fault that stopped the run early: when, and the tree's own message (file,
+    line, node and port)."""
+
+    time: float
+    error: str
+
+
+@dataclass
+class RunRecord:
+    """Everything a run recorded (see the module docstring); None where the station had no
+    such part (no monitor, no person, no replay recorder)."""
+
+    setup: RunSetup
+    versions: dict[str, str]
+    """of the software that ran it: hrc_drake and drake"""
+    robot_times: np.ndarray
+    robot_states: np.ndarray
+    """the arm's state (joint positions, then velocities) at each of `robot_times`"""
+    signal_times: np.ndarray
+    signals: np.ndarray | None
+    """the monitor's `safety_signals` (hrc_drake.safety.messages.SIGNALS x samples)"""
+    safety_parts: tuple[str, ...]
+    """the robot parts the `part` safety signal numbers"""
+    safety_status: SafetyStatus | None
+    """the monitor's status at the end of the run (its totals)"""
+    realism: AuditState | None
+    """the person's realism audit at the end of the run"""
+    events: list[TaskEvent]
+    """every tree's task events, by time"""
+    states: dict[str, list[tuple[float, str]]]
+    """per actor (and tree), the (time, state) at which its state changed"""
+    node_statistics: dict[str, dict]
+    """per agent, per node path: ticks, successes, failures, time running, first failure"""
+    recording: Recording | None
+    """what replay.html animates"""
+    meshcat: Meshcat | None
+    diagram: Diagram
+    fault: Fault | None
+    wall_time: float
+    """s of wall-clock time the simulation took (never written to the report)"""
