@@ -9,8 +9,15 @@ import networkx as nx
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCES = {"hrc_drake": ROOT / "hrc_drake", "hrc_drake.systems": ROOT / "systems"}
-ASSEMBLERS = ("hrc_drake.builder", "hrc_drake.runner", "hrc_drake.cli", "hrc_drake.modelgen")
-"""The units that put systems together into diagrams (and the tools on top of them)."""
+ASSEMBLERS = (
+    "hrc_drake.builder",
+    "hrc_drake.runner",
+    "hrc_drake.groot",
+    "hrc_drake.cli",
+    "hrc_drake.modelgen",
+)
+"""The units that put systems together into diagrams, and the tools that drive a built one
+(the runner, Groot2 serving, the CLI, the generators that measure RobotMotion)."""
 LONGEST = 400
 WHY_LONG = "Longer than"
 
