@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource
@@ -35,7 +35,7 @@ def bare_diagram(scenario, desired=None, cell: bool = False):
         desired = ConstantVectorSource(np.concatenate([q0, 0 * q0]))
     builder = DiagramBuilder()
     plant, _ = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
+        scenario.plant,
         builder,
     )
     if cell:

@@ -23,7 +23,7 @@ from functools import partial
 from pathlib import Path
 
 import numpy as np
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
@@ -69,7 +69,7 @@ def cell(with_monitor: bool, duration: float):
     variant = VARIANTS[scenario.robot.variant]
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
+        scenario.plant,
         builder,
     )
     arm = add_robot(plant, model_parser(plant), scenario.station)

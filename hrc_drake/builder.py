@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role, SceneGraph
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
@@ -116,10 +116,7 @@ def build_diagram(
 ) -> Diagram:
     """The whole scenario as one Diagram named after the scenario (see module docstring)."""
     builder = DiagramBuilder()
-    plant, physics = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=scenario.time_step, discrete_contact_approximation="sap"),
-        builder,
-    )
+    plant, physics = AddMultibodyPlant(scenario.plant, builder)
     physics.set_name(PHYSICS_SCENE_GRAPH)
     spec = scenario.station
     arm, _ = add_station_models(plant, model_parser(plant), spec)
@@ -201,6 +198,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
         scenario.human.height,
         scenario.human.mass,
         start_pose=(x, y, np.radians(yaw_deg)),
+        period=scenario.human.period,
         navigation=NavigationMap(
             cell_obstacles(mirror, scene_graph.model_inspector()),
             keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
@@ -242,7 +240,7 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
         scenario.safety,
         scenario.robot.variant,
         carriable=workpieces.geometry_ids if workpieces is not None else (),
-        command_latency=scenario.robot.motion.update_period,
+        command_latency=scenario.robot.motion.period,
     )
     builder.Connect(safety.GetOutputPort("speed_scale"), motion.GetInputPort("speed_scale"))
     builder.Connect(motion.GetOutputPort("path_rate"), safety.GetInputPort("robot_path_rate"))
@@ -334,15 +332,13 @@ def _add_visualizer(builder, scene_graph, meshcat, scenario, sources) -> ReplayR
     if options.show_collision:
         roles["collision"] = Role.kProximity
     for prefix, role in roles.items():
-        params = MeshcatVisualizerParams(
-            publish_period=options.publish_period, role=role, prefix=prefix
-        )
+        params = MeshcatVisualizerParams(publish_period=options.period, role=role, prefix=prefix)
         visualizer = MeshcatVisualizer.AddToBuilder(builder, scene_graph, meshcat, params)
         if role == Role.kIllustration:
             visualizer.set_name(VISUALIZER)
     if not options.record:
         return None
-    recorder = builder.AddNamedSystem(RECORDER, ReplayRecorder(options.publish_period, roles))
+    recorder = builder.AddNamedSystem(RECORDER, ReplayRecorder(options.period, roles))
     builder.Connect(scene_graph.get_query_output_port(), recorder.GetInputPort("query_object"))
     for source in (SAFETY, WORKPIECES):
         if source in sources:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 from pydrake.geometry import Meshcat
-from pydrake.systems.analysis import Simulator
+from pydrake.systems.analysis import ApplySimulatorConfig, Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import LogVectorOutput, VectorLogSink
 from tqdm import tqdm
@@ -42,7 +42,6 @@ from hrc_drake.wiring import (
 )
 from hrc_drake.yaml_check import InputError
 
-LOG_PERIOD = 0.01
 PROGRESS_STEP = 0.1
 
 
@@ -63,7 +62,6 @@ def run(
     out_dir: Path | str | None = None,
     meshcat: Meshcat | None = None,
     progress: bool = False,
-    realtime_rate: float = 0.0,
     serve=None,
 ) -> Report:
     """Simulates `scenario` once and evaluates the run; with `out_dir` (a new or empty
@@ -77,7 +75,7 @@ def run(
         prepare_run_directory(out_dir)
     if meshcat is None and out_dir is not None and scenario.visualization.record:
         meshcat = Meshcat()
-    record = simulate(scenario, meshcat, out_dir, progress, realtime_rate, serve)
+    record = simulate(scenario, meshcat, out_dir, progress, serve)
     report = Report(evaluate(record), out_dir, record.wall_time)
     if out_dir is not None:
         report.files = write_run_directory(out_dir, record, report.metrics)
@@ -111,7 +109,6 @@ def simulate(
     meshcat: Meshcat | None = None,
     log_dir: Path | None = None,
     progress: bool = False,
-    realtime_rate: float = 0.0,
     serve=None,
 ) -> RunRecord:
     """Simulates `scenario` for its duration and returns what the run recorded. A tree
@@ -125,7 +122,7 @@ def simulate(
     servers = serve(diagram) if serve is not None else None
     tree_logs = _open_tree_logs(probes.station.trees, log_dir)
     simulator = Simulator(diagram)
-    simulator.set_target_realtime_rate(realtime_rate)
+    ApplySimulatorConfig(scenario.simulator, simulator)
     if servers is not None:
         servers.keep_pace(simulator)
     start = time.perf_counter()
@@ -149,11 +146,11 @@ def run_setup(scenario: Scenario) -> RunSetup:
         scenario=scenario.name,
         seed=scenario.seed,
         duration=scenario.duration,
-        time_step=scenario.time_step,
+        time_step=scenario.plant.time_step,
         robot_variant=scenario.robot.variant,
         initial_positions=tuple(scenario.station.initial_positions),
         safety=scenario.safety,
-        command_latency=scenario.robot.motion.update_period,
+        command_latency=scenario.robot.motion.period,
     )
 
 
@@ -171,7 +168,7 @@ class _Probes:
     def attach(self, builder: DiagramBuilder, station: Station) -> None:
         self.station = station
         self.robot_log = LogVectorOutput(
-            station.plant.get_state_output_port(station.arm), builder, LOG_PERIOD
+            station.plant.get_state_output_port(station.arm), builder, self.scenario.report.period
         )
         self.robot_log.set_name(ROBOT_STATE_LOG)
         if station.safety is not None:
@@ -181,7 +178,8 @@ class _Probes:
                 self.scenario.safety.period,
             )
             self.signals_log.set_name(SAFETY_SIGNALS_LOG)
-        self.states = add_state_changes(builder, _state_sources(station), LOG_PERIOD)
+        period = self.scenario.report.period
+        self.states = add_state_changes(builder, _state_sources(station), period)
 
     def record(self, context, diagram, meshcat, fault: Fault | None, wall_time) -> RunRecord:
         station = self.station

@@ -24,7 +24,7 @@ from hrc_drake.human.clip import Clip, load_clips, scaled_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.navigation import NavigationMap
 from hrc_drake.human.performer import Performer
-from hrc_drake.human.protocol import ActorState, advance, pose_at, status
+from hrc_drake.human.protocol import UPDATE_PERIOD, ActorState, advance, pose_at, status
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scene_geometry import collision_geometries, filter_against
 from hrc_drake.wiring import (
@@ -36,7 +36,6 @@ from hrc_drake.wiring import (
     issuers_of,
 )
 
-UPDATE_PERIOD = 1.0 / 60.0
 WALK_CLIP = "walk"
 REPORTED_FRAMES = ("left_hand_grasp", "right_hand_grasp", "head_gaze")
 """The frames whose world poses the status reports (hands, then head)."""
@@ -114,6 +113,7 @@ def add_human(
     issuers: tuple[str, ...] = issuers_of(HUMAN),
     navigation: NavigationMap | None = None,
     clips: dict[str, Clip] | None = None,
+    period: float = UPDATE_PERIOD,
 ) -> tuple[HumanActor, MultibodyPlant]:
     """Adds a person as HUMAN_ACTOR: returns the actor and the person's kinematic plant.
 
@@ -135,6 +135,7 @@ def add_human(
             human_body(height, mass),
             scaled_clips(clips or load_clips(), height),
             start_pose,
+            period,
             issuers=issuers,
             navigation=navigation,
         ),

@@ -94,7 +94,7 @@ class RobotMotion(LeafSystem):
             self._calc_gripper_command,
             {self.all_state_ticket()},
         )
-        self.DeclarePeriodicUnrestrictedUpdateEvent(self._options.update_period, 0.0, self._update)
+        self.DeclarePeriodicUnrestrictedUpdateEvent(self._options.period, 0.0, self._update)
 
     @property
     def planner(self) -> MotionPlanner:

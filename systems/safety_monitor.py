@@ -198,7 +198,7 @@ def add_safety_monitor(
     config: SafetyConfig,
     variant: str,
     carriable: tuple = (),
-    command_latency: float = MotionOptions.update_period,
+    command_latency: float = MotionOptions.period,
 ) -> SafetyMonitor:
     """Adds the monitor named `safety` and connects its QueryObject input.
 

@@ -58,7 +58,7 @@ class Workpieces(LeafSystem):
     (HandPoses); an unconnected holder input means that holder does not exist.
     Outputs: `geometry_pose` (FramePoseVector for SceneGraph) and `workpieces_status`
     (WorkpiecesStatus), both from state only, extrapolated from the last update to the
-    context's time. State: one immutable World, updated every `config.update_period`.
+    context's time. State: one immutable World, updated every `config.period`.
     """
 
     def __init__(
@@ -110,7 +110,7 @@ class Workpieces(LeafSystem):
             self._calc_status,
             prerequisites_of_calc=from_state,
         )
-        self.DeclarePeriodicUnrestrictedUpdateEvent(config.update_period, 0.0, self._update)
+        self.DeclarePeriodicUnrestrictedUpdateEvent(config.period, 0.0, self._update)
 
     def _register_slots(self, scene_graph: SceneGraph, config: WorkpiecesConfig) -> list:
         """One frame with its type's geometry per slot, in slot order."""

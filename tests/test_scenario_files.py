@@ -32,9 +32,9 @@ BAD_FILES = {
     "missing field": ("name: base\n", "", "name: required field is missing"),
     "wrong type": ("duration: 5.0", "duration: five", "duration: 'five' is not a float"),
     "unknown field": (
-        "time_step:",
-        "timestep:",
-        "timestep: unknown field (did you mean 'time_step'?)",
+        "{time_step:",
+        "{timestep:",
+        "plant.timestep: unknown field (did you mean 'time_step'?)",
     ),
     "unknown variant": (
         "variant: lbr_iisy3_r760",

@@ -87,6 +87,11 @@ def _run(args) -> int:
     from hrc_drake.scenario import load_scenario
 
     overrides, options = single_sets(args, "run", "use sweep for grids")
+    live = args.meshcat or args.groot is not None
+    realtime = args.realtime or (1.0 if live else None)
+    if realtime is not None:
+        overrides += (("simulator.target_realtime_rate", realtime),)
+        options["simulator.target_realtime_rate"] = f"--realtime {realtime}"
     scenario = load_scenario(args.scenario, overrides, options)
     out = args.out or _fresh_directory(Path("runs") / f"{scenario.name}-seed{scenario.seed}")
     if args.groot_host is not None and args.groot is None:
@@ -94,7 +99,6 @@ def _run(args) -> int:
     meshcat = Meshcat() if args.meshcat else None
     if meshcat is not None:
         print(f"Meshcat: {meshcat.web_url()}")
-    live = args.meshcat or args.groot is not None
     serve = None if args.groot is None else partial(_serve_groot, args.groot, args.groot_host)
     try:
         report = run(
@@ -102,7 +106,6 @@ def _run(args) -> int:
             out_dir=out,
             meshcat=meshcat,
             progress=True,
-            realtime_rate=args.realtime or (1.0 if live else 0.0),
             serve=serve,
         )
     except RunStopped as stopped:

@@ -45,6 +45,10 @@ from hrc_drake.messages import (
     newer_commands,
 )
 
+UPDATE_PERIOD = 1.0 / 60.0
+"""s between the person's updates by default: above Meshcat's frame rate, so the replay
+shows every pose, and well below a step's duration."""
+
 RELEASING = ("place_floor", "place_table", "hand_over")
 """Clips that, aimed while holding something, put it down (or hand it over)."""
 

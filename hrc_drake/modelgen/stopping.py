@@ -81,7 +81,7 @@ class _IdealRobot:
         self.motion_context = self.motion.GetMyContextFromRoot(self.context)
         self.model = self.motion.planner.model
         self.points = RobotPoints(self.model)
-        self.period = options.update_period
+        self.period = options.period
         self.set_scale(1.0)
 
     def set_scale(self, scale: float) -> None:

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 class MotionOptions:
     """How RobotMotion plans and executes; the defaults suit every iisy variant.
 
-    update_period: seconds between RobotMotion updates (commands, planning, speed changes).
+    period: seconds between RobotMotion updates (commands, planning, speed changes).
     ik_attempts: inverse-kinematics starts one MoveTo may try (the current posture, home,
         then random postures) before its target counts as unreachable.
     search_nodes: nodes the collision-free path search may grow (both trees together)
@@ -25,7 +25,7 @@ class MotionOptions:
         only.
     """
 
-    update_period: float = 0.01
+    period: float = 0.01
     ik_attempts: int = 16
     search_nodes: int = 2500
     clearance: float = 0.01

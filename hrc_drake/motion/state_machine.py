@@ -282,7 +282,7 @@ class MotionStateMachine:
             state.path,
             progress,
             target,
-            self._options.update_period,
+            self._options.period,
             self._model.acceleration_limits,
         )
         mode = MOVING if target > 0.0 else (STOPPED if progress.at_rest else STOPPING)

@@ -17,7 +17,9 @@ from pathlib import Path
 import numpy as np
 from pydrake.common.schema import Rotation, Transform
 from pydrake.multibody.parsing import ModelDirective, PackageMap
-from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant, MultibodyPlantConfig
+from pydrake.systems.analysis import GetIntegrationSchemes
+from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.agent_trees import AgentTree, tree_errors
 from hrc_drake.areas import Area
@@ -68,8 +70,8 @@ MAX_SEED = 2**63 - 1
 FIELD_RULES: dict[str, Rule] = {
     "seed": within(0, MAX_SEED),
     "duration": positive,
-    "time_step": within(1e-5, 0.01, " s", "the controller and the monitor run at 100 Hz"),
-    "robot.motion.update_period": positive,
+    "plant.time_step": within(1e-5, 0.01, " s", "the controller and the monitor run at 100 Hz"),
+    "robot.motion.period": positive,
     "robot.motion.ik_attempts": positive,
     "robot.motion.search_nodes": positive,
     "robot.motion.clearance": not_negative,
@@ -79,7 +81,13 @@ FIELD_RULES: dict[str, Rule] = {
     "robot.motion.settle_timeout": positive,
     "robot.motion.gripper_timeout": positive,
     "robot.motion.person_radius": positive,
-    "visualization.publish_period": positive,
+    "visualization.period": positive,
+    "report.period": positive,
+    "human.period": positive,
+    "simulator.max_step_size": positive,
+    "simulator.accuracy": positive,
+    "simulator.target_realtime_rate": not_negative,
+    "simulator.integration_scheme": one_of(GetIntegrationSchemes()),
     "human.height": within(*HEIGHT_RANGE, " m"),
     "human.mass": positive,
     "trees.*.period": positive,
@@ -115,6 +123,7 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
         for names, value in _values_at(scenario, pattern.split(".")):
             if value is not None and (problem := rule(value)):
                 yield names, problem
+    yield from _plant_problems(scenario.plant)
     yield from _prefixed("robot", _robot_problems(scenario.robot))
     yield from _place_problems(scenario)
     yield from _prefixed("cell", directive_problems(scenario.cell, _package_map(), RESERVED))
@@ -208,6 +217,17 @@ def _robot_problems(robot: RobotConfig) -> Iterator[Problem]:
             ("initial_configuration",),
             unknown("configuration", robot.initial_configuration, known),
         )
+
+
+def _plant_problems(config: MultibodyPlantConfig) -> Iterator[Problem]:
+    """What Drake refuses of the plant's settings (an unknown contact model, say), found by
+    making a plant with them: Drake knows its own names best."""
+    try:
+        AddMultibodyPlant(config, DiagramBuilder())
+    except Exception as e:  # Drake names the setting it refuses
+        message = first_line(e)
+        named = re.match(r"Unknown (\w+):", message)
+        yield ("plant", named.group(1)) if named else ("plant",), message
 
 
 def _place_problems(scenario: Scenario) -> Iterator[Problem]:

@@ -142,7 +142,8 @@ def _check_settable(obj, names: list[str], path: str, new_entries: bool = False)
         return
     if rest and getattr(obj, head) is None:
         raise InputError(f"--set {path}: the scenario has no '{head}' section to change")
-    opens = any(f.name == head and f.metadata.get(NEW_ENTRIES) for f in dataclasses.fields(obj))
+    fields = dataclasses.fields(obj) if dataclasses.is_dataclass(obj) else ()  # Drake's structs
+    opens = any(f.name == head and f.metadata.get(NEW_ENTRIES) for f in fields)
     if rest:
         _check_settable(getattr(obj, head), rest, path, opens)
 

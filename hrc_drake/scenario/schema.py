@@ -1,9 +1,13 @@
 """The scenario file's schema: plain dataclasses read with Drake's `yaml_load_typed`, as in
 Drake's `examples/hardware_sim`, with Drake's own config structs (`Transform`,
-`ModelDirective`) where Drake has one. Each section's schema lives with the part it
-configures (`robot.motion`: hrc_drake.motion.options, `safety`: hrc_drake.safety.config,
-`workpieces`: hrc_drake.workpieces.config, `trees`: hrc_drake.agent_trees, `falsify`:
-hrc_drake.scenario.falsify); this module ties them into one Scenario.
+`ModelDirective`, `MultibodyPlantConfig`, `SimulatorConfig`) where Drake has one.
+
+Every periodic part has a `period` in seconds in its section; the plant's step is Drake's
+own `plant.time_step` (docs/architecture.md, "Rates and seeds"). Each section's schema lives
+with the part it configures (`robot.motion`: hrc_drake.motion.options, `safety`:
+hrc_drake.safety.config, `workpieces`: hrc_drake.workpieces.config, `trees`:
+hrc_drake.agent_trees, `falsify`: hrc_drake.scenario.falsify); this module ties them into
+one Scenario.
 """
 
 from dataclasses import dataclass, field
@@ -11,9 +15,12 @@ from dataclasses import dataclass, field
 from pydrake.common.schema import Rotation, Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import ModelDirective
+from pydrake.multibody.plant import MultibodyPlantConfig
+from pydrake.systems.analysis import SimulatorConfig
 
 from hrc_drake.agent_trees import AgentTree, load_agent_tree
 from hrc_drake.areas import Area
+from hrc_drake.human.protocol import UPDATE_PERIOD
 from hrc_drake.iisy import TOOL_BODY
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.nodes.agent import Places
@@ -41,7 +48,8 @@ class RobotConfig:
 class VisualizationOptions:
     """Meshcat settings; `record` keeps an animation for the standalone replay.html."""
 
-    publish_period: float = 1.0 / 32.0
+    period: float = 1.0 / 32.0
+    """s between frames Meshcat draws and the replay records"""
     record: bool = True
     show_collision: bool = False
     camera_position: list[float] = field(default_factory=lambda: [1.7, -1.4, 1.5])
@@ -50,15 +58,30 @@ class VisualizationOptions:
 
 @dataclass
 class HumanConfig:
-    """The person: body height and mass (segments scale with them) and where they start
-    (x, y in metres, facing yaw in degrees)."""
+    """The person: body height and mass (segments scale with them), where they start (x, y
+    in metres, facing yaw in degrees) and how often their protocol and pose are updated
+    (above Meshcat's frame rate; their realism is audited at the same rate)."""
 
     height: float = 1.75
     mass: float = 75.0
     start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
+    period: float = UPDATE_PERIOD
     clips: list[str] = field(default_factory=list)
     """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
     which trees play by their file names."""
+
+
+@dataclass
+class ReportOptions:
+    """How often the run's record samples the arm's state and every actor's and tree's
+    state (what report.json's robot figures and timeline.png's state rows are made of)."""
+
+    period: float = 0.01
+
+
+def _plant_config() -> MultibodyPlantConfig:
+    """A discrete plant with Drake's SAP contact solver, stepped every millisecond."""
+    return MultibodyPlantConfig(time_step=1e-3, discrete_contact_approximation="sap")
 
 
 @dataclass
@@ -67,12 +90,14 @@ class Scenario:
     description: str = ""
     seed: int = 0
     duration: float = 10.0
-    time_step: float = 1e-3
+    plant: MultibodyPlantConfig = field(default_factory=_plant_config)
+    simulator: SimulatorConfig = field(default_factory=SimulatorConfig)
     robot: RobotConfig = field(default_factory=RobotConfig, metadata=REQUIRED)
     cell: list[ModelDirective] = field(default_factory=list)
     areas: dict[str, list[list[float]]] = field(default_factory=dict)
     locations: dict[str, Transform] = field(default_factory=dict)
     visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
+    report: ReportOptions = field(default_factory=ReportOptions)
     human: HumanConfig | None = None
     workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
     safety: SafetyConfig = field(default_factory=SafetyConfig)

@@ -105,7 +105,7 @@ class WorkpiecesConfig:
     conveyors: dict[str, ConveyorConfig] = field(default_factory=dict)
     surfaces: dict[str, SurfaceConfig] = field(default_factory=dict)
     derive_surfaces: bool = True
-    update_period: float = 0.01
+    period: float = 0.01
     vacuum_tolerance: float = 0.01
     vacuum_max_tilt_deg: float = 15.0
     hand_tolerance: float = 0.05
@@ -130,7 +130,7 @@ def problems(config: WorkpiecesConfig) -> list[Problem]:
         if len(surface.size) != 2 or min(surface.size) <= 0:
             found.append((("surfaces", name, "size"), "needs two positive lengths [x, y]"))
     found += _capacity_problems(config)
-    found += _positive(config, ("update_period", "vacuum_tolerance", "hand_tolerance"))
+    found += _positive(config, ("period", "vacuum_tolerance", "hand_tolerance"))
     found += _positive(config, ("handover_tolerance",))
     return found
 

@@ -83,7 +83,7 @@ def _belt_speeds(step: Step) -> dict[int, float]:
             for p in step.pieces.values()
             if p.holder is None and p.support == name
         }
-        speeds |= belt.plan(riders, step.config.update_period)
+        speeds |= belt.plan(riders, step.config.period)
     return speeds
 
 
@@ -93,7 +93,7 @@ def _plan(step: Step, piece: Piece, support: Surface, belt_speeds: dict[int, flo
     if piece.support is not None:
         v = below
     else:
-        dt = step.config.update_period
+        dt = step.config.period
         landing = support.height + below[2] * dt
         accelerated = piece.velocity.translational()[2] - GRAVITY * dt
         v = np.array([0.0, 0.0, max(accelerated, (landing - piece.bottom) / dt)])

@@ -14,13 +14,13 @@ name: corpus
 description: The bad-input corpus's scenario.
 seed: 0
 duration: 0.2
-time_step: 0.001
+plant: {time_step: 0.001}
 robot:
   variant: lbr_iisy3_r760
   base_pose: {translation: [0.0, 0.0, 0.8]}
   configurations_deg:
     ready: [0, -45, 90, 0, 45, 0]
-  motion: {update_period: 0.01, tool_speed_limit: 1.0}
+  motion: {period: 0.01, tool_speed_limit: 1.0}
 cell:
   - add_model: {name: floor, file: package://hrc_drake_models/cell/floor.sdf}
   - add_weld: {parent: world, child: floor::body}
@@ -51,7 +51,7 @@ locations:
   pick_spot: {translation: [-0.2, 0.42, 0.93]}
   door: {translation: [2.0, 3.0, 0.0], rotation: !Rpy {deg: [0, 0, -90]}}
 visualization:
-  publish_period: 0.05
+  period: 0.05
   record: false
 """
 

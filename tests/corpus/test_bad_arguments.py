@@ -40,12 +40,12 @@ CASES = {
         ("run: argument --duration: invalid float value: 'long'",),
     ),
     "set time_step zero": (
-        ("run", "{s}", "--set", "time_step=0"),
-        ("--set time_step=0.0: must lie within",),
+        ("run", "{s}", "--set", "plant.time_step=0"),
+        ("--set plant.time_step=0.0: must lie within",),
     ),
     "set time_step inf": (
-        ("run", "{s}", "--set", "time_step=.inf"),
-        ("--set time_step=inf: must be a finite number",),
+        ("run", "{s}", "--set", "plant.time_step=.inf"),
+        ("--set plant.time_step=inf: must be a finite number",),
     ),
     "set duration negative": (
         ("run", "{s}", "--set", "duration=-1"),

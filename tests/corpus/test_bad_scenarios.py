@@ -29,7 +29,10 @@ CASES = {
     "wrong type": Case(
         S, "duration: 0.2", "duration: five", ("duration: 'five' is not a float",), "five"
     ),
-    "unknown field": Case(S, "time_step:", "timestep:", ("did you mean 'time_step'?",), "timestep"),
+    "unknown field": Case(S, "duration:", "durration:", ("did you mean 'duration'?",), "durration"),
+    "unknown field of a Drake struct": Case(
+        S, "{time_step:", "{timestep:", ("plant.timestep: unknown field",), "timestep"
+    ),
     "unknown nested field": Case(
         S, "  v_h: 1.6", "  vh: 1.6", ("safety.vh: unknown field",), "vh:"
     ),
@@ -75,17 +78,42 @@ CASES = {
         S,
         "time_step: 0.001",
         "time_step: .inf",
-        ("time_step: must be a finite number",),
+        ("plant.time_step: must be a finite number",),
         "time_step",
     ),
     "time_step 10 s": Case(
-        S, "time_step: 0.001", "time_step: 10", ("time_step: must lie within",), "time_step"
+        S, "time_step: 0.001", "time_step: 10", ("plant.time_step: must lie within",), "time_step"
     ),
     "time_step zero": Case(
-        S, "time_step: 0.001", "time_step: 0", ("time_step: must lie within",), "time_step"
+        S, "time_step: 0.001", "time_step: 0", ("plant.time_step: must lie within",), "time_step"
     ),
     "time_step negative": Case(
-        S, "time_step: 0.001", "time_step: -0.001", ("time_step: must lie within",), "time_step"
+        S,
+        "time_step: 0.001",
+        "time_step: -0.001",
+        ("plant.time_step: must lie within",),
+        "time_step",
+    ),
+    "unknown contact approximation": Case(
+        S,
+        "{time_step: 0.001}",
+        "{time_step: 0.001, discrete_contact_approximation: sapp}",
+        ("plant",),
+        "sapp",
+    ),
+    "unknown integration scheme": Case(
+        S,
+        "name: corpus\n",
+        "name: corpus\nsimulator: {integration_scheme: rk9}\n",
+        ("simulator.integration_scheme: unknown value 'rk9'",),
+        "rk9",
+    ),
+    "human period zero": Case(
+        S,
+        "  height: 1.75\n",
+        "  height: 1.75\n  period: 0\n",
+        ("human.period: must be positive",),
+        "  period: 0",
     ),
     "duration zero": Case(
         S, "duration: 0.2", "duration: 0", ("duration: must be positive",), "duration"
@@ -104,12 +132,12 @@ CASES = {
         S, "seed: 0", "seed: 99999999999999999999999", ("seed: must lie within",), "seed"
     ),
     "seed fraction": Case(S, "seed: 0", "seed: 1.5", ("seed: '1.5' is not an int",), "seed"),
-    "update_period zero": Case(
+    "motion period zero": Case(
         S,
-        "update_period: 0.01",
-        "update_period: 0",
-        ("robot.motion.update_period: must be positive",),
-        "update_period",
+        "motion: {period: 0.01",
+        "motion: {period: 0",
+        ("robot.motion.period: must be positive",),
+        "motion: {period: 0,",
     ),
     "tool speed negative": Case(
         S,
@@ -148,12 +176,12 @@ CASES = {
     "tree period zero": Case(
         S, "period: 0.05}", "period: 0}", ("trees.robot.period: must be positive",), "period: 0}"
     ),
-    "publish period negative": Case(
+    "visualization period negative": Case(
         S,
-        "publish_period: 0.05",
-        "publish_period: -1",
-        ("visualization.publish_period: must be positive",),
-        "publish_period",
+        "  period: 0.05\n",
+        "  period: -1\n",
+        ("visualization.period: must be positive",),
+        "period: -1",
     ),
     "translation inf": Case(
         S,

@@ -23,7 +23,7 @@ from hrc_drake.wiring import GRIPPER_ISSUER, ROBOT_MOTION
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, WorkpiecesStatus
 from tests.motion.motion_helpers import make_scenario
 
-PERIOD = MotionOptions().update_period
+PERIOD = MotionOptions().period
 SILENT = WorkpiecesStatus(0.0, (), {}, {})
 """The workpieces, holding nothing, before they answer the gripper."""
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.common.yaml import yaml_load_typed
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
+from pydrake.multibody.plant import AddMultibodyPlant
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus, LeafSystem
 from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
@@ -216,10 +216,7 @@ def build(case: Case):
     scene = scenario(case.variant)
     config = SafetyConfig(ssm=case.ssm, robot_speed=ROBOT_SPEED)
     builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlant(
-        MultibodyPlantConfig(time_step=scene.time_step, discrete_contact_approximation="sap"),
-        builder,
-    )
+    plant, scene_graph = AddMultibodyPlant(scene.plant, builder)
     arm, _ = add_station_models(plant, model_parser(plant), scene.station)
     plant.Finalize()
     plant.SetDefaultPositions(arm, scene.station.initial_positions)

@@ -114,7 +114,7 @@ def config_with_problem(**changes) -> WorkpiecesConfig:
             ("conveyors", "c", "at_end"),
             "unknown end action 'drop'",
         ),
-        (config_with_problem(update_period=0.0), ("update_period",), "must be positive"),
+        (config_with_problem(period=0.0), ("period",), "must be positive"),
     ],
 )
 def test_problems_name_the_field(config, path, message):
