@@ -47,7 +47,14 @@ from hrc_drake.safety.stopping import Stop, stopping_file
 from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec
 from hrc_drake.systems.robot_motion import RobotMotion
-from hrc_drake.wiring import ROBOT_MODEL, ROBOT_MOTION, TOOL_MODEL
+from hrc_drake.wiring import (
+    ROBOT,
+    ROBOT_MODEL,
+    ROBOT_MOTION,
+    TOOL_MODEL,
+    command_input,
+    tree_issuer,
+)
 
 AXES = ("A1", "A2", "A3")
 SPEEDS = (0.33, 0.66, 1.0)
@@ -73,7 +80,8 @@ class _IdealRobot:
         builder.Connect(
             self.motion.GetOutputPort("desired_state"), self.motion.GetInputPort("robot_state")
         )
-        builder.ExportInput(self.motion.GetInputPort("robot_tree_command"), "robot_command")
+        command = command_input(tree_issuer(ROBOT))
+        builder.ExportInput(self.motion.GetInputPort(command), command)
         builder.ExportInput(self.motion.GetInputPort("speed_scale"), "speed_scale")
         self.diagram = builder.Build()
         self.simulator = Simulator(self.diagram)
@@ -88,7 +96,7 @@ class _IdealRobot:
         self.diagram.GetInputPort("speed_scale").FixValue(self.context, [scale])
 
     def command(self, command) -> None:
-        self.diagram.GetInputPort("robot_command").FixValue(self.context, command)
+        self.diagram.GetInputPort(command_input(tree_issuer(ROBOT))).FixValue(self.context, command)
 
     def desired(self) -> np.ndarray:
         return self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
