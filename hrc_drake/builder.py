@@ -48,7 +48,7 @@ from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.human_actor import HumanActor, add_human
 from hrc_drake.systems.realism_audit import RealismAudit, add_realism_audit
 from hrc_drake.systems.replay_recorder import ReplayRecorder
-from hrc_drake.systems.robot_controller import add_robot_controller
+from hrc_drake.systems.robot_controller import RobotController, add_robot_controller
 from hrc_drake.systems.robot_motion import RobotMotion, add_robot_motion
 from hrc_drake.systems.safety_monitor import SafetyMonitor, add_safety_monitor
 from hrc_drake.systems.workpieces import Workpieces, add_workpieces
@@ -84,6 +84,7 @@ class Station:
 
     plant: MultibodyPlant
     arm: ModelInstanceIndex
+    controller: RobotController
     scene_graph: SceneGraph
     robot_motion: RobotMotion
     human: HumanActor | None
@@ -150,7 +151,17 @@ def build_diagram(
     if meshcat is not None:
         recorder = _add_visualizer(builder, scene_graph, meshcat, scenario, sources)
     station = Station(
-        plant, arm, scene_graph, motion, human, workpieces, safety, audit, trees, recorder
+        plant,
+        arm,
+        controller,
+        scene_graph,
+        motion,
+        human,
+        workpieces,
+        safety,
+        audit,
+        trees,
+        recorder,
     )
     _export_outputs(builder, station)
     _export_open_inputs(builder, [motion, human, workpieces])

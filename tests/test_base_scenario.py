@@ -26,10 +26,11 @@ def test_hold_is_the_controllers_work():
     """The arm is held by gravity-compensating torque, not by a model that cannot fall."""
     from pydrake.systems.analysis import Simulator
 
-    diagram = build_diagram(load_scenario("base"))
+    built = []
+    diagram = build_diagram(load_scenario("base"), attach=lambda _, station: built.append(station))
     simulator = Simulator(diagram)
     simulator.AdvanceTo(0.2)
-    controller = diagram.GetSubsystemByName("robot_controller")
+    controller = built[0].controller
     context = controller.GetMyContextFromRoot(simulator.get_context())
     torque = controller.GetOutputPort("generalized_force").Eval(context)
     assert abs(torque[1]) > 1.0  # A2 carries the arm against gravity
