@@ -39,41 +39,37 @@ def add_execution_options(parser, what: str, directory: str) -> None:
     )
 
 
-def positive_int(text: str) -> int:
+def _parsed(text: str, convert, noun: str):
+    """`text` as `convert` reads it, or the one-line reason it is not `noun`."""
     try:
-        value = int(text)
+        return convert(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+        raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+
+
+def positive_int(text: str) -> int:
+    value = _parsed(text, int, "a whole number")
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1, got {text}")
     return value
 
 
 def worker_count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    value = _parsed(text, int, "a whole number")
     if not 1 <= value <= MAX_WORKERS:
         raise argparse.ArgumentTypeError(f"must lie within 1..{MAX_WORKERS}, got {text}")
     return value
 
 
 def port_number(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a port number") from None
+    value = _parsed(text, int, "a port number")
     if not 1 <= value <= 65534:
         raise argparse.ArgumentTypeError(f"port {text} is out of range (1 to 65534: it uses two)")
     return value
 
 
 def positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    value = _parsed(text, float, "a number")
     if not value > 0:
         raise argparse.ArgumentTypeError(f"must be positive, got {text}")
     return value
