@@ -18,10 +18,9 @@ SAFETY = "safety"
 
 AGENTS = (ROBOT, HUMAN)
 """The agents that run behavior trees, in the order their command numbers interleave."""
-ACTORS = (ROBOT, HUMAN, WORKPIECES)
-"""What carries out commands: RobotMotion, HumanActor, Workpieces."""
-STATUS_SOURCES = (*ACTORS, SAFETY)
-"""Whose status every tree reads."""
+STATUS_SOURCES = (ROBOT, HUMAN, WORKPIECES, SAFETY)
+"""Whose status every tree reads: the actors, which carry out commands (RobotMotion,
+HumanActor, Workpieces), and the safety monitor, which takes none."""
 
 COMMANDED_BY = {ROBOT: (ROBOT, HUMAN, WORKPIECES), HUMAN: (HUMAN, WORKPIECES)}
 """The actors each agent's tree may command: the robot's tree its robot, the objects, and
@@ -74,7 +73,6 @@ SEQ_STEP = len(AGENTS)
 
 
 # System names in the station diagram.
-PLANT = "plant"
 PHYSICS_SCENE_GRAPH = "physics_scene_graph"
 SCENE_GRAPH = "scene_graph"
 STATION_MIRROR = "station_mirror"

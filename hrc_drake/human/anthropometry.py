@@ -20,7 +20,6 @@ from hrc_drake.human.skeleton import (
     Skeleton,
     Visual,
     mirror_axis,
-    mirror_xyz,
 )
 
 DEFAULT_HEIGHT = 1.75
@@ -220,10 +219,6 @@ def _head_body(d: _Dimensions, origin, mass: float) -> Body:
             ),
         ),
     )
-
-
-def _sided(side: str, xyz):
-    return xyz if side == "left" else mirror_xyz(xyz)
 
 
 def _sided_dofs(side: str, dofs: tuple[Dof, ...]) -> tuple[Dof, ...]:

@@ -23,7 +23,6 @@ from pydrake.math import RotationMatrix
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.keyed_clips import HOLD, pose_vector
 from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Grasp, Hold
-from hrc_drake.human.skeleton import SIDES
 
 ONE_HAND_WIDTH = 0.09
 """m: the widest a part may be across to be held in one hand, fingers round it."""
@@ -162,10 +161,6 @@ def arm_indices(body: HumanBody, sides) -> np.ndarray:
             if any(name.startswith(f"{side}_{joint}") for side in sides for joint in ARM_JOINTS)
         ]
     )
-
-
-def holding_sides(hold: Hold) -> tuple[str, ...]:
-    return SIDES if hold.hands == BOTH_HANDS else ("right",)
 
 
 @dataclass(frozen=True, eq=False)
