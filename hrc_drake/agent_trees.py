@@ -6,7 +6,6 @@ Every tree's root blackboard holds the scenario's locations (as Poses), areas an
 `parameters`, so a tree can write `{table_top}` as well as the literal `table_top`.
 """
 
-import difflib
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
@@ -17,7 +16,7 @@ from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import COMMANDED_BY
-from hrc_drake.yaml_check import NEW_ENTRIES, REQUIRED
+from hrc_drake.yaml_check import NEW_ENTRIES, REQUIRED, did_you_mean
 
 
 @dataclass
@@ -147,9 +146,7 @@ def port_value_problem(named: dict, agent: str, name: str, port: str, text: str)
     ("" when nothing is)."""
     model = named.get(name)
     if model is None:
-        close = difflib.get_close_matches(name, list(named), n=1)
-        hint = f" (did you mean '{close[0]}'?)" if close else ""
-        return f"no node named '{name}' in the {agent}'s tree{hint}"
+        return f"no node named '{name}' in the {agent}'s tree{did_you_mean(name, named)}"
     inputs = {info.name: info for info in model.ports.values() if info.is_input}
     if port not in inputs:
         return f"'{model.id}' has no input port '{port}' (it has: {', '.join(inputs) or 'none'})"

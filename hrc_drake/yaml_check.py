@@ -190,8 +190,7 @@ def _check_mapping(filename, node, schema, fields, path):
     items = _expect(filename, node, yaml.MappingNode, path, "a mapping")
     for key, value in items:
         if key.value not in fields:
-            close = difflib.get_close_matches(key.value, list(fields), n=1)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            hint = did_you_mean(key.value, fields)
             raise located_error(
                 filename, key, field_path((*path, key.value)), f"unknown field{hint}"
             )
@@ -248,8 +247,12 @@ def first_line(error: Exception) -> str:
     return f"{lines[0]} {invoked}" if lines[0].endswith(":") and invoked else lines[0]
 
 
+def did_you_mean(name: str, known) -> str:
+    """` (did you mean '<the closest known name>'?)`, or "" when none is close."""
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
 def unknown(what: str, name: str, known) -> str:
     """`unknown <what> '<name>' (did you mean ...?); known: ...`"""
-    close = difflib.get_close_matches(name, list(known), n=1)
-    hint = f" (did you mean '{close[0]}'?)" if close else ""
-    return f"unknown {what} '{name}'{hint}; known: {', '.join(sorted(known))}"
+    return f"unknown {what} '{name}'{did_you_mean(name, known)}; known: {', '.join(sorted(known))}"

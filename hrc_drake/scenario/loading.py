@@ -2,7 +2,6 @@
 schema (file, line and field for every problem), read with `yaml_load_typed`, overridden
 (hrc_drake.scenario.overrides) and then checked as a whole (hrc_drake.scenario.checks)."""
 
-import difflib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -16,6 +15,7 @@ from hrc_drake.yaml_check import (
     InputError,
     check_node,
     compose,
+    did_you_mean,
     field_path,
     first_line,
     located_error,
@@ -37,11 +37,9 @@ def resolve_scenario_path(name_or_path: str) -> Path:
     if bundled.is_file():
         return bundled
     known = bundled_scenarios()
-    close = difflib.get_close_matches(name_or_path, known, n=1)
-    hint = f"did you mean '{close[0]}'? " if close else ""
     raise InputError(
-        f"{name_or_path}: no such scenario file or bundled scenario ({hint}bundled: "
-        f"{', '.join(known)})"
+        f"{name_or_path}: no such scenario file or bundled scenario"
+        f"{did_you_mean(name_or_path, known)}; bundled: {', '.join(known)}"
     )
 
 

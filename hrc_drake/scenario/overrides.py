@@ -11,7 +11,6 @@ value given here is read exactly like one in the file.
 
 import contextlib
 import dataclasses
-import difflib
 import itertools
 import types
 import typing
@@ -19,7 +18,7 @@ import typing
 import yaml
 from pydrake.common.yaml import yaml_load_typed
 
-from hrc_drake.yaml_check import NEW_ENTRIES, InputError, a_kind, schema_fields
+from hrc_drake.yaml_check import NEW_ENTRIES, InputError, a_kind, did_you_mean, schema_fields
 
 SCALARS = (bool, int, float, str)
 Overrides = tuple[tuple[str, typing.Any], ...]
@@ -75,7 +74,7 @@ def _field_type(schema, path: str):
             done = ".".join(path.split(".")[:depth])
             return f"'{done}' has no fields"
         if name not in fields:
-            return f"unknown field '{name}'{_close_hint(name, fields)}"
+            return f"unknown field '{name}'{did_you_mean(name, fields)}"
         kind = fields[name]
     if scalar_of(kind) is None:
         return "only number, boolean and text fields can be set"
@@ -135,7 +134,7 @@ def _check_settable(obj, names: list[str], path: str, new_entries: bool = False)
             done = path.split(".")[: -len(names)]
             raise InputError(
                 f"--set {path}: '{'.'.join(done)}' has no entry '{head}'"
-                f"{_close_hint(head, obj)} (it has: {', '.join(obj) or 'none'})"
+                f"{did_you_mean(head, obj)} (it has: {', '.join(obj) or 'none'})"
             )
         if rest:
             _check_settable(obj.get(head, {}), rest, path, new_entries)
@@ -146,11 +145,6 @@ def _check_settable(obj, names: list[str], path: str, new_entries: bool = False)
     opens = any(f.name == head and f.metadata.get(NEW_ENTRIES) for f in fields)
     if rest:
         _check_settable(getattr(obj, head), rest, path, opens)
-
-
-def _close_hint(name: str, known) -> str:
-    close = difflib.get_close_matches(name, list(known), n=1)
-    return f" (did you mean '{close[0]}'?)" if close else ""
 
 
 def _mapping(kind) -> bool:
