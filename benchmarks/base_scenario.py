@@ -46,7 +46,9 @@ def bare_diagram(scenario, desired=None, cell: bool = False):
         arm = add_robot(plant, parser, scenario.station)
     plant.Finalize()
     plant.SetDefaultPositions(arm, q0)
-    controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)
+    controller = add_robot_controller(
+        builder, scenario.station, plant, arm, reference_acceleration=False
+    )
     hold = builder.AddSystem(desired)
     builder.Connect(hold.get_output_port(), controller.GetInputPort("desired_state"))
     return builder.Build()
@@ -69,7 +71,7 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     scenario = load_scenario("base")
-    steps = args.duration / scenario.time_step
+    steps = args.duration / scenario.plant.time_step
     bare, base = [], []
     for _ in range(args.repeats):
         bare.append(time_bare(scenario, args.duration))

@@ -76,7 +76,9 @@ def cell(with_monitor: bool, duration: float):
     plant.Finalize()
     q0 = scenario.station.configuration("home")
     plant.SetDefaultPositions(arm, q0)
-    controller = add_robot_controller(builder, scenario, plant, arm, reference_acceleration=False)
+    controller = add_robot_controller(
+        builder, scenario.station, plant, arm, reference_acceleration=False
+    )
     desired = builder.AddSystem(TrajectorySource(swing(q0, duration)))
     builder.Connect(desired.get_output_port(), controller.GetInputPort("desired_state"))
     human_plant, human, human_pose = kinematic(
