@@ -1,0 +1,42 @@
+"""The benchmark scripts still run against the library they measure: each is run once with
+the smallest work it accepts, and must finish with status 0 and print its figures. Nothing
+is timed here (the scripts print ratios; docs: benchmarks/). `falsify.py` and
+`realism_cost.py` are left out: their smallest runs take minutes (a search, the scenario
+tests' short runs)."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
+SMALLEST = {
+    "base_scenario.py": ["--duration", "0.5", "--repeats", "1"],
+    "bt_tick.py": [],
+    "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
+    "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
+    "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
+    "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
+    "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
+    "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
+    "scenarios.py": ["--duration", "0.5", "cooperation"],
+    "sweep.py": ["--scenario", "base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
+}
+
+
+def test_every_benchmark_is_exercised_or_named_as_too_long():
+    scripts = {p.name for p in BENCHMARKS.glob("*.py")}
+    assert scripts == set(SMALLEST) | {"falsify.py", "realism_cost.py"}
+
+
+@pytest.mark.parametrize("script", SMALLEST)
+def test_benchmark_runs(script):
+    result = subprocess.run(
+        [sys.executable, BENCHMARKS / script, *SMALLEST[script]],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert result.stdout.strip(), "it printed no figures"
