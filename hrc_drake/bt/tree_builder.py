@@ -36,12 +36,33 @@ class TreeDefinition:
         return self.element.file
 
 
+SAME_NAME = "{=}"
+"""BehaviorTree.CPP's shorthand for the entry named like the port (``x="{=}"`` is
+``x="{x}"``), on a node's port and on a SubTree's; a node's port also takes a bare ``=``
+(BT.CPP's TreeNode::getRemappedKey and the SubTree branch of its XML parser)."""
+
+
 def blackboard_key(text: str) -> str | None:
     """``key`` for ``{key}`` (``@key`` for ``{@key}``), None for a literal."""
     text = text.strip()
     if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
         return text[1:-1].strip()
     return None
+
+
+def port_key(port: str, text: str) -> str | None:
+    """The blackboard key a node's port ``port`` given ``text`` reads or writes, None for a
+    literal: ``{key}``, or the port's own name for ``{=}`` and ``=``."""
+    if text.strip() in (SAME_NAME, "="):
+        return port
+    return blackboard_key(text)
+
+
+def subtree_key(port: str, text: str) -> str | None:
+    """The parent's key a SubTree port given ``text`` is remapped to (None: a literal):
+    ``{key}``, or the port's own name for ``{=}`` (a bare ``=`` stays a literal there, as in
+    BT.CPP)."""
+    return port if text.strip() == SAME_NAME else blackboard_key(text)
 
 
 @dataclass
@@ -259,7 +280,7 @@ class TreeBuilder:
     def _bind(
         self, config: NodeConfig, port: PortInfo, text: str, element: XmlElement, scope: _Scope
     ) -> None:
-        key = blackboard_key(text)
+        key = port_key(port.name, text)
         if key is not None:
             self._bind_entry(config, port, key, element, scope)
             return
@@ -291,7 +312,7 @@ class TreeBuilder:
     def _bind_default(
         self, config: NodeConfig, port: PortInfo, element: XmlElement, scope: _Scope
     ) -> None:
-        key = blackboard_key(port.default) if isinstance(port.default, str) else None
+        key = port_key(port.name, port.default) if isinstance(port.default, str) else None
         if key is not None:
             self._bind_entry(config, port, key, element, scope)
         else:
@@ -370,7 +391,7 @@ class TreeBuilder:
                         BTError(str(error), port=attribute, **scope.where(element, node=path))
                     )
                 continue
-            key = blackboard_key(text)
+            key = subtree_key(attribute, text)
             if key is None:
                 literals[attribute] = text
             else:
