@@ -20,6 +20,11 @@ directives:
   - add_weld: {parent: world, child: bni::body}
 """
 
+ALIAS_BOMB = "".join(
+    f"  lol{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else 'lol'] * 9)}]\n" for i in range(9)
+)
+"""A "billion laughs": nine lists of nine aliases of the list before, 9**9 values expanded."""
+
 S = "scenario.yaml"
 CASES = {
     # --- the schema: fields, types, YAML ---
@@ -72,6 +77,23 @@ CASES = {
         "  table: [[0, 0], [1, 0], [0, 1]]\n  table: [[-0.6",
         ("areas.table: given twice",),
         "table: [[-0.6",
+    ),
+    "alias bomb": Case(
+        S,
+        "parameters:\n",
+        f"parameters:\n{ALIAS_BOMB}",
+        ("parameters.lol5: its aliases expand it to more than 100000 values (an alias bomb?)",),
+        "lol5:",
+    ),
+    "alias of itself": Case(
+        S,
+        "parameters:\n",
+        "parameters:\n  loop: &loop [1, *loop]\n",
+        ("parameters.loop[1]: an alias refers to itself",),
+        "loop:",
+    ),
+    "nested too deeply": Case(
+        S, "duration: 0.2", f"duration: {'[' * 3000}{']' * 3000}", ("nested too deeply",)
     ),
     # --- numbers: finite, in range ---
     "time_step inf": Case(

@@ -16,6 +16,14 @@ from tests.corpus.corpus_helpers import (
     write_workspace,
 )
 
+XML_BOMB = (
+    '<?xml version="1.0"?>\n<!DOCTYPE root [\n<!ENTITY lol0 "lol">\n'
+    + "".join(f'<!ENTITY lol{i} "{f"&lol{i - 1};" * 10}">\n' for i in range(1, 10))
+    + ']>\n<root BTCPP_format="4"><BehaviorTree ID="Robot">\n'
+    + '<Emit event="&lol9;"/></BehaviorTree></root>\n'
+)
+"""XML's "billion laughs": entities of ten entities each, 10**9 times "lol" expanded."""
+
 T = "robot.xml"
 S = "scenario.yaml"
 MOVE = '<RobotMove target="{above}"/>'
@@ -165,6 +173,13 @@ CASES = {
         "maybe",
     ),
     "empty tree file": Case(T, GOOD_TREE, "", ("malformed XML",), None),
+    "entity bomb": Case(
+        T,
+        GOOD_TREE,
+        XML_BOMB,
+        ("malformed XML: limit on input amplification factor (from DTD and entities) breached",),
+        "&lol9;",
+    ),
     "binary tree file": Case(
         S,
         "{file: robot.xml,",
