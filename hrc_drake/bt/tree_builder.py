@@ -146,7 +146,17 @@ class TreeBuilder:
         children = [self.build_node(child, scope) for child in element.children]
         if None not in children:
             self._attach(node, children)
+            self._check_literals(node, element, scope)
         return node
+
+    def _check_literals(self, node: TreeNode, element: XmlElement, scope: _Scope) -> None:
+        """Literal inputs the node does not accept (a velocity of 100 for a fraction, two
+        weights for three children), known once its children are attached."""
+        for port, binding in node.config.inputs.items():
+            if isinstance(binding, Literal) and (
+                problem := node.input_problem(port, binding.value)
+            ):
+                self.report(BTError(problem, node=node.path, port=port, **scope.where(element)))
 
     def _check_children(
         self, model: NodeModel, element: XmlElement, scope: _Scope, path: str
@@ -225,6 +235,7 @@ class TreeBuilder:
             tree_id=scope.definition.id,
         )
         ports = model.ports
+        config.accepts = {name: port.accepts for name, port in ports.items() if port.accepts}
         for attribute, text in attributes.items():
             if attribute in IGNORED_ATTRIBUTES:
                 continue

@@ -10,7 +10,7 @@ tells the person what the hands hold, so they carry it in the carry posture.
 
 from abc import abstractmethod
 
-from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
+from hrc_drake.bt import ConditionNode, InputPort, OneOf, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
@@ -66,7 +66,13 @@ class ActorAnimation(PersonCommandNode):
 
     ports = (
         InputPort("animation_name", str),
-        InputPort("animation_speed", float, default=1.0, description="2 = twice as fast"),
+        InputPort(
+            "animation_speed",
+            float,
+            default=1.0,
+            description="2 = twice as fast",
+            accepts=Range(0, above=True),
+        ),
     )
 
     def command(self, seq: int):
@@ -89,6 +95,7 @@ class ActorMovement(PersonCommandNode):
             float,
             default=0.0,
             description="ground covered by one walk cycle; 0 = the clip's own",
+            accepts=Range(0),
         ),
         InputPort("target", Pose, description="x;y;z[;qw;qx;qy;qz] or location name"),
     )
@@ -205,9 +212,6 @@ class TargetedAction(PersonCommandNode):
         hands = self.get_input("hand")
         if hands == "auto":
             hands = grasp_hands(obj.size, obj.mass, obj.attributes)
-        elif hands not in HOLDERS:
-            known = ", ".join(("auto", *HOLDERS))
-            raise self.error(f"unknown hand '{hands}'; known: {known}", port="hand")
         return grasp_of(obj, hands)
 
     def holder_and_center(self):
@@ -217,8 +221,13 @@ class TargetedAction(PersonCommandNode):
         return HOLDERS[grasp.hands], object_center_in_holder(hold)
 
 
+TAKE_OR_GIVE = OneOf(("take", "give"))
 HAND_PORT = InputPort(
-    "hand", str, default="auto", description="auto (from the object), right or both"
+    "hand",
+    str,
+    default="auto",
+    description="auto (from the object), right or both",
+    accepts=OneOf(("auto", *HOLDERS)),
 )
 
 
@@ -279,7 +288,9 @@ class ActorHandOver(TargetedAction):
 
     ports = (
         InputPort("object_id", int),
-        InputPort("direction", str, default="take", description="take or give"),
+        InputPort(
+            "direction", str, default="take", description="take or give", accepts=TAKE_OR_GIVE
+        ),
         HAND_PORT,
     )
     contact_event = "extended"

@@ -7,7 +7,7 @@ import math
 
 from pydrake.math import RigidTransform, RotationMatrix
 
-from hrc_drake.bt import InputPort, Status, SyncActionNode
+from hrc_drake.bt import InputPort, Range, Status, SyncActionNode
 from hrc_drake.motion import messages as robot
 from hrc_drake.nodes.command import CommandNode
 from hrc_drake.tree_types import Pose
@@ -98,13 +98,15 @@ class SetRobotVelocity(SyncActionNode):
     """Sets the robot's speed as a fraction of its planned speed; a running move slows or
     speeds up on the same path without failing. Always SUCCESS."""
 
-    ports = (InputPort("velocity", float, description="fraction of full speed, 0..1"),)
+    ports = (
+        InputPort(
+            "velocity", float, description="fraction of full speed, 0..1", accepts=Range(0, 1)
+        ),
+    )
     commands = (ROBOT,)
 
     def tick(self) -> Status:
         fraction = self.get_input("velocity")
-        if not 0.0 <= fraction <= 1.0:
-            raise self.error(f"must be within 0..1, got {fraction}", port="velocity")
         self.agent.send(ROBOT, lambda seq: robot.SetSpeed(seq, fraction))
         return Status.SUCCESS
 

@@ -4,6 +4,7 @@ the line and the field, and exit status 2 (none of these cases simulates)."""
 import pytest
 
 from tests.corpus.corpus_helpers import (
+    GOOD_TREE,
     Case,
     assert_one_line_error,
     expected_place,
@@ -24,6 +25,12 @@ ALIAS_BOMB = "".join(
     f"  lol{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else 'lol'] * 9)}]\n" for i in range(9)
 )
 """A "billion laughs": nine lists of nine aliases of the list before, 9**9 values expanded."""
+
+GOOD_TREE_WITH_WEIGHTS = GOOD_TREE.replace(
+    '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>',
+    '<WeightedRandom weights="{w}"><AlwaysSuccess/><AlwaysFailure/></WeightedRandom>\n'
+    "    </Sequence>",
+)
 
 S = "scenario.yaml"
 CASES = {
@@ -332,6 +339,32 @@ CASES = {
         'speed: "fast"',
         ("parameters.speed: a tree cannot read it: cannot convert 'fast'",),
         "fast",
+    ),
+    "parameter out of the range of the port that reads it": Case(
+        S,
+        'speed: "0.5"',
+        'speed: "50"',
+        (
+            "parameters.speed: must be within 0..1, got 50 (a percentage? 0.5 is the fraction): "
+            "SetRobotVelocity 'SetRobotVelocity::2' reads it as velocity (",
+            "robot.xml:4)",
+        ),
+        'speed: "50"',
+    ),
+    "weights parameter that does not fit the children": Case(
+        S,
+        'speed: "0.5"',
+        'speed: "0.5"\n  w: "6;1;1"',
+        ("parameters.w: needs 2 weights, one per child, got 3: 6;1;1: WeightedRandom",),
+        'w: "6;1;1"',
+        {"robot.xml": GOOD_TREE_WITH_WEIGHTS},
+    ),
+    "tree port value out of its range": Case(
+        S,
+        "  robot: {file: robot.xml, period: 0.05}",
+        "  robot: {file: robot.xml, period: 0.05, ports: {SetRobotVelocity: {velocity: '2'}}}",
+        ("trees.robot.ports.SetRobotVelocity.velocity: must be within 0..1, got 2",),
+        "ports:",
     ),
     "parameter not quoted": Case(
         S,

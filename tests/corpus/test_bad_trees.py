@@ -76,6 +76,54 @@ CASES = {
         ("'Inverter' needs exactly 1 children, has 2",),
         "<Inverter>",
     ),
+    "weights that do not fit": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="6;2;3">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': needs 2 weights, one per child, got 3: 6;2;3",),
+        "WeightedRandom",
+    ),
+    "weight out of range": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="1;-1">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': must be at least 0, got 1;-1",),
+        "WeightedRandom",
+    ),
+    "weights all zero": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="0;0">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': needs a weight above 0, got 0;0",),
+        "WeightedRandom",
+    ),
+    "velocity out of range": Case(
+        T,
+        'velocity="{speed}"',
+        'velocity="100"',
+        ("port 'velocity': must be within 0..1, got 100 (a percentage? 1 is the fraction)",),
+        'velocity="100"',
+    ),
+    "a SubTree literal out of the range of the port it reaches": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>\n  </BehaviorTree>\n'
+        '  <BehaviorTree ID="Reach">\n    <Sequence>',
+        '<SubTree ID="Reach" at="pick_spot" slow="-1"/>\n    </Sequence>\n  </BehaviorTree>\n'
+        '  <BehaviorTree ID="Reach">\n    <Sequence><SetRobotVelocity velocity="{slow}"/>',
+        (
+            "tree 'Robot', node 'Reach::",
+            "port 'slow': must be within 0..1, got -1: SetRobotVelocity 'Reach::",
+            "reads it as velocity",
+        ),
+        'slow="-1"',
+    ),
+    "unknown holder": Case(
+        T,
+        MOVE,
+        f'{MOVE}<HeldObject holder="gripper"/>',
+        ("port 'holder': unknown value 'gripper'; known: robot, ",),
+        "gripper",
+    ),
     "bad script": Case(T, MOVE, f'<Script code="x := ("/>{MOVE}', ("port 'code'",), "Script"),
     "bad precondition": Case(
         T, MOVE, '<RobotMove target="{above}" _skipIf="(("/>', ("port '_skipIf'",), "_skipIf"
@@ -244,17 +292,18 @@ RUN_FAULTS = {
         "port 'velocity'",
         "blackboard entry 'sped' is not set",
     ),
-    "weights that do not fit": (
+    "weights a script made that do not fit": (
         MOVE,
-        f'<WeightedRandom weights="1;2;3">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        f"<Script code=\"w := '1;2;3'\"/>"
+        f'<WeightedRandom weights="{{w}}">{MOVE}<AlwaysSuccess/></WeightedRandom>',
         "port 'weights'",
-        "needs 2 non-negative weights",
+        "needs 2 weights, one per child, got 3: 1;2;3",
     ),
-    "weight out of range": (
-        MOVE,
-        f'<WeightedRandom weights="1;-1">{MOVE}<AlwaysSuccess/></WeightedRandom>',
-        "port 'weights'",
-        "needs 2 non-negative weights",
+    "a velocity a script made out of range": (
+        '<SetRobotVelocity velocity="{speed}"/>',
+        '<Script code="v := 50"/><SetRobotVelocity velocity="{v}"/>',
+        "port 'velocity'",
+        "must be within 0..1, got 50",
     ),
 }
 

@@ -1,0 +1,140 @@
+"""What a loaded tree's input ports will read that is known before it runs.
+
+A port reads a literal of the XML, or a blackboard entry. An entry's value is known when
+the scenario puts it on the root blackboard (a location, an area, a parameter), when a
+SubTree passes a literal to it, or when a node whose outputs follow from its inputs alone
+(`static_outputs`, e.g. OffsetPose) writes it from inputs that are known in turn; entries
+are followed through SubTree remapping (remapped ports share the parent's entry). Values
+that come from the world (NextObject's pose) or from scripts are unknown, and left out:
+every known value is one the port can really read, never all of them.
+
+`validate` checks these values the way the running nodes will (a port's range, the
+robot's reach of a target, a person's place to stand), and names where each came from.
+"""
+
+import itertools
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+from hrc_drake.bt import Tree
+from hrc_drake.bt.blackboard import UNSET, Entry
+from hrc_drake.bt.node import Literal, TreeNode
+
+MAX_KNOWN = 64
+"""Known values kept per entry: a tree offsetting a pose in a loop has ever more of them."""
+
+
+@dataclass(frozen=True)
+class Origin:
+    """Where a known value was written: a scenario entry (`section` is `locations`,
+    `areas` or `parameters`, `key` its name), or a literal of the tree (`node` the node or
+    SubTree whose port `key` gives it)."""
+
+    key: str
+    section: str = ""
+    node: TreeNode | None = field(default=None, compare=False)
+
+    def __str__(self) -> str:
+        if self.section:
+            return f"{self.section[:-1]} '{self.key}'"
+        return f"{self.key}={self.node.config.attributes.get(self.key, '')}"
+
+
+@dataclass(frozen=True)
+class Known:
+    """A value a port can read, where it was first written, and the nodes that made it
+    from that (`via`: 'OffsetPose at robot.xml:12', ...)."""
+
+    value: Any
+    origin: Origin
+    via: tuple[str, ...] = ()
+
+    def __str__(self) -> str:
+        made = "".join(f", then {step}" for step in self.via)
+        return f"{self.value} (from {self.origin}{made})"
+
+
+def known_inputs(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[TreeNode, str, list]]:
+    """(node, port, known values) of every input port whose value is known: its literal,
+    or what its blackboard entry can hold; `sections` names the section of each root entry
+    the scenario set (key -> locations, areas or parameters)."""
+    values = _KnownValues(tree, sections)
+    for node in tree.node_list:
+        for port, binding in node.config.inputs.items():
+            if found := values.input(binding, node, port):
+                yield node, port, found
+
+
+class _KnownValues:
+    """Known values of entries, computed on demand and kept."""
+
+    def __init__(self, tree: Tree, sections: dict[str, str]):
+        self.tree = tree
+        self.initial: dict[int, Known] = dict(_initial_values(tree, sections))
+        self.writers: dict[int, list[tuple[TreeNode, str]]] = {}
+        for node in tree.node_list:
+            if hasattr(type(node), "static_outputs"):
+                for port, binding in node.config.outputs.items():
+                    self.writers.setdefault(id(binding.entry), []).append((node, port))
+        self.known: dict[int, list[Known]] = {}
+
+    def of(self, entry: Entry) -> list[Known]:
+        key = id(entry)
+        if key not in self.known:
+            found = [self.initial[key]] if key in self.initial else []
+            self.known[key] = found  # an entry written from itself sees its first values
+            for node, port in self.writers.get(key, ()):
+                found += self._outputs(node, port)
+            self.known[key] = _distinct(found)[:MAX_KNOWN]
+        return self.known[key]
+
+    def _outputs(self, node: TreeNode, port: str) -> list[Known]:
+        """What `node` writes to `port` for each combination of its known inputs."""
+        bindings = node.config.inputs.items()
+        inputs = {name: self.input(binding, node, name) for name, binding in bindings}
+        if not all(inputs.values()):
+            return []
+        names = list(inputs)
+        step = f"{node.registration_id} at {node.config.file}:{node.config.line}"
+        found = []
+        for combination in itertools.islice(itertools.product(*inputs.values()), MAX_KNOWN):
+            given = dict(zip(names, combination, strict=True))
+            try:
+                values = {name: known.value for name, known in given.items()}
+                value = type(node).static_outputs(self.tree.agent, values)[port]
+            except (KeyError, ValueError):
+                continue  # the node would fail on these inputs: nothing is written
+            first = next((k for k in combination if k.origin.section), combination[0])
+            found.append(Known(value, first.origin, (*first.via, step)))
+        return found
+
+    def input(self, binding, node: TreeNode, port: str) -> list[Known]:
+        if isinstance(binding, Literal):
+            return [Known(binding.value, Origin(port, node=node))]
+        return self.of(binding.entry)
+
+
+def _initial_values(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[int, Known]]:
+    """The entries set when the tree was loaded: the scenario's on the root blackboard, the
+    SubTrees' literal ports on theirs."""
+    subtree_nodes = {node.path: node for node in tree.node_list if node.kind == "SubTree"}
+    for index, instance in enumerate(tree.subtrees):
+        for key, entry in instance.blackboard.local_entries().items():
+            if entry.value is UNSET:
+                continue
+            if index == 0:
+                origin = Origin(key, section=sections.get(key, "parameters"))
+            else:
+                origin = Origin(key, node=subtree_nodes[instance.path])
+            yield id(entry), Known(entry.value, origin)
+
+
+def _distinct(found: list[Known]) -> list[Known]:
+    seen, kept = set(), []
+    for known in found:
+        key = repr(known.value)
+        if key not in seen:
+            seen.add(key)
+            kept.append(known)
+    return kept
