@@ -9,6 +9,7 @@ import numpy as np
 
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -34,7 +35,7 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     waypoints the path goes round the cell's geometry (the navigation map); a place to
     stand (a target with an orientation) that is not clear moves to the nearest that is."""
     clip = performer.clips.get(command.animation_name)
-    if clip is None or not clip.loop or clip.animation_distance <= 0:
+    if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
     goal = tuple(command.target_position[:2])
@@ -86,7 +87,7 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
     inverse kinematics, taking hold of what it grasps."""
     clip = performer.clips.get(command.animation_name)
     if clip is None:
-        raise Unreachable(f"no animation named '{command.animation_name}'")
+        raise Unreachable(no_animation(command.animation_name, performer.clips))
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
     aim, carry = None, _carry(performer, command.hold)

@@ -142,6 +142,10 @@ class SetCalledTo(SyncActionNode):
         return Status.SUCCESS
 
 
+class ObjectGone(Exception):
+    """The object an action is to take is not in the world (any more)."""
+
+
 class TargetedAction(PersonCommandNode):
     """Plays `clip()` aimed at `target_point()`; at the clip event `contact_event` it sends
     `object_command(seq)` to the Workpieces system. SUCCESS when both succeeded."""
@@ -162,10 +166,20 @@ class TargetedAction(PersonCommandNode):
         """The Workpieces command at the contact event (actions that have one)."""
         raise TypeError(f"{type(self).__name__} moves no object")
 
-    def command(self, seq: int):
+    def on_start(self) -> Status:
+        """Sends the command; FAILURE at once, saying so, when the object is gone (a belt
+        took it away, or someone else did)."""
         self.contact_seq = None
+        try:
+            self.playing = self.clip()
+            return super().on_start()
+        except ObjectGone as gone:
+            self.failure_reason = str(gone)
+            return Status.FAILURE
+
+    def command(self, seq: int):
         return human.AnimateCommand(
-            seq, self.clip(), target=self.target_point(), hold=self.hold(), grasp=self.grasp()
+            seq, self.playing, target=self.target_point(), hold=self.hold(), grasp=self.grasp()
         )
 
     def grasp(self) -> human.Grasp | None:
@@ -179,7 +193,8 @@ class TargetedAction(PersonCommandNode):
         if status is not Status.SUCCESS or not self.contact_event:
             return status
         if self.contact_seq is None:
-            return Status.FAILURE  # the clip ended without reaching its contact moment
+            self.failure_reason = f"the {self.playing} clip ended before its '{self.contact_event}'"
+            return Status.FAILURE
         return self._contact_result()
 
     def _contact_event_fired(self) -> bool:
@@ -191,16 +206,17 @@ class TargetedAction(PersonCommandNode):
         )
 
     def _contact_result(self) -> Status:
+        """The objects' answer to the command at the contact moment (why, when it failed)."""
         status = self.agent.workpieces
-        outcome = status.results_of(self.agent.issuer).outcome_of(self.contact_seq)
-        if outcome is None:
+        result = status.results_of(self.agent.issuer).result_of(self.contact_seq)
+        if result is None or result.outcome == RUNNING:
             return Status.RUNNING
-        return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
+        return Status.SUCCESS if result.outcome == SUCCEEDED else self.failed(result)
 
     def taken(self) -> wp.ObjectStatus:
         obj = self.agent.workpieces.object(self.get_input("object_id"))
         if obj is None:
-            raise self.error(f"no object {self.get_input('object_id')}", port="object_id")
+            raise ObjectGone(f"no object {self.get_input('object_id')} (gone or never made)")
         return obj
 
     def object_point(self) -> tuple[float, float, float]:
