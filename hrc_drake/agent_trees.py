@@ -192,7 +192,7 @@ def _value_error(node, port: str, known: Known, problem: str) -> BTError | Probl
         return (origin.section, origin.key), f"{problem}: {reader}"
     if origin.node is not None and not known.via:
         return origin.node.error(f"{problem}: {reader}", port=origin.key)
-    return node.error(f"{problem} ({known})", port=port)
+    return node.error(f"{problem} ({known})" if known.via else problem, port=port)
 
 
 def _once(errors: list) -> list:

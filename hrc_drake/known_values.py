@@ -15,11 +15,13 @@ robot's reach of a target, a person's place to stand), and names where each came
 import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from hrc_drake.bt import Tree
 from hrc_drake.bt.blackboard import UNSET, Entry
 from hrc_drake.bt.node import Literal, TreeNode
+from hrc_drake.tree_types import Pose
 
 MAX_KNOWN = 64
 """Known values kept per entry: a tree offsetting a pose in a loop has ever more of them."""
@@ -29,30 +31,37 @@ MAX_KNOWN = 64
 class Origin:
     """Where a known value was written: a scenario entry (`section` is `locations`,
     `areas` or `parameters`, `key` its name), or a literal of the tree (`node` the node or
-    SubTree whose port `key` gives it)."""
+    SubTree whose port `key` gives it, `value` what it gives)."""
 
     key: str
     section: str = ""
     node: TreeNode | None = field(default=None, compare=False)
+    value: Any = field(default=None, compare=False)
 
     def __str__(self) -> str:
+        """`parameter 'speed'`, `location 'tray'` (named by a literal too), `'0;0;0.1'`."""
         if self.section:
             return f"{self.section[:-1]} '{self.key}'"
-        return f"{self.key}={self.node.config.attributes.get(self.key, '')}"
+        if isinstance(self.value, Pose) and self.value.name:
+            return f"location '{self.value.name}'"
+        return f"'{self.node.config.attributes.get(self.key, self.value)}'"
 
 
 @dataclass(frozen=True)
 class Known:
     """A value a port can read, where it was first written, and the nodes that made it
-    from that (`via`: 'OffsetPose at robot.xml:12', ...)."""
+    from that (`via`: 'OffsetPose (robot.xml:12)', ...)."""
 
     value: Any
     origin: Origin
     via: tuple[str, ...] = ()
 
     def __str__(self) -> str:
-        made = "".join(f", then {step}" for step in self.via)
-        return f"{self.value} (from {self.origin}{made})"
+        """Where it comes from: `location 'tray'`, `the value OffsetPose (robot.xml:12)
+        made from location 'tray'`."""
+        if not self.via:
+            return str(self.origin)
+        return f"the value {' then '.join(self.via)} made from {self.origin}"
 
 
 def known_inputs(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[TreeNode, str, list]]:
@@ -96,7 +105,7 @@ class _KnownValues:
         if not all(inputs.values()):
             return []
         names = list(inputs)
-        step = f"{node.registration_id} at {node.config.file}:{node.config.line}"
+        step = f"{node.registration_id} ({Path(node.config.file).name}:{node.config.line})"
         found = []
         for combination in itertools.islice(itertools.product(*inputs.values()), MAX_KNOWN):
             given = dict(zip(names, combination, strict=True))
@@ -111,7 +120,7 @@ class _KnownValues:
 
     def input(self, binding, node: TreeNode, port: str) -> list[Known]:
         if isinstance(binding, Literal):
-            return [Known(binding.value, Origin(port, node=node))]
+            return [Known(binding.value, Origin(port, node=node, value=binding.value))]
         return self.of(binding.entry)
 
 
@@ -126,7 +135,7 @@ def _initial_values(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[int,
             if index == 0:
                 origin = Origin(key, section=sections.get(key, "parameters"))
             else:
-                origin = Origin(key, node=subtree_nodes[instance.path])
+                origin = Origin(key, node=subtree_nodes[instance.path], value=entry.value)
             yield id(entry), Known(entry.value, origin)
 
 

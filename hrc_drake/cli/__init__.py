@@ -10,11 +10,9 @@ import argparse
 import sys
 
 from hrc_drake.cli import inspection, simulate
-from hrc_drake.cli.arguments import PROG
+from hrc_drake.cli.arguments import EXIT_USAGE, PROG
 from hrc_drake.drake_logging import quiet_drake_logging
 from hrc_drake.yaml_check import InputError
-
-EXIT_USAGE = 2
 
 
 class _Parser(argparse.ArgumentParser):

@@ -57,6 +57,14 @@ def robot_keep_out(base_xy, reach: float) -> Polygon:
     return Point(*base_xy).buffer(ROBOT_KEEP_OUT * reach)
 
 
+def cell_navigation(plant, inspector, robot_xy, robot_reach: float) -> "NavigationMap":
+    """The navigation map of a station: the plant's static geometry, walks kept out of the
+    robot's inner working space (what the person walks on, and `validate` checks)."""
+    return NavigationMap(
+        cell_obstacles(plant, inspector), keep_out=[robot_keep_out(robot_xy, robot_reach)]
+    )
+
+
 @dataclass(frozen=True)
 class Obstacle:
     """A piece of the cell's geometry: its floor outline and the heights it spans."""

@@ -25,12 +25,16 @@ class RobotCommandNode(CommandNode):
     cancel_command = robot.Stop
 
     def tool_target(self, port: str) -> tuple[RigidTransform, bool]:
-        """The target pose; a pose without orientation points the tool down and leaves
-        the rotation about the tool axis free."""
-        pose: Pose = self.agent.resolve_pose(self.get_input(port))
-        if pose.quaternion is not None:
-            return pose.to_transform(), False
-        return RigidTransform(TOOL_DOWN, pose.position), True
+        """The target pose, and whether the rotation about the tool axis is free."""
+        return tool_pose(self.agent.resolve_pose(self.get_input(port)))
+
+
+def tool_pose(pose: Pose) -> tuple[RigidTransform, bool]:
+    """The tool's target for a (resolved) pose, and whether the rotation about the tool axis
+    is left free: a pose without orientation points the tool down."""
+    if pose.quaternion is not None:
+        return pose.to_transform(), False
+    return RigidTransform(TOOL_DOWN, pose.position), True
 
 
 class RobotMove(RobotCommandNode):

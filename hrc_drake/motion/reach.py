@@ -1,0 +1,98 @@
+"""Whether the robot reaches a tool target, asked before a run, and if not, why, in words a
+person can act on: how far beyond the arm's reach at that height it lies, or what the arm or
+tool would touch there.
+
+The answer is the planner's own (hrc_drake.motion.ik with the run's planning budget and
+random starts), for the robot as it starts the run: a target it reports unreachable fails
+the same way in the run's first move to it.
+"""
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.tree import BodyIndex
+
+from hrc_drake.motion.planner import MotionPlanner
+
+SCAN_STEP = 0.1
+RADIUS_TOLERANCE = 0.01
+"""m: the reachable distance from the base axis is looked for in steps of SCAN_STEP towards
+the axis, then to within RADIUS_TOLERANCE."""
+
+
+def reach_problem(
+    planner: MotionPlanner, pose: RigidTransform, free_rotation: bool, linear: bool = False
+) -> str:
+    """Why the robot cannot reach `pose` ("" when it can): with `free_rotation` only the
+    tool axis must point along the pose's z; at the end of a `linear` move the robot keeps
+    no clearance to the cell (it must only not touch it)."""
+    ik, q_start = planner.ik, planner.station.initial_positions
+    if ik.reaches(pose, q_start, free_rotation, *_budget(planner), clearance=not linear):
+        return ""
+    held = "with the tool pointing down" if free_rotation else "with the tool turned as given"
+    q = ik.kinematic_solution(pose, q_start, free_rotation, *_budget(planner))
+    if q is not None:
+        return f"unreachable {held}: the {_touched(planner, q)} there"
+    return f"out of reach {held}: {_beyond(planner, pose, free_rotation)}"
+
+
+def _budget(planner: MotionPlanner) -> tuple:
+    """The random starts and their number, as every plan of the run draws them."""
+    return np.random.default_rng(planner.seed), planner.options.ik_attempts
+
+
+def _touched(planner: MotionPlanner, q: np.ndarray) -> str:
+    """What of the robot at `q` comes closer to what of the cell than the planner's
+    clearance: `vacuum_gripper would touch side_table`, ..."""
+    model, clearance = planner.model, planner.options.clearance
+    found = model.checker.CalcRobotClearance(q, clearance)
+    pairs = sorted(
+        {
+            f"{_name(model, a, robot=True)} would touch {_name(model, b, robot=False)}"
+            for a, b, distance in zip(
+                found.robot_indices(), found.other_indices(), found.distances(), strict=True
+            )
+            if distance < clearance
+        }
+    )
+    return ", the ".join(pairs) or "arm would touch the cell"
+
+
+def _name(model, index, robot: bool) -> str:
+    """A robot part by its body's name (link_3, vacuum_gripper), a part of the cell by its
+    model's name (side_table)."""
+    body = model.plant.get_body(BodyIndex(int(index)))
+    if robot:
+        return body.name()
+    instance = model.plant.GetModelInstanceName(body.model_instance())
+    return instance if body.name() == "body" else f"{instance} ({body.name()})"
+
+
+def _beyond(planner: MotionPlanner, pose: RigidTransform, free_rotation: bool) -> str:
+    """How far the target lies from the robot's base axis, and how far the arm reaches at
+    its height (the tool held the same way): searched along the line towards the axis."""
+    axis = planner.station.base_pose.translation()
+    target = pose.translation()
+    offset = target[:2] - axis[:2]
+    distance = float(np.linalg.norm(offset))
+    height = f"at z = {target[2]:.2f} m"
+
+    def reached(radius: float) -> bool:
+        xy = axis[:2] + offset * (radius / distance)
+        moved = RigidTransform(pose.rotation(), [*xy, target[2]])
+        q_start = planner.station.initial_positions
+        return (
+            planner.ik.kinematic_solution(moved, q_start, free_rotation, *_budget(planner))
+            is not None
+        )
+
+    outer = next((r for r in np.arange(distance, 0.0, -SCAN_STEP)[1:] if reached(r)), None)
+    if distance == 0 or outer is None:
+        return f"nothing {height} is within its reach"
+    near, far = outer, outer + SCAN_STEP
+    while far - near > RADIUS_TOLERANCE:
+        middle = (near + far) / 2
+        near, far = (middle, far) if reached(middle) else (near, middle)
+    return (
+        f"{distance:.2f} m from its base axis {height}, where the {planner.model.variant.name} "
+        f"reaches {near:.2f} m (move it {distance - near:.2f} m closer)"
+    )

@@ -1,0 +1,189 @@
+"""The cell as it stands when the run starts, checked without simulating: objects that
+start inside the cell's geometry, the robot or each other, and places the person starts at
+or stands at that are not clear of the cell.
+
+`CellScene` builds the station's models once (robot at its initial configuration, the
+static cell) with every initial object as a body of its own, so Drake's proximity queries
+say what overlaps what, and the person's navigation map (hrc_drake.human.navigation) says
+where a person can stand.
+"""
+
+import dataclasses
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, CoulombFriction
+from pydrake.multibody.tree import SpatialInertia
+from pydrake.systems.framework import DiagramBuilder
+
+from hrc_drake.human.navigation import FLOOR_LEVEL, STAND_TOLERANCE, cell_navigation
+from hrc_drake.iisy import VARIANTS
+from hrc_drake.scenario.findings import Finding, Locator
+from hrc_drake.scenario.schema import Scenario
+from hrc_drake.station import add_station_models, model_parser
+from hrc_drake.workpieces.config import WorkpiecesConfig
+from hrc_drake.workpieces.geometry import Solid
+from hrc_drake.workpieces.layouts import grid_placements
+
+OVERLAP_TOLERANCE = 0.002
+"""m: objects may start this far inside what they rest on or touch (they settle)."""
+HEADINGS = 8
+"""A place to stand without a direction to face is checked facing this many ways."""
+
+
+@dataclass(frozen=True)
+class InitialObject:
+    """An object present at the start, where the scenario gives it (`names`: its field)."""
+
+    names: tuple
+    label: str
+    solid: Solid
+    pose: RigidTransform
+
+
+def initial_objects(config: WorkpiecesConfig, skip_types=()) -> list[InitialObject]:
+    """The objects of `objects` and every place of every grid (all occupied: any may be)."""
+    found = []
+    for i, placed in enumerate(config.objects):
+        if placed.type not in skip_types:
+            names = ("workpieces", "objects", i, "pose")
+            solid = Solid.of(config.types[placed.type])
+            found.append(
+                InitialObject(names, placed.type, solid, placed.pose.GetDeterministicValue())
+            )
+    for i, grid in enumerate(config.grids):
+        if grid.type in skip_types:
+            continue
+        kind = config.types[grid.type]
+        full = dataclasses.replace(grid, occupancy=1.0, attribute_counts={})
+        for k, place in enumerate(grid_placements(full, kind, np.random.default_rng(0))):
+            names = ("workpieces", "grids", i, "origin")
+            found.append(
+                InitialObject(names, f"{grid.type} {k + 1} of the grid", Solid.of(kind), place.pose)
+            )
+    return found
+
+
+class CellScene:
+    """The station's models, the initial objects and the person's navigation map."""
+
+    def __init__(self, scenario: Scenario, skip_types=()):
+        self.scenario = scenario
+        builder = DiagramBuilder()
+        self.plant, self.scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+        arm, _ = add_station_models(self.plant, model_parser(self.plant), scenario.station)
+        self.objects = initial_objects(scenario.workpieces, skip_types)
+        bodies = [self._add_object(i, obj) for i, obj in enumerate(self.objects)]
+        self.plant.Finalize()
+        self.diagram = builder.Build()
+        self.context = self.diagram.CreateDefaultContext()
+        plant_context = self.plant.GetMyMutableContextFromRoot(self.context)
+        self.plant.SetPositions(plant_context, arm, scenario.station.initial_positions)
+        for body, obj in zip(bodies, self.objects, strict=True):
+            self.plant.SetFreeBodyPose(plant_context, body, obj.pose)
+        robot_xy = scenario.station.base_pose.translation()[:2]
+        self.navigation = cell_navigation(
+            self.plant,
+            self.scene_graph.model_inspector(),
+            robot_xy,
+            VARIANTS[scenario.robot.variant].reach,
+        )
+
+    def _add_object(self, index: int, obj: InitialObject):
+        instance = self.plant.AddModelInstance(f"initial_object_{index}")
+        body = self.plant.AddRigidBody("object", instance, SpatialInertia.Zero())
+        self.plant.RegisterCollisionGeometry(
+            body, RigidTransform(), obj.solid.drake_shape(), "object", CoulombFriction()
+        )
+        return body
+
+    def overlaps(self) -> Iterator[tuple[int, str, float, np.ndarray]]:
+        """(object index, what it overlaps, depth, normal) of every initial object deeper
+        than OVERLAP_TOLERANCE in the cell, the robot or another object (each pair once)."""
+        query = self.scene_graph.get_query_output_port().Eval(
+            self.scene_graph.GetMyContextFromRoot(self.context)
+        )
+        inspector = query.inspector()
+        for pair in query.ComputePointPairPenetration():
+            if pair.depth <= OVERLAP_TOLERANCE:
+                continue
+            a, b = (self._owner(inspector, g) for g in (pair.id_A, pair.id_B))
+            if isinstance(a, int):
+                yield a, self._named(b), pair.depth, pair.nhat_BA_W
+            elif isinstance(b, int):
+                yield b, self._named(a), pair.depth, -pair.nhat_BA_W
+
+    def _owner(self, inspector, geometry) -> int | str:
+        """An initial object's index, or the name of the model the geometry belongs to."""
+        body = self.plant.GetBodyFromFrameId(inspector.GetFrameId(geometry))
+        name = self.plant.GetModelInstanceName(body.model_instance())
+        prefix = "initial_object_"
+        return int(name.removeprefix(prefix)) if name.startswith(prefix) else name
+
+    def _named(self, owner: int | str) -> str:
+        if isinstance(owner, str):
+            return owner
+        obj = self.objects[owner]
+        return f"the {obj.label} at {_xyz(obj.pose.translation())}"
+
+
+def cell_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterator[Finding]:
+    yield from _overlap_findings(scene, at)
+    yield from _start_findings(scenario, scene, at)
+    for name in scenario.locations:
+        pose = scenario.location(name)
+        x, y, z = pose.translation()
+        if abs(z) <= FLOOR_LEVEL:
+            problem = stand_problem(scene, x, y, _yaw(pose))
+            if problem:
+                yield at.field(("locations", name), f"{problem}: move it", (x, y, z))
+
+
+def _overlap_findings(scene: CellScene, at: Locator) -> Iterator[Finding]:
+    for index, other, depth, normal in scene.overlaps():
+        obj = scene.objects[index]
+        centre = obj.pose.translation()
+        hint = ""
+        if normal[2] > 0.9:  # pushed up out of what it lies in: it was meant to rest on it
+            hint = (
+                f" (to rest on it, raise its centre {depth:.3f} m to z = {centre[2] + depth:.3f})"
+            )
+        yield at.field(
+            obj.names,
+            f"the {obj.label} at {_xyz(centre)} starts {depth:.3f} m inside {other}{hint}",
+            centre,
+        )
+
+
+def _start_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterator[Finding]:
+    if scenario.human is None:
+        return
+    x, y, yaw_deg = scenario.human.start
+    problem = stand_problem(scene, x, y, math.radians(yaw_deg))
+    if problem:
+        yield at.field(("human", "start"), f"{problem}: start them clear of it", (x, y, 0.0))
+
+
+def stand_problem(scene: CellScene, x: float, y: float, yaw: float | None) -> str:
+    """Why a person cannot stand at (x, y) facing `yaw` (any way, if None): "" when they
+    can."""
+    headings = [yaw] if yaw is not None else np.arange(HEADINGS) * 2 * math.pi / HEADINGS
+    overlaps = [scene.navigation.standing_overlap(x, y, heading) for heading in headings]
+    worst = max((o for o in overlaps if o is not None), default=None)
+    if worst is None or worst[0] <= STAND_TOLERANCE:
+        return ""
+    depth, what = worst
+    facing = f"facing {math.degrees(yaw):.0f}°" if yaw is not None else "turning on the spot"
+    return f"a person standing at ({x:.2f}, {y:.2f}) {facing} reaches {depth:.2f} m into {what}"
+
+
+def _yaw(pose: RigidTransform) -> float:
+    R = pose.rotation().matrix()
+    return math.atan2(R[1, 0], R[0, 0])
+
+
+def _xyz(p) -> str:
+    return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"

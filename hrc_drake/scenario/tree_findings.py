@@ -1,0 +1,149 @@
+"""What the scenario's trees will do with the values known before a run
+(hrc_drake.known_values), checked the way the running nodes use them: every robot target
+for reach (the planner's own inverse kinematics, the tool held as the node holds it), every
+animation against the person's clips, every place the person walks to for room to stand,
+every named configuration, object type and area against the scenario.
+"""
+
+import math
+from collections.abc import Iterator
+
+from hrc_drake.agent_trees import sections
+from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
+from hrc_drake.known_values import Known, known_inputs
+from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.motion.reach import reach_problem
+from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
+from hrc_drake.nodes.person import ActorAnimation, ActorMovement
+from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.scenario.cell_findings import CellScene, stand_problem
+from hrc_drake.scenario.findings import Finding, Locator
+from hrc_drake.scenario.schema import Scenario
+from hrc_drake.seeding import stream
+from hrc_drake.tree_types import Pose
+from hrc_drake.wiring import ROBOT_MOTION
+from hrc_drake.yaml_check import unknown
+
+
+def tree_findings(scenario: Scenario, scene: CellScene, at: Locator) -> list[Finding]:
+    places = scenario.places()
+    found: list[Finding] = []
+    reads = []
+    for agent in scenario.trees:
+        tree, handle = scenario.agent_tree(agent)
+        reads += [(handle, *read) for read in known_inputs(tree, sections(places))]
+    checks = _Checks(scenario, scene, at)
+    for handle, node, port, known in reads:
+        for value in known:
+            found += checks.of(handle, node, port, value)
+    return list(dict.fromkeys(found))
+
+
+class _Checks:
+    """The checks of one known value read by one node's port."""
+
+    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator):
+        self.scenario = scenario
+        self.scene = scene
+        self.at = at
+        human = scenario.human
+        self.clips = clip_catalog(human.clips if human is not None else ())
+        self._planner = None
+
+    @property
+    def planner(self) -> MotionPlanner:
+        if self._planner is None:
+            self._planner = MotionPlanner(
+                self.scenario.station,
+                self.scenario.robot.motion,
+                stream(self.scenario.seed, ROBOT_MOTION),
+            )
+        return self._planner
+
+    def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
+        value = known.value
+        if isinstance(node, RobotMove | RobotMoveLinear) and port == "target":
+            yield from self._reach(agent, node, known)
+        elif isinstance(node, ActorMovement) and port == "target":
+            yield from self._standing(agent, node, known)
+        elif isinstance(node, ActorMovement) and port == "animation_name":
+            yield from self._walk_clip(node, known)
+        elif isinstance(node, ActorAnimation) and port == "animation_name":
+            if value not in self.clips:
+                yield self._at(node, port, known, no_animation(value, self.clips))
+        elif isinstance(node, RobotMoveJoints) and port == "configuration":
+            names = self.scenario.station.configuration_names
+            if value not in names:
+                yield self._at(node, port, known, unknown("configuration", value, names))
+        elif isinstance(node, SpawnObject) and port == "type":
+            yield from self._object_type(node, port, known, value)
+        elif isinstance(node, SpawnObject) and port == "area" and value:
+            if value not in self.scenario.areas:
+                yield self._at(node, port, known, unknown("area", value, self.scenario.areas))
+        elif isinstance(node, NextObject | CountObjects) and port == "filter":
+            wanted = parse_filter(value).get("type")
+            if wanted is not None:
+                yield from self._object_type(node, port, known, wanted)
+
+    def _at(self, node, port: str, known: Known, message: str, point=None) -> Finding:
+        """At the scenario's field when the value is its (a parameter), else at the node."""
+        origin = known.origin
+        if origin.section and not known.via:
+            config = node.config
+            reader = f"{config.registration_id} '{node.path}' ({config.file}:{config.line})"
+            return self.at.field((origin.section, origin.key), f"{message}: {reader}", point)
+        return self.at.node(node, port, message, point)
+
+    def _object_type(self, node, port: str, known: Known, name: str) -> Iterator[Finding]:
+        types = self.scenario.workpieces.types
+        if name not in types:
+            yield self._at(node, port, known, unknown("object type", name, types))
+
+    def _walk_clip(self, node, known: Known) -> Iterator[Finding]:
+        name = known.value
+        if name not in self.clips:
+            yield self._at(node, "animation_name", known, no_animation(name, self.clips))
+        elif not walks(self.clips[name]):
+            walking = ", ".join(sorted(n for n, clip in self.clips.items() if walks(clip)))
+            message = f"'{name}' is not a walking animation (the person walks with: {walking})"
+            yield self._at(node, "animation_name", known, message)
+
+    def _reach(self, agent, node, known: Known) -> Iterator[Finding]:
+        pose = _resolved(agent, known.value)
+        if pose is None:
+            return
+        target, free = tool_pose(pose)
+        linear = isinstance(node, RobotMoveLinear)
+        problem = reach_problem(self.planner, target, free, linear)
+        if problem:
+            message = f"{known} at {_xyz(target.translation())}: {problem}"
+            yield self.at.node(node, "target", message, target.translation())
+
+    def _standing(self, agent, node, known: Known) -> Iterator[Finding]:
+        """A place to walk to: those that are floor-level locations are checked as
+        locations (cell_findings); the others here, where the tree makes them."""
+        pose = _resolved(agent, known.value)
+        if pose is None or (known.value.name and abs(pose.position[2]) <= 1e-6):
+            return
+        x, y, _ = pose.position
+        yaw = None
+        if pose.quaternion is not None:
+            R = pose.to_transform().rotation().matrix()
+            yaw = math.atan2(R[1, 0], R[0, 0])
+        problem = stand_problem(self.scene, x, y, yaw)
+        if problem:
+            message = f"{known}: {problem}"
+            yield self.at.node(node, "target", message, (x, y, 0.0))
+
+
+def _resolved(agent, value) -> Pose | None:
+    """A Pose with its location name resolved (None: a name the scenario lacks, which
+    loading reports)."""
+    try:
+        return agent.resolve_pose(value)
+    except KeyError:
+        return None
+
+
+def _xyz(p) -> str:
+    return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"
