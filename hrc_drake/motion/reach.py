@@ -42,19 +42,23 @@ def _budget(planner: MotionPlanner) -> tuple:
 
 def _touched(planner: MotionPlanner, q: np.ndarray) -> str:
     """What of the robot at `q` comes closer to what of the cell than the planner's
-    clearance: `vacuum_gripper would touch side_table`, ..."""
+    clearance: `link_5 and vacuum_gripper would touch side_table`, ..."""
     model, clearance = planner.model, planner.options.clearance
     found = model.checker.CalcRobotClearance(q, clearance)
-    pairs = sorted(
-        {
-            f"{_name(model, a, robot=True)} would touch {_name(model, b, robot=False)}"
-            for a, b, distance in zip(
-                found.robot_indices(), found.other_indices(), found.distances(), strict=True
-            )
-            if distance < clearance
-        }
-    )
-    return ", the ".join(pairs) or "arm would touch the cell"
+    parts: dict[str, set[str]] = {}
+    for a, b, distance in zip(
+        found.robot_indices(), found.other_indices(), found.distances(), strict=True
+    ):
+        if distance < clearance:
+            parts.setdefault(_name(model, b, robot=False), set()).add(_name(model, a, robot=True))
+    touching = [
+        f"{_and(sorted(robot))} would touch {cell}" for cell, robot in sorted(parts.items())
+    ]
+    return ", the ".join(touching) or "arm would touch the cell"
+
+
+def _and(names: list[str]) -> str:
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
 
 
 def _name(model, index, robot: bool) -> str:

@@ -21,7 +21,7 @@ from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.human.navigation import FLOOR_LEVEL, STAND_TOLERANCE, cell_navigation
 from hrc_drake.iisy import VARIANTS
-from hrc_drake.scenario.findings import Finding, Locator
+from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.station import add_station_models, model_parser
 from hrc_drake.workpieces.config import WorkpiecesConfig

@@ -1,81 +1,32 @@
 """Everything `hrc-drake validate` can know about a loaded scenario before anything is
 simulated, beyond what loading it refuses (hrc_drake.scenario.checks): magnitudes that
-cannot be meant (here), objects that start inside the cell or each other and places the
-person cannot stand (hrc_drake.scenario.cell_findings), and what the trees will do with the
-values known before a run: robot targets out of reach, animations the person lacks, places
-to stand, configurations, object types and areas that do not exist
+cannot be meant (hrc_drake.scenario.magnitudes), objects that start inside the cell or each
+other and places the person cannot stand (hrc_drake.scenario.cell_findings), and what the
+trees will do with the values known before a run: robot targets out of reach, animations
+the person lacks, places to stand, configurations, object types and areas that do not exist
 (hrc_drake.scenario.tree_findings).
 
-Each Finding names the file, the line and the field (or the tree's node and port), says
-what was probably meant where it can, and carries the point in the cell it concerns, if
-any, so a view of the cell can mark it.
+Each Finding (hrc_drake.scenario.located) names the file, the line and the field (or the
+tree's node and port), says what was probably meant where it can, and carries the point in
+the cell it concerns, if any, so a view of the cell can mark it.
 """
 
-import math
-from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from collections.abc import Iterable
 from pathlib import Path
 
-import numpy as np
-from pydrake.common.schema import Rotation, Transform
-
-from hrc_drake.bt import BTError, TreeNode
+from hrc_drake.scenario.cell_findings import CellScene, cell_findings
+from hrc_drake.scenario.located import Finding, Locator
+from hrc_drake.scenario.magnitudes import magnitude_findings
 from hrc_drake.scenario.schema import Scenario
-from hrc_drake.yaml_check import compose, field_path, node_at, read_text, schema_fields
+from hrc_drake.scenario.tree_findings import tree_findings
 
-Point = tuple[float, float, float]
-
-
-@dataclass(frozen=True)
-class Finding:
-    """One mistake: `file:line: where: message`, and the point in the cell it concerns."""
-
-    file: str
-    line: int | None
-    where: str
-    """A scenario field (`workpieces.types.part.size`) or a tree's `tree 'T', node 'N',
-    port 'P'`."""
-    message: str
-    point: Point | None = None
-
-    def __str__(self) -> str:
-        line = f":{self.line}" if self.line else ""
-        where = f" {self.where}:" if self.where else ""
-        return f"{self.file}{line}:{where} {self.message}"
-
-
-class Locator:
-    """Makes Findings at the scenario's fields (their lines in its file) or at tree nodes."""
-
-    def __init__(self, path: Path):
-        self.path = path
-        self.root = compose(path, read_text(path, "scenario file"))
-
-    def field(self, names: tuple, message: str, point: Point | None = None) -> Finding:
-        node = node_at(self.root, names)
-        line = node.start_mark.line + 1 if node is not None else None
-        return Finding(str(self.path), line, field_path(names), message, _point(point))
-
-    @staticmethod
-    def node(node: TreeNode, port: str | None, message: str, point=None) -> Finding:
-        return Locator.error(node.error(message, port=port), point)
-
-    @staticmethod
-    def error(error: BTError, point=None) -> Finding:
-        return Finding(error.file or "", error.line, error.place, error.problem, _point(point))
-
-
-def _point(point) -> Point | None:
-    return None if point is None else tuple(float(v) for v in point)
+__all__ = ["Finding", "findings"]
 
 
 def findings(scenario: Scenario, path: Path) -> list[Finding]:
     """Every finding of a scenario that loaded (`load_scenario(path)`), in the order of
     the checks: magnitudes, the cell, then the trees (the robot's reach last: it takes the
     longest)."""
-    from hrc_drake.scenario.cell_findings import CellScene, cell_findings
-    from hrc_drake.scenario.tree_findings import tree_findings
-
     at = Locator(path)
     found = list(magnitude_findings(scenario, at))
     implausible = {f.where for f in found}
@@ -88,130 +39,3 @@ def findings(scenario: Scenario, path: Path) -> list[Finding]:
 def _types_named(fields: Iterable[str]) -> set[str]:
     """The object types that `workpieces.types.<name>...` fields name."""
     return {f.split(".")[2] for f in fields if f.startswith("workpieces.types.")}
-
-
-# --- magnitudes ---------------------------------------------------------------------------
-
-LARGEST_OBJECT = 2.0
-"""m: no side of an object the robot or person handles is longer (a euro pallet is 1.2 m)."""
-HEAVIEST_LIFT = 25.0
-"""kg: ISO 11228-1's reference mass for manual lifting by the adult working population
-(docs/human-body.md); the iisy's largest payload is 15 kg."""
-FARTHEST = 50.0
-"""m: no place in a workcell is farther from its origin."""
-FASTEST_BELT = 2.0
-"""m/s: faster than any conveyor a person works beside."""
-RADIAN_TOLERANCE = 0.005
-"""An angle in degrees within this of a multiple of pi/4 radians (0.785, 1.571, 3.142, ...)
-looks like radians."""
-
-
-def magnitude_findings(scenario: Scenario, at: Locator) -> Iterator[Finding]:
-    """Values no cell can mean, with what was probably meant: sizes and masses in
-    millimetres and grams, places in millimetres, angles in radians where degrees are
-    asked for."""
-    for name, kind in scenario.workpieces.types.items():
-        where = ("workpieces", "types", name)
-        if max(kind.size) > LARGEST_OBJECT:
-            metres = [v / 1000 for v in kind.size]
-            yield at.field(
-                (*where, "size"),
-                f"{_listed(kind.size)} m is larger than a workcell (sizes are in metres: "
-                f"{_listed(metres)} for millimetres?)",
-            )
-        if kind.mass > HEAVIEST_LIFT:
-            yield at.field(
-                (*where, "mass"),
-                f"{kind.mass:g} kg is more than a person may lift ({HEAVIEST_LIFT:g} kg, "
-                f"ISO 11228-1) or an iisy carry (masses are in kilograms: {kind.mass / 1000:g} "
-                "for grams?)",
-            )
-    for name, belt in scenario.workpieces.conveyors.items():
-        if belt.speed > FASTEST_BELT:
-            yield at.field(
-                ("workpieces", "conveyors", name, "speed"),
-                f"{belt.speed:g} m/s is faster than any belt beside a person (in m/s: "
-                f"{belt.speed / 1000:g} for mm/s?)",
-            )
-    for names, transform in _transforms(scenario, ()):
-        yield from _transform_findings(names, transform, at)
-    yield from _human_findings(scenario, at)
-    yield from _configuration_findings(scenario, at)
-
-
-def _human_findings(scenario: Scenario, at: Locator) -> Iterator[Finding]:
-    if scenario.human is None:
-        return
-    x, y, yaw = scenario.human.start
-    if max(abs(x), abs(y)) > FARTHEST:
-        yield at.field(("human", "start"), _far(np.array([x, y])))
-    if _looks_like_radians(yaw):
-        yield at.field(("human", "start", 2), _radians(yaw))
-
-
-def _configuration_findings(scenario: Scenario, at: Locator) -> Iterator[Finding]:
-    """Joint angles are degrees; a configuration whose angles all lie within a turn in
-    radians, some of them fractions, was written in radians."""
-    for name, q in scenario.robot.configurations_deg.items():
-        small = all(abs(v) <= 2 * math.pi + RADIAN_TOLERANCE for v in q)
-        if small and any(v != round(v) for v in q):
-            degrees = _listed(np.round(np.degrees(q)).tolist())
-            yield at.field(
-                ("robot", "configurations_deg", name),
-                f"{_listed(q)} looks like radians; the angles are degrees: {degrees}?",
-            )
-
-
-def _transform_findings(names: tuple, transform: Transform, at: Locator) -> Iterator[Finding]:
-    translation = np.asarray(transform.translation, dtype=float)
-    if translation.size and np.abs(translation).max() > FARTHEST:
-        yield at.field((*names, "translation"), _far(translation))
-    rotation = transform.rotation.value
-    if isinstance(rotation, Rotation.Rpy):
-        for i, value in enumerate(rotation.deg):
-            if _looks_like_radians(value):
-                yield at.field((*names, "rotation", "deg", i), _radians(value))
-    elif isinstance(rotation, Rotation.AngleAxis) and _looks_like_radians(rotation.angle_deg):
-        yield at.field((*names, "rotation", "angle_deg"), _radians(rotation.angle_deg))
-
-
-def _transforms(value, names: tuple) -> Iterator[tuple[tuple, Transform]]:
-    """Every fixed Transform in the scenario with its field names (locations, the robot's
-    base, the cell's welds, the objects' poses)."""
-    if isinstance(value, Transform):
-        if value.IsDeterministic():
-            yield names, value
-    elif isinstance(value, list | tuple):
-        for i, item in enumerate(value):
-            yield from _transforms(item, (*names, i))
-    elif isinstance(value, dict):
-        for key, item in value.items():
-            yield from _transforms(item, (*names, key))
-    elif (fields := schema_fields(type(value))) is not None:
-        for name in fields:
-            yield from _transforms(getattr(value, name), (*names, name))
-
-
-def _looks_like_radians(degrees: float) -> bool:
-    quarter_turns = degrees / (math.pi / 4)
-    near = abs(quarter_turns - round(quarter_turns)) * math.pi / 4 < RADIAN_TOLERANCE
-    return near and 0 < abs(degrees) <= 2 * math.pi + RADIAN_TOLERANCE
-
-
-def _radians(value: float) -> str:
-    return (
-        f"{value:g} looks like radians; the angle is in degrees: "
-        f"{math.degrees(value):.0f} for {value:g} rad?"
-    )
-
-
-def _far(translation: np.ndarray) -> str:
-    metres = _listed((translation / 1000).round(4).tolist())
-    return (
-        f"{_listed(translation.tolist())} lies {np.abs(translation).max():g} m from the "
-        f"origin (places are in metres: {metres} for millimetres?)"
-    )
-
-
-def _listed(values) -> str:
-    return "[" + ", ".join(f"{v:g}" for v in values) + "]"

@@ -17,7 +17,7 @@ from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse
 from hrc_drake.nodes.person import ActorAnimation, ActorMovement
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem
-from hrc_drake.scenario.findings import Finding, Locator
+from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.tree_types import Pose
@@ -36,7 +36,10 @@ def tree_findings(scenario: Scenario, scene: CellScene, at: Locator) -> list[Fin
     for handle, node, port, known in reads:
         for value in known:
             found += checks.of(handle, node, port, value)
-    return list(dict.fromkeys(found))
+    once: dict[tuple, Finding] = {}  # a SubTree used twice makes the same mistake twice
+    for finding in found:
+        once.setdefault((finding.file, finding.line, finding.message), finding)
+    return list(once.values())
 
 
 class _Checks:
