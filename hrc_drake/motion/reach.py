@@ -31,8 +31,19 @@ def reach_problem(
     held = "with the tool pointing down" if free_rotation else "with the tool turned as given"
     q = ik.kinematic_solution(pose, q_start, free_rotation, *_budget(planner))
     if q is not None:
-        return f"unreachable {held}: the {_touched(planner, q)} there"
-    return f"out of reach {held}: {_beyond(planner, pose, free_rotation)}"
+        return f"unreachable {held}: the {_touched(planner, q)} there{_upwards(pose)}"
+    return f"out of reach {held}: {_beyond(planner, pose, free_rotation)}{_upwards(pose)}"
+
+
+def _upwards(pose: RigidTransform) -> str:
+    """A hint for a target whose rotation turns the tool up: a location's rotation is the
+    tool's, and `!Rpy {deg: [0, 0, yaw]}` points it at the ceiling."""
+    if pose.rotation().col(2)[2] < 0.5:
+        return ""
+    return (
+        " (this rotation points the tool up: for the tool pointing down give "
+        "!Rpy {deg: [180, 0, 0]}, or no rotation)"
+    )
 
 
 def _budget(planner: MotionPlanner) -> tuple:

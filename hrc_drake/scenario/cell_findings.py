@@ -100,12 +100,27 @@ class CellScene:
         )
         return body
 
+    def inside_cell(self, point) -> tuple[str, float] | None:
+        """The part of the static cell a point lies in, and how deep (None: in none)."""
+        query = self._query()
+        deepest = None
+        for found in query.ComputeSignedDistanceToPoint(np.asarray(point, dtype=float)):
+            body = self.plant.GetBodyFromFrameId(query.inspector().GetFrameId(found.id_G))
+            if self.plant.IsAnchored(body) and (deepest is None or found.distance < deepest[1]):
+                deepest = (self.plant.GetModelInstanceName(body.model_instance()), found.distance)
+        if deepest is None or deepest[1] >= -OVERLAP_TOLERANCE:
+            return None
+        return deepest[0], -deepest[1]
+
+    def _query(self):
+        return self.scene_graph.get_query_output_port().Eval(
+            self.scene_graph.GetMyContextFromRoot(self.context)
+        )
+
     def overlaps(self) -> Iterator[tuple[int, str, float, np.ndarray]]:
         """(object index, what it overlaps, depth, normal) of every initial object deeper
         than OVERLAP_TOLERANCE in the cell, the robot or another object (each pair once)."""
-        query = self.scene_graph.get_query_output_port().Eval(
-            self.scene_graph.GetMyContextFromRoot(self.context)
-        )
+        query = self._query()
         inspector = query.inspector()
         for pair in query.ComputePointPairPenetration():
             if pair.depth <= OVERLAP_TOLERANCE:

@@ -46,6 +46,9 @@ def magnitude_findings(scenario: Scenario, at: Locator) -> Iterator[Finding]:
                 f"ISO 11228-1) or an iisy carry (masses are in kilograms: {kind.mass / 1000:g} "
                 "for grams?)",
             )
+    for names, point in _points(scenario):
+        if np.abs(point).max() > FARTHEST:
+            yield at.field(names, _far(point))
     for name, belt in scenario.workpieces.conveyors.items():
         if belt.speed > FASTEST_BELT:
             yield at.field(
@@ -112,6 +115,15 @@ def _transforms(value, names: tuple) -> Iterator[tuple[tuple, Transform]]:
             yield from _transforms(getattr(value, name), (*names, name))
 
 
+def _points(scenario: Scenario) -> Iterator[tuple[tuple, np.ndarray]]:
+    """The points given as lists: the areas' corners, the belts' ends."""
+    for name, corners in scenario.areas.items():
+        yield ("areas", name), np.asarray(corners, dtype=float)
+    for name, belt in scenario.workpieces.conveyors.items():
+        for end in ("start", "end"):
+            yield ("workpieces", "conveyors", name, end), np.asarray(getattr(belt, end), float)
+
+
 def _looks_like_radians(degrees: float) -> bool:
     quarter_turns = degrees / (math.pi / 4)
     near = abs(quarter_turns - round(quarter_turns)) * math.pi / 4 < RADIAN_TOLERANCE
@@ -125,11 +137,18 @@ def _radians(value: float) -> str:
     )
 
 
-def _far(translation: np.ndarray) -> str:
-    metres = _listed((translation / 1000).round(4).tolist())
+def _far(points: np.ndarray) -> str:
+    """A point far off (or an area's corners), and what it is in millimetres."""
+    farthest = np.abs(points).max()
+    if points.ndim > 1:
+        return (
+            f"its corners lie up to {farthest:g} m from the origin (places are in metres: "
+            "is the area in millimetres?)"
+        )
+    metres = _listed((points / 1000).round(4).tolist())
     return (
-        f"{_listed(translation.tolist())} lies {np.abs(translation).max():g} m from the "
-        f"origin (places are in metres: {metres} for millimetres?)"
+        f"{_listed(points.tolist())} lies {farthest:g} m from the origin (places are in "
+        f"metres: {metres} for millimetres?)"
     )
 
 

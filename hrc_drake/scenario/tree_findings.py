@@ -14,7 +14,7 @@ from hrc_drake.known_values import Known, known_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
-from hrc_drake.nodes.person import ActorAnimation, ActorMovement
+from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem
 from hrc_drake.scenario.located import Finding, Locator
@@ -80,6 +80,12 @@ class _Checks:
                 yield self._at(node, port, known, unknown("configuration", value, names))
         elif isinstance(node, SpawnObject) and port == "type":
             yield from self._object_type(node, port, known, value)
+            kind = self.scenario.workpieces.types.get(value)
+            if kind is not None and kind.capacity == 0:
+                message = f"object type '{value}' has capacity 0: none can ever be made"
+                yield self._at(node, port, known, message)
+        elif isinstance(node, SpawnObject | ActorPlace | ActorReach) and isinstance(value, Pose):
+            yield from self._inside(agent, node, port, known)
         elif isinstance(node, SpawnObject) and port == "area" and value:
             if value not in self.scenario.areas:
                 yield self._at(node, port, known, unknown("area", value, self.scenario.areas))
@@ -101,6 +107,17 @@ class _Checks:
         types = self.scenario.workpieces.types
         if name not in types:
             yield self._at(node, port, known, unknown("object type", name, types))
+
+    def _inside(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
+        """A point an object is made at, or a hand puts one down or reaches to, inside the
+        cell's geometry."""
+        pose = _resolved(agent, known.value)
+        inside = self.scene.inside_cell(pose.position) if pose is not None else None
+        if inside is not None:
+            what, depth = inside
+            where = _xyz(pose.position)
+            message = f"{known} at {where} lies {depth:.3f} m inside {what}"
+            yield self.at.node(node, port, message, pose.position)
 
     def _walk_clip(self, node, known: Known) -> Iterator[Finding]:
         name = known.value

@@ -7,6 +7,7 @@ one of them."""
 import pytest
 
 from tests.corpus.corpus_helpers import (
+    GOOD_TREE,
     Case,
     assert_one_line_error,
     expected_place,
@@ -85,6 +86,36 @@ CASES = {
         ),
         MOVE,
         found_in=T,
+    ),
+    "a rotation that turns the tool up": Case(
+        S,
+        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
+        "pick_spot: {translation: [-0.2, 0.42, 0.93], rotation: !Rpy {deg: [0, 0, 90]}}",
+        (
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.42, 1.03): ",
+            "with the tool turned as given",
+            "(this rotation points the tool up: for the tool pointing down give "
+            "!Rpy {deg: [180, 0, 0]}, or no rotation)",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "an object made inside the table": Case(
+        T,
+        MOVE,
+        f'{MOVE}<SpawnObject type="part" pose="0.3;0.6;0.88"/>',
+        ("port 'pose': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
+        "0.3;0.6;0.88",
+    ),
+    "an object type none of which can be made": Case(
+        S,
+        "capacity: 4}",
+        "capacity: 0}",
+        ("port 'type': object type 'part' has capacity 0: none can ever be made",),
+        '<SpawnObject type="part"',
+        {T: GOOD_TREE.replace(MOVE, f'{MOVE}<SpawnObject type="part" area="table"/>')},
+        T,
     ),
     "unknown configuration": Case(
         T,
@@ -212,6 +243,26 @@ CASES = {
             "locations.door.translation: [2000, 3000, 0] lies 3000 m from the origin",
             "[2, 3, 0] for millimetres?",
         ),
+        "2000",
+    ),
+    "an object put down inside the table": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorPlace target="0.3;0.6;0.88"/>',
+        ("port 'target': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
+        "ActorPlace",
+    ),
+    "area in millimetres": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3], [0.6, 1.1], [-0.6, 1.1]]",
+        "table: [[-600, 300], [600, 300], [600, 1100], [-600, 1100]]",
+        ("areas.table: its corners lie up to 1100 m from the origin", "in millimetres?"),
+        "table: [[-600",
+    ),
+    "belt end in millimetres": Case(
+        S,
+        "safety:\n",
+        "  conveyors:\n    belt: {start: [1, -1, 0.9], end: [2000, -1, 0.9]}\nsafety:\n",
+        ("workpieces.conveyors.belt.end: [2000, -1, 0.9] lies 2000 m from the origin",),
         "2000",
     ),
     "angle in radians": Case(
