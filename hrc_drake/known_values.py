@@ -2,9 +2,10 @@
 
 A port reads a literal of the XML, or a blackboard entry. An entry's value is known when
 the scenario puts it on the root blackboard (a location, an area, a parameter), when a
-SubTree passes a literal to it, or when a node whose outputs follow from its inputs alone
-(`static_outputs`, e.g. OffsetPose) writes it from inputs that are known in turn; entries
-are followed through SubTree remapping (remapped ports share the parent's entry). Values
+SubTree passes a literal to it, when SetBlackboard copies a known value into it, or when a
+node whose outputs follow from its inputs alone (`static_outputs`, e.g. OffsetPose) writes
+it from inputs that are known in turn; entries are followed through SubTree remapping
+(remapped ports share the parent's entry). Values
 that come from the world (NextObject's pose) or from scripts are unknown, and left out:
 every known value is one the port can really read, never all of them.
 
@@ -19,8 +20,10 @@ from pathlib import Path
 from typing import Any
 
 from hrc_drake.bt import Tree
+from hrc_drake.bt.actions import SetBlackboard
 from hrc_drake.bt.blackboard import UNSET, Entry
-from hrc_drake.bt.node import Literal, TreeNode
+from hrc_drake.bt.node import EntryRef, Literal, TreeNode
+from hrc_drake.bt.ports import coerce
 from hrc_drake.tree_types import Pose
 
 MAX_KNOWN = 64
@@ -86,6 +89,9 @@ class _KnownValues:
             if hasattr(type(node), "static_outputs"):
                 for port, binding in node.config.outputs.items():
                     self.writers.setdefault(id(binding.entry), []).append((node, port))
+        for node in tree.node_list:
+            if isinstance(node, SetBlackboard) and (entry := _set_entry(node)) is not None:
+                self.writers.setdefault(id(entry), []).append((node, "value"))
         self.known: dict[int, list[Known]] = {}
 
     def of(self, entry: Entry) -> list[Known]:
@@ -99,13 +105,16 @@ class _KnownValues:
         return self.known[key]
 
     def _outputs(self, node: TreeNode, port: str) -> list[Known]:
-        """What `node` writes to `port` for each combination of its known inputs."""
+        """What `node` writes to `port` for each combination of its known inputs (what
+        SetBlackboard copies: its known `value`s, as the entry it writes reads them)."""
+        if isinstance(node, SetBlackboard):
+            return _copied(self.input(node.config.inputs["value"], node, "value"), node)
         bindings = node.config.inputs.items()
         inputs = {name: self.input(binding, node, name) for name, binding in bindings}
         if not all(inputs.values()):
             return []
         names = list(inputs)
-        step = f"{node.registration_id} ({Path(node.config.file).name}:{node.config.line})"
+        step = _step(node)
         found = []
         for combination in itertools.islice(itertools.product(*inputs.values()), MAX_KNOWN):
             given = dict(zip(names, combination, strict=True))
@@ -122,6 +131,30 @@ class _KnownValues:
         if isinstance(binding, Literal):
             return [Known(binding.value, Origin(port, node=node, value=binding.value))]
         return self.of(binding.entry)
+
+
+def _set_entry(node: SetBlackboard) -> Entry | None:
+    """The entry a SetBlackboard writes (`output_key="key"` or `"{key}"`), if declared."""
+    binding = node.config.inputs.get("output_key")
+    key = binding.key if isinstance(binding, EntryRef) else getattr(binding, "value", "")
+    return node.blackboard.entry(key) if key else None
+
+
+def _copied(values: list[Known], node: SetBlackboard) -> list[Known]:
+    entry = _set_entry(node)
+    found = []
+    for known in values:
+        try:
+            value = coerce(known.value, entry.type)
+        except ValueError:
+            continue  # the node would fail to write it
+        found.append(Known(value, known.origin, (*known.via, _step(node))))
+    return found
+
+
+def _step(node: TreeNode) -> str:
+    """`OffsetPose (robot.xml:12)`: a node that made a value, as messages name it."""
+    return f"{node.registration_id} ({Path(node.config.file).name}:{node.config.line})"
 
 
 def _initial_values(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[int, Known]]:

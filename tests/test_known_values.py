@@ -19,6 +19,8 @@ TREE = """\
       <NextObject area="table" pose="{found}"/>
       <RobotMove name="to_found" target="{found}"/>
       <SetRobotVelocity velocity="{speed}"/>
+      <SetBlackboard output_key="goal" value="0.5;0;1"/>
+      <RobotMove name="to_goal" target="{goal}"/>
     </Sequence>
   </BehaviorTree>
   <BehaviorTree ID="Lift">
@@ -54,11 +56,17 @@ def test_values_followed_through_subtree_remapping_and_offset_pose(tmp_path):
         pytest.approx((0.0, 0.4, 1.0)),
     ]
     assert [str(k) for k in lifted] == [
-        "the value OffsetPose (robot.xml:13) made from location 'spot'",
-        "the value OffsetPose (robot.xml:13) made from location 'other'",
+        "the value OffsetPose (robot.xml:15) made from location 'spot'",
+        "the value OffsetPose (robot.xml:15) made from location 'other'",
     ]
     assert [str(k) for k in found["SetRobotVelocity.velocity"]] == ["parameter 'speed'"]
     assert found["SetRobotVelocity.velocity"][0].value == 0.5
+
+
+def test_a_value_set_blackboard_copies_reads_as_the_port_reads_it(tmp_path):
+    (goal,) = known(tmp_path)["to_goal.target"]
+    assert goal.value == Pose((0.5, 0.0, 1.0))
+    assert str(goal) == "the value SetBlackboard (robot.xml:9) made from '0.5;0;1'"
 
 
 def test_what_the_world_decides_is_not_known(tmp_path):
