@@ -1,4 +1,5 @@
-"""Port declarations and the string-to-type conversions used for XML literals.
+"""Port declarations, the values a port accepts, the string-to-type conversions used for
+XML literals, and how a port's text names a blackboard entry (``{key}``, ``{=}``).
 
 Applications register their own port types (poses, areas, ...) with :func:`register_type`;
 conversions are global, as in BehaviorTree.CPP where they are template specialisations.
@@ -215,6 +216,35 @@ def coerce(value: Any, py_type: Any) -> Any:
     if cls is str and isinstance(value, int | float | enum.Enum):
         return value_to_text(value)
     raise ValueError(f"a {type(value).__name__} value {value!r} is not a {type_name(py_type)}")
+
+
+SAME_NAME = "{=}"
+"""BehaviorTree.CPP's shorthand for the entry named like the port (``x="{=}"`` is
+``x="{x}"``), on a node's port and on a SubTree's; a node's port also takes a bare ``=``
+(BT.CPP's TreeNode::getRemappedKey and the SubTree branch of its XML parser)."""
+
+
+def blackboard_key(text: str) -> str | None:
+    """``key`` for ``{key}`` (``@key`` for ``{@key}``), None for a literal."""
+    text = text.strip()
+    if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
+        return text[1:-1].strip()
+    return None
+
+
+def port_key(port: str, text: str) -> str | None:
+    """The blackboard key a node's port ``port`` given ``text`` reads or writes, None for a
+    literal: ``{key}``, or the port's own name for ``{=}`` and ``=``."""
+    if text.strip() in (SAME_NAME, "="):
+        return port
+    return blackboard_key(text)
+
+
+def subtree_key(port: str, text: str) -> str | None:
+    """The parent's key a SubTree port given ``text`` is remapped to (None: a literal):
+    ``{key}``, or the port's own name for ``{=}`` (a bare ``=`` stays a literal there, as in
+    BT.CPP)."""
+    return port if text.strip() == SAME_NAME else blackboard_key(text)
 
 
 _INTEGER = re.compile(r"-?\d+")

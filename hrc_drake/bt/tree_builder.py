@@ -14,7 +14,14 @@ from .blackboard import Blackboard
 from .decorators import SubTreeNode
 from .errors import BTError, closest
 from .node import POSTCONDITIONS, PRECONDITIONS, EntryRef, Literal, NodeConfig, TreeNode
-from .ports import PortDirection, PortInfo, convert_from_string, literal_value
+from .ports import (
+    PortDirection,
+    PortInfo,
+    convert_from_string,
+    literal_value,
+    port_key,
+    subtree_key,
+)
 from .registry import NodeModel, NodeRegistry
 from .script import ScriptCode, compile_script
 from .tree import SubtreeInstance, Tree
@@ -34,35 +41,6 @@ class TreeDefinition:
     @property
     def file(self) -> str:
         return self.element.file
-
-
-SAME_NAME = "{=}"
-"""BehaviorTree.CPP's shorthand for the entry named like the port (``x="{=}"`` is
-``x="{x}"``), on a node's port and on a SubTree's; a node's port also takes a bare ``=``
-(BT.CPP's TreeNode::getRemappedKey and the SubTree branch of its XML parser)."""
-
-
-def blackboard_key(text: str) -> str | None:
-    """``key`` for ``{key}`` (``@key`` for ``{@key}``), None for a literal."""
-    text = text.strip()
-    if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
-        return text[1:-1].strip()
-    return None
-
-
-def port_key(port: str, text: str) -> str | None:
-    """The blackboard key a node's port ``port`` given ``text`` reads or writes, None for a
-    literal: ``{key}``, or the port's own name for ``{=}`` and ``=``."""
-    if text.strip() in (SAME_NAME, "="):
-        return port
-    return blackboard_key(text)
-
-
-def subtree_key(port: str, text: str) -> str | None:
-    """The parent's key a SubTree port given ``text`` is remapped to (None: a literal):
-    ``{key}``, or the port's own name for ``{=}`` (a bare ``=`` stays a literal there, as in
-    BT.CPP)."""
-    return port if text.strip() == SAME_NAME else blackboard_key(text)
 
 
 @dataclass

@@ -7,6 +7,7 @@ every named configuration, object type and area against the scenario.
 
 import math
 from collections.abc import Iterator
+from functools import cached_property
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
@@ -51,17 +52,15 @@ class _Checks:
         self.at = at
         human = scenario.human
         self.clips = clip_catalog(human.clips if human is not None else ())
-        self._planner = None
+        self.reach_problems: dict[tuple, str] = {}
+        """What reach_problem said of each target (one pose may be read by many nodes)."""
 
-    @property
+    @cached_property
     def planner(self) -> MotionPlanner:
-        if self._planner is None:
-            self._planner = MotionPlanner(
-                self.scenario.station,
-                self.scenario.robot.motion,
-                stream(self.scenario.seed, ROBOT_MOTION),
-            )
-        return self._planner
+        """The run's planner (made only when the robot's tree has a known target)."""
+        scenario = self.scenario
+        seed = stream(scenario.seed, ROBOT_MOTION)
+        return MotionPlanner(scenario.station, scenario.robot.motion, seed)
 
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value
@@ -134,7 +133,10 @@ class _Checks:
             return
         target, free = tool_pose(pose)
         linear = isinstance(node, RobotMoveLinear)
-        problem = reach_problem(self.planner, target, free, linear)
+        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear)
+        if key not in self.reach_problems:
+            self.reach_problems[key] = reach_problem(self.planner, target, free, linear)
+        problem = self.reach_problems[key]
         if problem:
             message = f"{known} at {_xyz(target.translation())}: {problem}"
             yield self.at.node(node, "target", message, target.translation())
