@@ -24,7 +24,8 @@ from pydrake.systems.framework import DiagramBuilder
 from hrc_drake.agent_trees import AgentTree, tree_errors
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
-from hrc_drake.human.anthropometry import HEIGHT_RANGE
+from hrc_drake.ergonomics.niosh import COUPLING_NAMES
+from hrc_drake.human.anthropometry import HEIGHT_RANGE, PERCENTILE_RANGE, SEXES
 from hrc_drake.human.clip_files import read_clip_file
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
@@ -90,6 +91,11 @@ FIELD_RULES: dict[str, Rule] = {
     "simulator.integration_scheme": one_of(GetIntegrationSchemes()),
     "human.height": within(*HEIGHT_RANGE, " m"),
     "human.mass": positive,
+    "human.sex": one_of(SEXES),
+    "human.percentile": within(*PERCENTILE_RANGE),
+    "ergonomics.period": positive,
+    "ergonomics.work_hours": within(0, 24, " h"),
+    "ergonomics.coupling": one_of(COUPLING_NAMES),
     "trees.*.period": positive,
     "safety.period": positive,
     "safety.v_h_rule": one_of(V_H_RULES),
