@@ -25,8 +25,9 @@ from hrc_drake.agent_trees import AgentTree, tree_errors
 from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
 from hrc_drake.ergonomics.niosh import COUPLING_NAMES
-from hrc_drake.human.anthropometry import HEIGHT_RANGE, PERCENTILE_RANGE, SEXES
+from hrc_drake.human.anthropometry import HEIGHT_RANGE
 from hrc_drake.human.clip_files import read_clip_file
+from hrc_drake.human.survey import PERCENTILE_RANGE, SEXES
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
 from hrc_drake.safety.config import V_H_RULES

@@ -21,8 +21,8 @@ from pydrake.systems.analysis import SimulatorConfig
 from hrc_drake.agent_trees import AgentTree, load_agent_tree
 from hrc_drake.areas import Area
 from hrc_drake.ergonomics.config import ErgonomicsOptions
-from hrc_drake.human.anthropometry import survey_size
 from hrc_drake.human.protocol import UPDATE_PERIOD
+from hrc_drake.human.survey import survey_size
 from hrc_drake.iisy import TOOL_BODY
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.nodes.agent import Places
