@@ -39,7 +39,8 @@ def lifted(lifts: list[dict]) -> str:
 
 
 def worst(values: dict) -> str:
-    return f"{values['score']} ({values['side']}, {values['activity'] or 'standing'}, {values['time']:g} s)"
+    doing = values["activity"] or "standing"
+    return f"{values['score']} ({values['side']}, {doing}, {values['time']:g} s)"
 
 
 def largest(lift: dict) -> str:
@@ -52,7 +53,8 @@ def largest(lift: dict) -> str:
 def row(name: str, metrics: dict) -> str:
     e = metrics["ergonomics"]
     person = e["person"]
-    run_ = f"seed {metrics['seed']}, {metrics['duration']:g} s, {person['height']:g} m {person['mass']:g} kg"
+    size = f"{person['height']:g} m {person['mass']:g} kg"
+    run_ = f"seed {metrics['seed']}, {metrics['duration']:g} s, {size}"
     cells = [name, run_, lifted(e["lifts"]), worst(e["rula"]["max"]), worst(e["reba"]["max"])]
     return "| " + " | ".join([*cells, largest(e["lifting_index_max"])]) + " |"
 
