@@ -14,7 +14,7 @@ import numpy as np
 
 from hrc_drake.ergonomics import niosh
 from hrc_drake.ergonomics.config import ErgonomicsOptions
-from hrc_drake.ergonomics.posture import Pose, pose_frames, pose_of, posture_angles
+from hrc_drake.ergonomics.posture import Pose, poses_of, posture_angles
 from hrc_drake.ergonomics.reba import reba_score
 from hrc_drake.ergonomics.rula import grand_score
 from hrc_drake.ergonomics.scoring import Activity, Load, reba_parts, rula_parts
@@ -89,15 +89,14 @@ class Assessment:
 
 
 def assess(track: PersonTrack, options: ErgonomicsOptions) -> Assessment:
-    body = human_body(track.height, track.mass)
-    names, frames = pose_frames(body)
-    poses = [pose_of(body, names, frames, q) for q in track.positions.T]
-    angles = [posture_angles(pose) for pose in poses]
+    poses = poses_of(human_body(track.height, track.mass), track.positions)
+    every = posture_angles(poses)
+    angles = every.samples()
     times = track.times
     walking = _during(times, track.walking)
     held = [_held_at(track.holds, t) for t in times]
     repeated = _repeated(times, track.actions)
-    rapid = _rapid(times, angles)
+    rapid = _rapid(times, every)
     load_static = _held_long(times, held)
     rula_scores = np.zeros((len(SIDES), len(times)), dtype=int)
     reba_scores = np.zeros((len(SIDES), len(times)), dtype=int)
@@ -142,10 +141,8 @@ def _repeated(times: np.ndarray, actions: list[float]) -> np.ndarray:
     return counts > REPEATED
 
 
-def _rapid(times: np.ndarray, angles: list) -> np.ndarray:
-    series = np.array(
-        [[a.trunk_flexion, *(a.arms[s].flexion for s in SIDES)] for a in angles]
-    ).reshape(len(times), -1)
+def _rapid(times: np.ndarray, angles) -> np.ndarray:
+    series = np.stack([angles.trunk_flexion, *(angles.arms[s].flexion for s in SIDES)], axis=1)
     rapid = np.zeros(len(times), dtype=bool)
     for i, t in enumerate(times):
         window = series[np.searchsorted(times, t - RAPID_WINDOW) : i + 1]
@@ -191,7 +188,7 @@ def _load(objects: tuple[HeldObject, ...], static_or_repeated: bool, default: st
     return Load(left, right, coupling, static_or_repeated)
 
 
-def _lifts(track: PersonTrack, poses: list[Pose], options: ErgonomicsOptions) -> list[Lift]:
+def _lifts(track: PersonTrack, poses: Pose, options: ErgonomicsOptions) -> list[Lift]:
     """Every object the hands took and let go of during the run, as NIOSH lifts; the
     frequency is the run's own lifts per minute."""
     spans = _holding_spans(track.holds)
@@ -202,7 +199,7 @@ def _lifts(track: PersonTrack, poses: list[Pose], options: ErgonomicsOptions) ->
     duration = niosh.duration_category(options.work_hours)
     lifts = []
     for start, end, held in spans:
-        ends = [_lift_point(poses[_nearest(track.times, t)], held.holder) for t in (start, end)]
+        ends = [_lift_point(poses.at(_nearest(track.times, t)), held.holder) for t in (start, end)]
         distance = abs(ends[1].v - ends[0].v)
         coupling = held.coupling or options.coupling
         results = [

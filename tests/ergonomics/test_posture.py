@@ -4,7 +4,7 @@ hand (tests/ergonomics/postures.py)."""
 
 import pytest
 
-from hrc_drake.ergonomics.posture import pose_frames, pose_of, posture_angles
+from hrc_drake.ergonomics.posture import poses_of, posture_angles
 from hrc_drake.ergonomics.reba import reba_score
 from hrc_drake.ergonomics.rula import grand_score
 from hrc_drake.ergonomics.scoring import Activity, Load, reba_parts, rula_parts
@@ -14,10 +14,8 @@ from tests.ergonomics.postures import REACHING_REBA, REACHING_RULA, REACHING_TWI
 
 
 def angles_of(body, degrees):
-    names, frames = pose_frames(body)
-    return posture_angles(
-        pose_of(body, names, frames, body.plant_positions(posture(body, degrees)))
-    )
+    positions = body.plant_positions(posture(body, degrees))[:, None]
+    return posture_angles(poses_of(body, positions)).at(0)
 
 
 @pytest.mark.parametrize("size", [survey_size("female", 5), survey_size("male", 95)])
