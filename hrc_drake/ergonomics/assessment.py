@@ -15,7 +15,7 @@ import numpy as np
 from hrc_drake.ergonomics import niosh
 from hrc_drake.ergonomics.config import ErgonomicsOptions
 from hrc_drake.ergonomics.posture import Pose, poses_of, posture_angles
-from hrc_drake.ergonomics.reba import reba_score
+from hrc_drake.ergonomics.reba import COUPLINGS, reba_score
 from hrc_drake.ergonomics.rula import grand_score
 from hrc_drake.ergonomics.scoring import Activity, Load, reba_parts, rula_parts
 from hrc_drake.human.body import human_body
@@ -184,7 +184,7 @@ def _load(objects: tuple[HeldObject, ...], static_or_repeated: bool, default: st
     left = sum(o.mass for o in objects if o.holder in (LEFT_HAND, BOTH_HANDS))
     right = sum(o.mass for o in objects if o.holder != LEFT_HAND)
     couplings = [o.coupling or default for o in objects] or ["good"]
-    coupling = max(couplings, key=niosh.COUPLINGS.index)
+    coupling = max(couplings, key=COUPLINGS.index)
     return Load(left, right, coupling, static_or_repeated)
 
 

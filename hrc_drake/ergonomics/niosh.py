@@ -12,7 +12,7 @@ import bisect
 import math
 from dataclasses import dataclass
 
-from hrc_drake.ergonomics.reba import COUPLINGS
+from hrc_drake.workpieces.messages import COUPLINGS
 
 
 @dataclass(frozen=True)
@@ -70,7 +70,6 @@ FREQUENCY_TABLE = (
     ((0.00, 0.31), (0.00, 0.00), (0.00, 0.00)),
     ((0.00, 0.28), (0.00, 0.00), (0.00, 0.00)),
 )
-COUPLING_NAMES = COUPLINGS[:3]
 # Table 7: per coupling (good, fair, poor), (V < 30 in, V >= 30 in).
 COUPLING_TABLE = ((1.00, 1.00), (0.95, 1.00), (0.90, 0.90))
 
@@ -118,8 +117,9 @@ def frequency_multiplier(frequency: float, duration: str, v: float, units: Units
 
 
 def coupling_multiplier(coupling: str, v: float, units: Units = METRIC) -> float:
-    """Table 7 for a good, fair or poor coupling."""
-    return COUPLING_TABLE[COUPLINGS.index(coupling)][int(v >= units.frequency_split)]
+    """Table 7 for a good, fair or poor coupling (REBA's `unacceptable` counts as poor)."""
+    row = COUPLINGS.index(coupling) if coupling in COUPLINGS else len(COUPLINGS) - 1
+    return COUPLING_TABLE[row][int(v >= units.frequency_split)]
 
 
 @dataclass(frozen=True)

@@ -34,8 +34,9 @@ GRASPABLE = "graspable"
 """Attribute: an object whose `graspable` attribute is false cannot be attached."""
 
 COUPLING = "coupling"
-"""Attribute: how well hands hold an object of this type, `good`, `fair` or `poor` (NIOSH's
-coupling; the person's ergonomic scores use it)."""
+"""Attribute: how well hands hold an object of this type, one of COUPLINGS (NIOSH's coupling;
+the person's ergonomic scores use it)."""
+COUPLINGS = ("good", "fair", "poor")
 
 Attributes = dict[str, float | bool | str]
 
