@@ -7,6 +7,7 @@ The scores themselves are `hrc_drake.ergonomics`; this module turns a record int
 """
 
 import weakref
+from html import escape
 
 import numpy as np
 
@@ -226,6 +227,10 @@ def ergonomics_html(record: RunRecord, metrics: dict) -> str:
             end,
         ),
     ]
+    legends = [
+        _legend([f"AL{level}" for level in ACTION_LEVELS], rula_colours),
+        _legend(list(RISK_LEVELS), list(LEVEL_COLOURS)),
+    ]
     worst = [
         [
             method,
@@ -241,7 +246,10 @@ def ergonomics_html(record: RunRecord, metrics: dict) -> str:
         f"<p>Person: {section['person']['height']} m, {section['person']['mass']} kg. "
         "Scores of the worse side over time, coloured by level "
         "(RULA action levels 1-4, REBA risk levels negligible to very high).</p>",
-        *strips,
+        strips[0],
+        legends[0],
+        strips[1],
+        legends[1],
         html_table(["method", "worst score", "time (s)", "side", "activity"], worst),
         _lifts_table(section["lifts"]),
     ]
@@ -272,6 +280,15 @@ def _strip(name: str, assessment: Assessment, scores: np.ndarray, colour, end: f
         + "".join(rects)
         + "</svg></div>"
     )
+
+
+def _legend(names: list[str], colours: list[str]) -> str:
+    swatches = [
+        f'<span style="display:inline-block;width:12px;height:12px;background:{colour}">'
+        f"</span> {escape(name)}"
+        for name, colour in zip(names, colours, strict=True)
+    ]
+    return f'<div style="font-size:12px;margin:2px 0 8px">{" &nbsp; ".join(swatches)}</div>'
 
 
 LIFT_COLUMNS = ("time", "object", "mass", "hands", "h", "v", "d", "a", "rwl", "lifting_index")
