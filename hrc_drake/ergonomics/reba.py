@@ -7,7 +7,7 @@ Angles are in degrees, read to the whole degree (`hrc_drake.ergonomics.rula.whol
 
 from dataclasses import dataclass
 
-from hrc_drake.ergonomics.rula import whole_degrees
+from hrc_drake.ergonomics.rula import lower_arm_position, upper_arm_position, whole_degrees
 
 # Table A: trunk 1-5 (rows), neck 1-3 x legs 1-4 (columns).
 TABLE_A = (
@@ -78,20 +78,13 @@ def legs_score(bilateral: bool, knee_flexion: float) -> int:
 def upper_arm_score(
     flexion: float, abducted_or_rotated: bool = False, raised: bool = False, supported: bool = False
 ) -> int:
-    """`flexion` forward of the trunk (negative: extension)."""
-    a = whole_degrees(flexion)
-    if -20 <= a <= 20:
-        score = 1
-    elif a < -20 or a <= 45:
-        score = 2
-    else:
-        score = 3 if a <= 90 else 4
-    return max(1, score + abducted_or_rotated + raised - supported)
+    """`flexion` forward of the trunk (negative: extension); supported or gravity-assisted
+    -1."""
+    return max(1, upper_arm_position(flexion) + abducted_or_rotated + raised - supported)
 
 
 def lower_arm_score(flexion: float) -> int:
-    a = whole_degrees(flexion)
-    return 1 if 60 <= a <= 100 else 2
+    return lower_arm_position(flexion)
 
 
 def wrist_score(flexion: float, deviated_or_twisted: bool = False) -> int:

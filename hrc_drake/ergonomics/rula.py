@@ -58,25 +58,33 @@ def whole_degrees(angle: float) -> int:
     return int(round(angle))
 
 
+def upper_arm_position(flexion: float) -> int:
+    """The upper arm's bands, the same in RULA and REBA: 20 deg either side of the trunk
+    1, beyond 20 deg of extension or 20-45 deg of flexion 2, 45-90 deg 3, beyond 4.
+    `flexion`: the upper arm's angle forward of the trunk (negative: extension)."""
+    a = whole_degrees(flexion)
+    if -20 <= a <= 20:
+        return 1
+    if a < -20 or a <= 45:
+        return 2
+    return 3 if a <= 90 else 4
+
+
+def lower_arm_position(flexion: float) -> int:
+    """The lower arm's bands, the same in RULA and REBA: 60-100 deg of elbow flexion 1,
+    else 2."""
+    return 1 if 60 <= whole_degrees(flexion) <= 100 else 2
+
+
 def upper_arm_score(
     flexion: float, shoulder_raised: bool = False, abducted: bool = False, supported: bool = False
 ) -> int:
-    """`flexion`: the upper arm's angle forward of the trunk (negative: extension)."""
-    a = whole_degrees(flexion)
-    if -20 <= a <= 20:
-        score = 1
-    elif a < -20 or a <= 45:
-        score = 2
-    else:
-        score = 3 if a <= 90 else 4
-    return max(1, score + shoulder_raised + abducted - supported)
+    return max(1, upper_arm_position(flexion) + shoulder_raised + abducted - supported)
 
 
 def lower_arm_score(flexion: float, across_or_out: bool = False) -> int:
-    """`flexion`: the elbow's flexion from the straight arm; `across_or_out`: the hand
-    works across the body's midline or out to the side."""
-    a = whole_degrees(flexion)
-    return (1 if 60 <= a <= 100 else 2) + across_or_out
+    """`across_or_out`: the hand works across the body's midline or out to the side."""
+    return lower_arm_position(flexion) + across_or_out
 
 
 def wrist_score(flexion: float, deviated: bool = False) -> int:
