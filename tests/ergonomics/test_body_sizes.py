@@ -101,3 +101,18 @@ def test_falsify_searches_over_body_size(tmp_path):
     trials = list(csv.DictReader((tmp_path / "s" / "trials.csv").open()))
     assert len({trial["size"] for trial in trials}) == 2
     assert all(int(trial["rula_max"]) >= 1 for trial in trials)
+
+
+def test_a_5th_percentile_woman_carries_the_collaboration_box():
+    """The smallest person (1.52 m, 49 kg) answers the robot's call: she lifts the carton it
+    must not handle (3 kg, both hands) and carries it to the belt, holds it and walks as the
+    scenario tests ask, and the run stays safe; report.json describes her and her lift."""
+    metrics = run_for("collaboration", *SIZES["5th-percentile woman"], duration=35.0)
+    assert metrics["tasks"]["events"].get("box_by_person") == 1
+    assert_realistic(metrics["realism"])
+    assert_safe(metrics)
+    ergonomics = metrics["ergonomics"]
+    assert ergonomics["person"] == {"height": 1.5229, "mass": 49.21}
+    lift = ergonomics["lifts"][0]
+    assert (lift["mass"], lift["hands"]) == (3.0, "both_hands")
+    assert ergonomics["lifting_index_max"]["value"] > 0
