@@ -206,8 +206,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
     return add_human(
         builder,
         scene_graph,
-        scenario.human.height,
-        scenario.human.mass,
+        *scenario.human.size(),
         start_pose=(x, y, np.radians(yaw_deg)),
         period=scenario.human.period,
         navigation=NavigationMap(

@@ -92,6 +92,8 @@ RECORDER = "replay_recorder"
 STATE_CHANGES = "state_changes"
 ROBOT_STATE_LOG = "robot_state_log"
 SAFETY_SIGNALS_LOG = "safety_signals_log"
+POSTURE_LOG = "posture_log"
+HELD_OBJECTS = "held_objects"
 
 
 def tree_system(agent: str) -> str:
