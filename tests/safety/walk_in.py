@@ -222,7 +222,7 @@ def build(case: Case):
     plant.SetDefaultPositions(arm, scene.station.initial_positions)
     controller = add_robot_controller(builder, scene.station, plant, arm)
     seed = stream(scene.seed, ROBOT_MOTION)
-    motion = add_robot_motion(builder, scene.station, seed, plant, arm, controller)
+    motion, _ = add_robot_motion(builder, scene.station, seed, plant, arm, controller)
     shuttle = builder.AddSystem(Shuttle(sweep_goals()))
     builder.Connect(motion.GetOutputPort("robot_status"), shuttle.get_input_port())
     builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_tree_command"))
