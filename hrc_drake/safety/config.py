@@ -31,9 +31,9 @@ class SafetyConfig:
     SSM or causes a contact.
 
     While the person is so far from the robot that the monitor would allow full speed even
-    if it measured only every `far_period` and the person came at the fastest speed of any
-    rule (`v_h`, `v_h_near`), it measures every `far_period` instead of every `period`
-    (`Judge.far`); 0 measures every `period` always.
+    if it measured only every `far_period` (with the `measured` rule: and the person came at
+    `v_h`), it measures every `far_period` instead of every `period` (`Judge.far`); 0
+    measures every `period` always.
 
     A contact is quasi-static (clamping) when the touched body region has cell geometry or
     another robot part within `clamping_gap` on its far side; otherwise it is transient.

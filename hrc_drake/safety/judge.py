@@ -6,7 +6,7 @@ import functools
 import math
 from dataclasses import dataclass
 
-from hrc_drake.safety.config import CONSTANT, SafetyConfig
+from hrc_drake.safety.config import CONSTANT, MEASURED, SafetyConfig
 from hrc_drake.safety.messages import (
     CARRIED,
     ContactRecord,
@@ -39,23 +39,19 @@ class Judge:
 
     @functools.cached_property
     def far_model(self) -> SsmModel:
-        """S_p's model as if the monitor measured only every `far_period` and the person
-        came at the fastest speed any rule takes."""
+        """S_p's model as if the monitor measured only every `far_period`, with a person who
+        may come at ISO 13855's approach speed even where the rule is `measured`."""
         config = self.config
-        slow = dataclasses.replace(
-            config,
-            period=config.far_period,
-            v_h_rule=CONSTANT,
-            v_h=max(config.v_h, config.v_h_near),
-        )
+        rule = CONSTANT if config.v_h_rule == MEASURED else config.v_h_rule
+        slow = dataclasses.replace(config, period=config.far_period, v_h_rule=rule)
         latency = self.model.lead_time - config.period
         return SsmModel.from_config(slow, self.model.stop, latency)
 
     def far(self, status: SafetyStatus) -> bool:
         """Whether the next `far_period` may pass unmeasured: the robot may move at full
-        speed, nothing touches, and at the separation less the hysteresis, a monitor that
-        measured every `far_period` would keep full speed whatever the person's speed. Then
-        no measurement in between could have found less (tests/safety/test_far_rate.py)."""
+        speed, nothing touches, and at the separation less the hysteresis a monitor that
+        measured every `far_period` would keep full speed (`far_model`). Then no measurement
+        in between could have slowed the robot (tests/safety/test_far_rate.py)."""
         config = self.config
         if config.far_period <= config.period or status.scale < 1.0 or status.contact:
             return False
