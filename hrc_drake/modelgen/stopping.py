@@ -77,7 +77,7 @@ class _IdealRobot:
         station = StationSpec(variant)
         builder = DiagramBuilder()
         self.motion = builder.AddSystem(RobotMotion(station, stream(0, ROBOT_MOTION), options))
-        split = add_desired_motion(builder, self.motion)
+        split = add_desired_motion(builder, self.motion, SAMPLE)
         builder.Connect(split.get_output_port(0), self.motion.GetInputPort("robot_state"))
         builder.ExportOutput(split.get_output_port(0), "desired_state")
         command = command_input(tree_issuer(ROBOT))
