@@ -8,15 +8,16 @@ from collections.abc import Iterator
 import numpy as np
 from pydrake.common.schema import Rotation, Transform
 
+from hrc_drake.ergonomics.niosh import METRIC
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.yaml_check import schema_fields
 
 LARGEST_OBJECT = 2.0
 """m: no side of an object the robot or person handles is longer (a euro pallet is 1.2 m)."""
-HEAVIEST_LIFT = 25.0
-"""kg: ISO 11228-1's reference mass for manual lifting by the adult working population
-(docs/human-body.md); the iisy's largest payload is 15 kg."""
+HEAVIEST_LIFT = METRIC.load_constant
+"""kg: the NIOSH lifting equation's load constant, the most anyone should lift under ideal
+conditions (docs/ergonomics.md); the iisy's largest payload is 15 kg."""
 FARTHEST = 50.0
 """m: no place in a workcell is farther from its origin."""
 FASTEST_BELT = 2.0
@@ -42,9 +43,9 @@ def magnitude_findings(scenario: Scenario, at: Locator) -> Iterator[Finding]:
         if kind.mass > HEAVIEST_LIFT:
             yield at.field(
                 (*where, "mass"),
-                f"{kind.mass:g} kg is more than a person may lift ({HEAVIEST_LIFT:g} kg, "
-                f"ISO 11228-1) or an iisy carry (masses are in kilograms: {kind.mass / 1000:g} "
-                "for grams?)",
+                f"{kind.mass:g} kg is more than a person may lift ({HEAVIEST_LIFT:g} kg, the "
+                f"NIOSH load constant) or an iisy carry (masses are in kilograms: "
+                f"{kind.mass / 1000:g} for grams?)",
             )
     for names, point in _points(scenario):
         if np.abs(point).max() > FARTHEST:

@@ -222,8 +222,8 @@ CASES = {
         "mass: 0.3",
         "mass: 300",
         (
-            "workpieces.types.part.mass: 300 kg is more than a person may lift (25 kg, ISO "
-            "11228-1)",
+            "workpieces.types.part.mass: 300 kg is more than a person may lift (23 kg, the "
+            "NIOSH load constant)",
             "0.3 for grams?",
         ),
         "mass: 300",
