@@ -84,7 +84,7 @@ def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
     from hrc_drake.runner import RunStopped, run
-    from hrc_drake.scenario import load_scenario
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
 
     overrides, options = single_sets(args, "run", "use sweep for grids")
     live = args.meshcat or args.groot is not None
@@ -107,6 +107,7 @@ def _run(args) -> int:
             meshcat=meshcat,
             progress=True,
             serve=serve,
+            scenario_file=resolve_scenario_path(args.scenario),
         )
     except RunStopped as stopped:
         _print_node_failures(stopped.report.metrics)
