@@ -165,12 +165,13 @@ class NavigationMap:
         self._reach = [self._body_at(o.low, o.high) for o in obstacles]
         self.keep_out = unary_union(list(keep_out)) if keep_out else Polygon()
         self.keep_out_clearance = max(s.walking for s in self.body) + WALK_MARGIN
-        grown = [o.outline.buffer(self.clearance(o), join_style="mitre") for o in obstacles] + [
+        grown = [_grown(o.outline, self.clearance(o)) for o in obstacles] + [
             area.buffer(self.keep_out_clearance) for area in keep_out
         ]
         self.blocked = unary_union(grown) if grown else Polygon()
         self._blocked = prepared.prep(self.blocked)
         corners = self.blocked.buffer(CORNER_MARGIN, join_style="mitre")
+        self._edge = corners.boundary
         self._corners = [p for polygon in _polygons(corners) for p in _rings_of(polygon)]
         self._outlines = np.array([o.outline for o in obstacles], dtype=object)
 
@@ -195,11 +196,11 @@ class NavigationMap:
 
     @cached_property
     def _furniture_by_width(self) -> list[tuple[float, object]]:
-        """The obstacles grouped by their clearance, each group's outlines as one prepared
-        geometry: what a walking body of that half-width must keep out of."""
+        """The obstacles grouped by the walking body's half-width at their heights, each
+        group's outlines as one prepared geometry: what a body that wide keeps out of."""
         groups: dict[float, list] = {}
         for obstacle, reach in zip(self.obstacles, self._reach, strict=True):
-            groups.setdefault(reach.walking + WALK_MARGIN, []).append(obstacle.outline)
+            groups.setdefault(reach.walking, []).append(obstacle.outline)
         return [(width, prepared.prep(unary_union(o))) for width, o in groups.items()]
 
     @cached_property
@@ -239,53 +240,84 @@ class NavigationMap:
         return [*via, *route, *tail]
 
     def _route(self, start, goal) -> list[tuple[float, float]] | None:
-        """The shortest walk's waypoints over the visibility graph, or None."""
+        """The shortest walk's waypoints over the visibility graph, or None. A start or
+        goal in the clearance also connects through the nearest point of the free floor
+        (stepping straight back from a table, arriving head on)."""
         inside = tuple(p for p in (start, goal) if not self.free(p))
         if self._leg_clear(start, goal, inside):
             return []
+        ends = {"start": start, "goal": goal}
+        ends.update({f"{name} out": self._nearest_free(ends[name]) for name in ends})
         graph = self._graph.copy()
-        for name, point in (("start", start), ("goal", goal)):
-            graph.add_node(name)
-            ends = (point,) if point in inside else ()
+        for name, point in ends.items():
+            within = tuple(p for p in (point,) if p in inside)
             for k, corner in enumerate(self._corners):
-                if self._leg_clear(point, corner, ends):
+                if self._leg_clear(point, corner, within):
                     graph.add_edge(name, k, weight=_length(point, corner))
+        for (a, p), (b, q) in combinations(ends.items(), 2):
+            if self._leg_clear(p, q, tuple(e for e in (p, q) if e in inside)):
+                graph.add_edge(a, b, weight=_length(p, q))
         try:
             nodes = nx.shortest_path(graph, "start", "goal", weight="weight")
-        except nx.NetworkXNoPath:
+        except (nx.NetworkXNoPath, nx.NodeNotFound):
             return None
-        return [self._corners[k] for k in nodes[1:-1]]
+        return [ends[k] if k in ends else self._corners[k] for k in nodes[1:-1]]
+
+    def _nearest_free(self, point) -> tuple[float, float]:
+        """The nearest point of the free floor (just outside the clearance)."""
+        if self.free(point):
+            return point
+        nearest = nearest_points(self._edge, Point(point))[0]
+        return (float(nearest.x), float(nearest.y))
 
     def walkable(self, a, b) -> bool:
-        """Whether the straight leg from a to b keeps the clearance (as path's legs do)."""
-        return self._leg_clear(a, b, tuple(p for p in (a, b) if not self.free(p)))
+        """Whether the walking body, going straight from a to b, keeps out of the furniture
+        (without the clearance's margin; the ends in the clearance exempt as in path)."""
+        return self._body_clear(a, b, tuple(p for p in (a, b) if not self.free(p)))
 
     def _leg_clear(self, a, b, inside: tuple) -> bool:
-        """Whether a straight leg from a to b keeps the clearance; its ends `inside` the
-        clearance are exempt within the clearance round them: there the body stands as it
-        stands at that end, and beyond, the body swept along the leg stays out of the
-        furniture and the pelvis out of the grown keep-out areas."""
-        if not inside:
-            return self._clear(a, b)
+        """Whether a straight leg of a path from a to b is clear: between free points it
+        keeps the clearance; from or to its ends `inside` the clearance, the walking body
+        keeps out of the furniture."""
+        return self._body_clear(a, b, inside) if inside else self._clear(a, b)
+
+    def _body_clear(self, a, b, inside: tuple) -> bool:
+        """Whether the walking body swept along the leg from a to b keeps out of the
+        furniture, and the pelvis out of the robot's space, beyond the discs round its ends
+        `inside` the clearance as wide as the body (a little more: the shapes are
+        polygons), where the body stands as it stands at that end."""
         leg = LineString([a, b])
         if leg.length == 0.0:
             return True
         for width, furniture in self._furniture_by_width:
-            swept = leg.buffer(width).difference(
-                unary_union([Point(p).buffer(width) for p in inside])
-            )
-            if furniture.intersects(swept):
+            exempt = unary_union([Point(p).buffer(width + CORNER_MARGIN) for p in inside])
+            if furniture.intersects(leg.buffer(width).difference(exempt)):
                 return False
+        return self._keeps_out_of_the_robots_space(leg, inside)
+
+    def _keeps_out_of_the_robots_space(self, leg: LineString, inside: tuple) -> bool:
+        """Whether the pelvis, walking the leg, keeps the clearance from the keep-out
+        areas, or, from a start or goal within it (a place to stand by the robot), gets no
+        deeper into it than that end (less a centimetre)."""
         if self.keep_out.is_empty:
             return True
-        reach = self.keep_out_clearance
-        walked = leg.difference(unary_union([Point(p).buffer(reach) for p in inside]))
-        return not self._keep_out_grown.intersects(walked)
+        grown = self._keep_out_grown
+        depth = max(
+            (grown.boundary.distance(Point(p)) for p in inside if grown.contains(Point(p))),
+            default=0.0,
+        )
+        if depth == 0.0:
+            return not self._keep_out_grown_prepared.intersects(leg)
+        deeper = self.keep_out.buffer(self.keep_out_clearance - depth - CORNER_MARGIN)
+        return not deeper.intersects(leg)
 
     @cached_property
-    def _keep_out_grown(self):
-        """The keep-out areas grown by their clearance, prepared for crossing tests."""
-        return prepared.prep(self.keep_out.buffer(self.keep_out_clearance))
+    def _keep_out_grown(self) -> Polygon:
+        return self.keep_out.buffer(self.keep_out_clearance)
+
+    @cached_property
+    def _keep_out_grown_prepared(self):
+        return prepared.prep(self._keep_out_grown)
 
     def _way_out(self, point) -> tuple[float, float]:
         """The point, or, when it lies in the clearance, the nearest point of the free floor
@@ -293,7 +325,7 @@ class NavigationMap:
         and a belt, out along the gap rather than over the belt)."""
         if self.free(point):
             return point
-        boundary = self.blocked.buffer(CORNER_MARGIN, join_style="mitre").boundary
+        boundary = self._edge
         nearest = nearest_points(boundary, Point(point))[0]
         candidates = [nearest, *(boundary.interpolate(d) for d in self._exit_spacing(boundary))]
         candidates.sort(key=Point(point).distance)
@@ -399,6 +431,12 @@ def _overlap_depth(body: BodySlice, x: float, y: float, yaw: float, outline: Pol
     if overlap.area <= 0.0:  # apart, or only touching
         return 0.0
     return _depth(overlap, outline)
+
+
+def _grown(outline: Polygon, clearance: float) -> Polygon:
+    """The outline grown by `clearance`, its corners cut by a bevel that just keeps the
+    clearance (fewer corners than round ones, and less in the way than square ones)."""
+    return outline.buffer(clearance, join_style="mitre", mitre_limit=1.0)
 
 
 def _rings():

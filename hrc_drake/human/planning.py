@@ -3,7 +3,7 @@ movement (turn towards the path, walk it round sharp corners and the cell's geom
 to the target orientation), of an animation (a clip, aimed at a target or grasp with
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
-from math import atan2, hypot
+from math import atan2, hypot, radians
 
 import numpy as np
 
@@ -28,6 +28,10 @@ from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
+FINAL_TURN_WALKING = radians(45.0)
+"""A walk turns to face its place over its last steps by at most this; further, the person
+turns on the spot there: the closing steps of a walk at full pace that turns further slide
+a foot (measured: 50° 3.9 cm, 57° 7.7 cm, 70° 12 cm; at most 0.4 cm up to 45°)."""
 
 
 def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
@@ -66,7 +70,8 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
             )
             start = segments[-1].end(performer)
         walk = WalkSegment(start, tuple(stretch), clip.name, distance, speed, carry)
-        if oriented and k == len(stretches) - 1:
+        last = oriented and k == len(stretches) - 1
+        if last and abs(wrap_angle(standing - walk.directions[-1])) <= FINAL_TURN_WALKING:
             walk = walk.facing_at_the_end(standing)
         walk = walk.stepped(performer)
         segments.append(walk)

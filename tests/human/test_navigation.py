@@ -17,11 +17,16 @@ from shapely.ops import nearest_points
 
 from hrc_drake.cli import main
 from hrc_drake.evaluation.realism import LIMITS
+from hrc_drake.human.body import human_body
+from hrc_drake.human.clip import load_clips
+from hrc_drake.human.messages import MoveCommand
 from hrc_drake.human.navigation import NavigationMap, Obstacle
-from hrc_drake.human.performer import IDLE_CLIP, place
+from hrc_drake.human.performer import IDLE_CLIP, Performer, place
+from hrc_drake.human.planning import plan_movement
 from hrc_drake.human.segments import TurnSegment
 from hrc_drake.human.targeting import Unreachable
 from tests.human.cell_walks import Cell, Furniture
+from tests.human.test_actor import _stance_slip
 
 REPO = Path(__file__).resolve().parents[2]
 TABLE = Obstacle("table", box(-0.6, -0.4, 0.6, 0.4), 0.0, 0.9)
@@ -123,6 +128,18 @@ def test_a_place_to_stand_in_a_gap_narrower_than_the_body_is_not_walked_into():
     )
     with pytest.raises(Unreachable, match="into (belt|pallet)"):
         cell.walks((2.0, -0.6, 180.0), (0.0, -0.58, 90.0))
+
+
+def test_a_place_faced_far_off_the_way_there_is_turned_to_without_sliding_a_foot():
+    """Arriving at full pace at a place that faces 57 degrees off the last leg (the walk
+    back to the work table in collaboration), the person turns on the spot rather than
+    over the closing steps, which slid a foot 5 cm."""
+    performer = Performer(human_body(), load_clips())
+    half = math.radians(57.0) / 2
+    command = MoveCommand(1, (3.3, 0.0, 0.0), (math.cos(half), 0.0, 0.0, math.sin(half)))
+    activity = plan_movement(performer, command, (0.0, 0.0, 0.0), 0.0)
+    poses = [activity.pose(performer, t) for t in np.arange(0.0, activity.end, 1 / 60)]
+    assert _stance_slip(performer.body, poses) < LIMITS["foot_slip"]
 
 
 def _standing_and_turning(cell: Cell, x: float, y: float, yaw: float) -> float:
