@@ -283,15 +283,17 @@ class NavigationMap:
 
     def _body_clear(self, a, b, inside: tuple) -> bool:
         """Whether the walking body swept along the leg from a to b keeps out of the
-        furniture, and the pelvis out of the robot's space, beyond the discs round its ends
-        `inside` the clearance as wide as the body (a little more: the shapes are
-        polygons), where the body stands as it stands at that end."""
+        furniture (touching it by STAND_TOLERANCE at most), and the pelvis out of the
+        robot's space, beyond the discs round its ends `inside` the clearance as wide as the
+        body (a little more: the shapes are polygons), where the body stands as it stands
+        at that end."""
         leg = LineString([a, b])
         if leg.length == 0.0:
             return True
         for width, furniture in self._furniture_by_width:
             exempt = unary_union([Point(p).buffer(width + CORNER_MARGIN) for p in inside])
-            if furniture.intersects(leg.buffer(width).difference(exempt)):
+            swept = leg.buffer(width - STAND_TOLERANCE).difference(exempt)
+            if furniture.intersects(swept):
                 return False
         return self._keeps_out_of_the_robots_space(leg, inside)
 
