@@ -216,7 +216,11 @@ def _add_person(builder, scene_graph, mirror, scenario):
         start_pose=(x, y, np.radians(yaw_deg)),
         period=scenario.human.period,
         navigation=cell_navigation(
-            mirror, scene_graph.model_inspector(), robot_xy, VARIANTS[scenario.robot.variant].reach
+            mirror,
+            scene_graph.model_inspector(),
+            robot_xy,
+            VARIANTS[scenario.robot.variant].reach,
+            scenario.human.size()[0],
         ),
         clips=clip_catalog(scenario.human.clips),
     )

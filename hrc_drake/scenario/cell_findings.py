@@ -18,8 +18,17 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, CoulombFriction
 from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.framework import DiagramBuilder
+from shapely.geometry import Point
 
-from hrc_drake.human.navigation import FLOOR_LEVEL, STAND_TOLERANCE, cell_navigation
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT
+from hrc_drake.human.navigation import (
+    FLOOR_LEVEL,
+    SEARCH_RINGS,
+    SEARCH_STEP,
+    NavigationMap,
+    NoWay,
+    cell_navigation,
+)
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
@@ -30,8 +39,6 @@ from hrc_drake.workpieces.layouts import grid_placements
 
 OVERLAP_TOLERANCE = 0.002
 """m: objects may start this far inside what they rest on or touch (they settle)."""
-HEADINGS = 8
-"""A place to stand without a direction to face is checked facing this many ways."""
 
 
 @dataclass(frozen=True)
@@ -90,6 +97,7 @@ class CellScene:
             self.scene_graph.model_inspector(),
             robot_xy,
             VARIANTS[scenario.robot.variant].reach,
+            scenario.human.size()[0] if scenario.human is not None else DEFAULT_HEIGHT,
         )
 
     def _add_object(self, index: int, obj: InitialObject):
@@ -145,16 +153,20 @@ class CellScene:
         return f"the {obj.label} at {_xyz(obj.pose.translation())}"
 
 
-def cell_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterator[Finding]:
+def cell_findings(
+    scenario: Scenario, scene: CellScene, at: Locator, skip_locations=()
+) -> Iterator[Finding]:
+    """Objects in the cell or each other, the person's start and the places to stand (the
+    locations at floor level but `skip_locations`, whose magnitudes were found wrong)."""
     yield from _overlap_findings(scene, at)
     yield from _start_findings(scenario, scene, at)
-    for name in scenario.locations:
+    for name in (n for n in scenario.locations if n not in skip_locations):
         pose = scenario.location(name)
         x, y, z = pose.translation()
         if abs(z) <= FLOOR_LEVEL:
-            problem = stand_problem(scene, x, y, _yaw(pose))
+            problem = stand_problem(scene.navigation, x, y, _yaw(pose))
             if problem:
-                yield at.field(("locations", name), f"{problem}: move it", (x, y, z))
+                yield at.field(("locations", name), problem, (x, y, z))
 
 
 def _overlap_findings(scene: CellScene, at: Locator) -> Iterator[Finding]:
@@ -177,27 +189,41 @@ def _start_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterat
     if scenario.human is None:
         return
     x, y, yaw_deg = scenario.human.start
-    problem = stand_problem(scene, x, y, math.radians(yaw_deg))
+    problem = stand_problem(scene.navigation, x, y, math.radians(yaw_deg))
     if problem:
-        yield at.field(("human", "start"), f"{problem}: start them clear of it", (x, y, 0.0))
+        yield at.field(("human", "start"), problem, (x, y, 0.0))
 
 
-def stand_problem(scene: CellScene, x: float, y: float, yaw: float | None) -> str:
-    """Why a person cannot stand at (x, y) facing `yaw` (any way, if None): "" when they
-    can."""
-    headings = [yaw] if yaw is not None else np.arange(HEADINGS) * 2 * math.pi / HEADINGS
-    overlaps = [scene.navigation.standing_overlap(x, y, heading) for heading in headings]
-    worst = max((o for o in overlaps if o is not None), default=None)
-    if worst is None or worst[0] <= STAND_TOLERANCE:
+def stand_problem(navigation: NavigationMap, x: float, y: float, yaw: float | None) -> str:
+    """Why a person cannot stand at (x, y) facing `yaw` (radians; None: any way) and step
+    round on the spot there (NavigationMap.stand_problem), with the nearest place that has
+    room, where a walk there would end instead: "" when they can."""
+    problem = navigation.stand_problem(x, y, yaw)
+    if problem is None:
         return ""
-    depth, what = worst
-    facing = f"facing {math.degrees(yaw):.0f}°" if yaw is not None else "turning on the spot"
-    return f"a person standing at ({x:.2f}, {y:.2f}) {facing} reaches {depth:.2f} m into {what}"
+    facing = f" facing {math.degrees(yaw):.0f}°" if yaw is not None else ""
+    what = (
+        f"a person at ({x:.2f}, {y:.2f}){facing}, {problem.doing}, reaches "
+        f"{problem.depth:.2f} m into {problem.what}"
+    )
+    within = [o.name for o in navigation.obstacles if o.outline.contains(Point(x, y))]
+    if within:
+        what = f"({x:.2f}, {y:.2f}) lies within the floor outline of {within[0]}"
+    try:
+        spot = navigation.clear_spot(x, y, yaw)
+    except NoWay:
+        near = SEARCH_RINGS * SEARCH_STEP
+        return f"{what}, and no place within {near:.2f} m has room to stand and turn"
+    return f"{what}: the nearest place with room to stand and turn is {_xy(spot)}"
 
 
 def _yaw(pose: RigidTransform) -> float:
     R = pose.rotation().matrix()
     return math.atan2(R[1, 0], R[0, 0])
+
+
+def _xy(p) -> str:
+    return f"[{p[0]:.2f}, {p[1]:.2f}]"
 
 
 def _xyz(p) -> str:

@@ -31,11 +31,17 @@ def findings(scenario: Scenario, path: Path) -> list[Finding]:
     found = list(magnitude_findings(scenario, at))
     implausible = {f.where for f in found}
     scene = CellScene(scenario, skip_types=_types_named(implausible))
-    found += cell_findings(scenario, scene, at)
+    found += cell_findings(scenario, scene, at, skip_locations=_named(implausible, "locations"))
     found += tree_findings(scenario, scene, at)
     return found
 
 
 def _types_named(fields: Iterable[str]) -> set[str]:
     """The object types that `workpieces.types.<name>...` fields name."""
-    return {f.split(".")[2] for f in fields if f.startswith("workpieces.types.")}
+    return _named(fields, "workpieces.types")
+
+
+def _named(fields: Iterable[str], section: str) -> set[str]:
+    """The names that `<section>.<name>...` fields name (what a finding already covers)."""
+    depth = section.count(".") + 1
+    return {f.split(".")[depth] for f in fields if f.startswith(f"{section}.")}

@@ -152,7 +152,7 @@ class _Checks:
         if pose.quaternion is not None:
             R = pose.to_transform().rotation().matrix()
             yaw = math.atan2(R[1, 0], R[0, 0])
-        problem = stand_problem(self.scene, x, y, yaw)
+        problem = stand_problem(self.scene.navigation, x, y, yaw)
         if problem:
             message = f"{known}: {problem}"
             yield self.at.node(node, "target", message, (x, y, 0.0))

@@ -173,8 +173,19 @@ CASES = {
         '      <ActorMovement target="{spot}"/>',
         (
             "port 'target': the value OffsetPose (human.xml:4) made from location 'door': "
-            "a person standing at (0.00, 0.70) facing -90° reaches ",
-            "m into work_table",
+            "(0.00, 0.70) lies within the floor outline of "
+            "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
+        ),
+        '<ActorMovement target="{spot}"',
+    ),
+    "a place to walk to without room to turn": person(
+        '<ActorMovement target="door"/>',
+        '<OffsetPose input="door" offset="-2;-1.75;0" output="{spot}"/>\n'
+        '      <ActorMovement target="{spot}"/>',
+        (
+            "port 'target': the value OffsetPose (human.xml:4) made from location 'door': "
+            "a person at (0.00, 1.25) facing -90°, turning on the spot, reaches 0.18 m into "
+            "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
         ),
         '<ActorMovement target="{spot}"',
     ),
@@ -183,7 +194,10 @@ CASES = {
         S,
         "start: [2.0, 2.0, 180.0]",
         "start: [0.0, 0.8, 180.0]",
-        ("human.start: a person standing at (0.00, 0.80) facing 180° reaches ", "work_table"),
+        (
+            "human.start: (0.00, 0.80) lies within the floor outline of work_table: the "
+            "nearest place with room to stand and turn is [0.00, 1.43]",
+        ),
         "start:",
     ),
     "object inside the table": Case(
