@@ -7,11 +7,12 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 from shapely.geometry import MultiPolygon, Polygon
 from shapely.ops import unary_union
 
 from hrc_drake.agent_trees import sections
-from hrc_drake.human.navigation import FLOOR_LEVEL
+from hrc_drake.human.navigation import FLOOR_LEVEL, NavigationMap, Obstacle
 from hrc_drake.known_values import known_inputs
 from hrc_drake.layout.reach_map import ReachMap, ReachMapper
 from hrc_drake.motion.planner import MotionPlanner
@@ -26,6 +27,8 @@ HEIGHT_BAND = 0.05
 """m: robot targets this close in height share one reach map (the lowest of them)."""
 MAX_HEIGHTS = 4
 """Reach maps drawn at most (the band widens until the heights fit)."""
+ROOM_STEP, ROOM_MARGIN = 0.04, 0.5
+"""m: where a person has room to stand is sampled this finely, this far round the cell."""
 
 
 @dataclass(frozen=True)
@@ -67,6 +70,12 @@ class StartingObject:
     outline: Polygon
     top: float
 
+    @property
+    def picked(self) -> Target:
+        """Where a tool picking it goes: the middle of its top face (a linear move's end)."""
+        centre = self.outline.centroid
+        return Target("", (centre.x, centre.y, self.top), True)
+
 
 @dataclass(frozen=True)
 class CellLayout:
@@ -78,6 +87,9 @@ class CellLayout:
     """Where the person's pelvis may not go (the furniture grown by the body, the robot's
     inner space): the rest of the floor is walkable."""
     keep_out: Polygon | MultiPolygon
+    no_room: tuple[np.ndarray, np.ndarray, np.ndarray]
+    """x (m), y (m) and, on that grid, where a person cannot stand and turn on the spot
+    (NavigationMap.stand_problem facing any way): places to stand lie outside it."""
     reach: list[ReachMap]
     targets: list[Target]
     places: list[Place]
@@ -93,6 +105,7 @@ def cell_layout(scenario: Scenario, path: Path | None) -> CellLayout:
     (None: no findings are looked for)."""
     scene = CellScene(scenario)
     targets = robot_targets(scenario)
+    objects = starting_objects(scene)
     planner = MotionPlanner(
         scenario.station, scenario.robot.motion, stream(scenario.seed, ROBOT_MOTION)
     )
@@ -102,22 +115,38 @@ def cell_layout(scenario: Scenario, path: Path | None) -> CellLayout:
         name=scenario.name,
         variant=scenario.robot.variant,
         robot_xy=mapper.centre,
-        furniture=furniture(scene),
+        furniture=furniture(scene.navigation.obstacles),
         blocked=scene.navigation.blocked,
         keep_out=scene.navigation.keep_out,
-        reach=[mapper.reach_map(z, linear) for z, linear in reach_heights(targets)],
+        no_room=no_room_to_turn(scene.navigation),
+        reach=[
+            mapper.reach_map(z, linear)
+            for z, linear in reach_heights(targets + [o.picked for o in objects])
+        ],
         targets=targets,
         places=places(scenario),
         areas={name: Polygon(points) for name, points in scenario.areas.items()},
-        objects=starting_objects(scene),
+        objects=objects,
         person_start=(None if human is None else (*human.start[:2], math.radians(human.start[2]))),
         findings=findings(scenario, path) if path is not None else [],
     )
 
 
-def furniture(scene: CellScene) -> list[Furniture]:
+def no_room_to_turn(navigation: NavigationMap):
+    """Where a person cannot stand and turn, sampled every ROOM_STEP round the furniture."""
+    if not navigation.obstacles:
+        return np.zeros(0), np.zeros(0), np.zeros((0, 0), dtype=bool)
+    x0, y0, x1, y1 = unary_union([o.outline for o in navigation.obstacles]).bounds
+    xs = np.arange(x0 - ROOM_MARGIN, x1 + ROOM_MARGIN, ROOM_STEP)
+    ys = np.arange(y0 - ROOM_MARGIN, y1 + ROOM_MARGIN, ROOM_STEP)
+    grid = np.array([[navigation.stand_problem(x, y, None) is not None for x in xs] for y in ys])
+    return xs, ys, grid
+
+
+def furniture(obstacles: list[Obstacle]) -> list[Furniture]:
+    """The obstacles of the person's navigation map by the model they belong to."""
     by_model: dict[str, list] = {}
-    for obstacle in scene.navigation.obstacles:
+    for obstacle in obstacles:
         by_model.setdefault(obstacle.name, []).append(obstacle)
     return [
         Furniture(
@@ -156,8 +185,9 @@ def robot_targets(scenario: Scenario) -> list[Target]:
 
 
 def reach_heights(targets: list[Target]) -> list[tuple[float, bool]]:
-    """(height, linear) of each reach map: targets within a band of heights share the
-    lowest one's, reached as a linear move's end when every target there is one."""
+    """(height, linear) of each reach map: targets (and the tops of the starting objects,
+    where a pick goes) within a band of heights share the lowest one's, reached as a linear
+    move's end when every target there is one."""
     band = HEIGHT_BAND
     while True:
         groups: list[list[Target]] = []

@@ -90,6 +90,17 @@ def _panel(ax, layout: CellLayout, reach: ReachMap | None, bounds, whole: bool) 
     _fill(ax, layout.blocked, facecolor="#eeeeee", edgecolor="#bbbbbb", hatch="///", lw=0.5)
     if reach is not None:
         _reach(ax, reach)
+    xs, ys, no_room = layout.no_room
+    if no_room.any():
+        ax.contour(
+            xs,
+            ys,
+            no_room.astype(float),
+            levels=[0.5],
+            colors="#756bb1",
+            linewidths=0.8,
+            linestyles=":",
+        )
     for piece in layout.furniture:
         _fill(ax, piece.outline, facecolor="#d9c7a3", edgecolor="#5b4a2f", lw=1.0, alpha=0.8)
         heights = f"{piece.surface:.2f} m"
@@ -281,6 +292,7 @@ def _legend() -> str:
         f"{math.degrees(TILT):.0f}° every way; {DIRECTIONS} directions); pink: the arm "
         "reaches but would touch the cell; hatched: no walking (the body's clearance, "
         "the robot's inner space); "
+        "dotted purple: closer than this, a person has no room to stand and turn; "
         "circles: places to stand (arrow: facing); dots: robot targets at that height"
     )
 
