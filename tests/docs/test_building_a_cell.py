@@ -18,10 +18,10 @@ GUIDE = DOCS / "building-a-cell.md"
 SHORT = 8.0
 """s: the robot takes the tray's first part to the belt, the person assembles."""
 NO_ROOM = (
-    "tray_front: {translation: [0.0, 1.25, 0.0]",
-    "tray_front: {translation: [0.0, 1.1, 0.0]",
+    "belt_side: {translation: [1.6, 0.6, 0.0]",
+    "belt_side: {translation: [1.6, 0.45, 0.0]",
 )
-"""The guide's place-to-stand mistake: the tray's place 0.18 m from the side table."""
+"""The guide's place-to-stand mistake: the place by the belt 0.21 m from its rail."""
 
 
 def _script():
