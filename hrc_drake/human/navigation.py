@@ -24,6 +24,9 @@ A place to stand works when the person can stand there facing its way and step r
 the spot without any body part entering the cell's geometry (`stand_problem`); the
 planner moves a place that does not to the nearest that does, and `hrc-drake validate`
 names it.
+
+Longer than 400 lines: the walks and the places to stand are asked of one map, which holds
+the body's slices and the obstacles grown by them that both use.
 """
 
 from dataclasses import dataclass

@@ -217,6 +217,25 @@ def stand_problem(navigation: NavigationMap, x: float, y: float, yaw: float | No
     return f"{what}: the nearest place with room to stand and turn is {_xy(spot)}"
 
 
+def walk_problem(navigation: NavigationMap, start, x: float, y: float, yaw: float | None) -> str:
+    """Why no walk from `start` (x, y) reaches the place a walk to (x, y) facing `yaw` ends
+    at (the nearest with room, as the person's planner moves it): "" when one does, or when
+    no place near has room (stand_problem says so)."""
+    try:
+        goal = navigation.clear_spot(x, y, yaw)
+    except NoWay:
+        return ""
+    try:
+        navigation.path(start, goal)
+    except NoWay:
+        return (
+            f"no walk from the person's start {_xy(start)} to {_xy(goal)} keeps clear of the "
+            "cell (the gaps on the way are narrower than a walking person, or the robot's "
+            "inner working space closes them)"
+        )
+    return ""
+
+
 def _yaw(pose: RigidTransform) -> float:
     R = pose.rotation().matrix()
     return math.atan2(R[1, 0], R[0, 0])

@@ -17,7 +17,8 @@ from hrc_drake.motion.reach import reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.scenario.cell_findings import CellScene, stand_problem
+from hrc_drake.human.navigation import FLOOR_LEVEL
+from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
@@ -54,6 +55,7 @@ class _Checks:
         self.clips = clip_catalog(human.clips if human is not None else ())
         self.reach_problems: dict[tuple, str] = {}
         """What reach_problem said of each target (one pose may be read by many nodes)."""
+        self.walk_problems: dict[tuple, str] = {}
 
     @cached_property
     def planner(self) -> MotionPlanner:
@@ -142,20 +144,31 @@ class _Checks:
             yield self.at.node(node, "target", message, target.translation())
 
     def _standing(self, agent, node, known: Known) -> Iterator[Finding]:
-        """A place to walk to: those that are floor-level locations are checked as
-        locations (cell_findings); the others here, where the tree makes them."""
+        """A place to walk to: room to stand and turn there (floor-level locations are
+        checked as locations, in cell_findings), and a walk from the person's start."""
         pose = _resolved(agent, known.value)
-        if pose is None or (known.value.name and abs(pose.position[2]) <= 1e-6):
+        if pose is None:
             return
-        x, y, _ = pose.position
+        x, y, z = pose.position
         yaw = None
         if pose.quaternion is not None:
             R = pose.to_transform().rotation().matrix()
             yaw = math.atan2(R[1, 0], R[0, 0])
-        problem = stand_problem(self.scene.navigation, x, y, yaw)
+        location = known.value.name and abs(z) <= FLOOR_LEVEL
+        problem = "" if location else stand_problem(self.scene.navigation, x, y, yaw)
+        if not problem:
+            problem = self._no_walk(x, y, yaw)
         if problem:
-            message = f"{known}: {problem}"
-            yield self.at.node(node, "target", message, (x, y, 0.0))
+            yield self.at.node(node, "target", f"{known}: {problem}", (x, y, 0.0))
+
+    def _no_walk(self, x: float, y: float, yaw: float | None) -> str:
+        """Why no walk from the person's start reaches the place a walk to (x, y) ends at
+        (what walk_problem says, asked once per place)."""
+        key = (round(x, 9), round(y, 9), yaw)
+        if key not in self.walk_problems:
+            start = self.scenario.human.start[:2]
+            self.walk_problems[key] = walk_problem(self.scene.navigation, start, x, y, yaw)
+        return self.walk_problems[key]
 
 
 def _resolved(agent, value) -> Pose | None:

@@ -7,6 +7,7 @@ one of them."""
 import pytest
 
 from tests.corpus.corpus_helpers import (
+    GOOD_SCENARIO,
     GOOD_TREE,
     Case,
     assert_one_line_error,
@@ -31,11 +32,29 @@ OBJECTS = "  objects:\n"
 PART_ON_TABLE = "    - {type: part, pose: {translation: [0.0, 0.6, 0.93]}}\n"
 
 
-def person(old: str, new: str, says: tuple[str, ...], at: str) -> Case:
-    """The corpus scenario with a person whose tree (PERSON) has `old` replaced by `new`."""
+ISLAND = "".join(
+    f"  - add_model: {{name: {name}, file: package://hrc_drake_models/cell/work_table.sdf}}\n"
+    f"  - add_weld: {{parent: world, child: {name}::body, X_PC: {{translation: {xyz}{turn}}}}}\n"
+    for name, xyz, turn in (
+        ("left_table", [-1.0, 1.7, 0.0], ", rotation: !Rpy {deg: [0, 0, 90]}"),
+        ("right_table", [1.0, 1.7, 0.0], ", rotation: !Rpy {deg: [0, 0, 90]}"),
+        ("back_table", [0.0, 2.7, 0.0], ""),
+    )
+)
+"""Three more work tables that close a square with the corpus's work table round (0, 1.7)."""
+
+
+def person(old: str, new: str, says: tuple[str, ...], at: str, cell: str = "") -> Case:
+    """The corpus scenario (with `cell` added to its cell) with a person whose tree
+    (PERSON) has `old` replaced by `new`."""
     tree = PERSON.replace(old, new)
     assert tree != PERSON
-    return Case(S, ROBOT_TREE, f"{ROBOT_TREE}  human: {{file: {H}}}\n", says, at, {H: tree}, H)
+    trees = f"{ROBOT_TREE}  human: {{file: {H}}}\n"
+    files = {H: tree}
+    if cell:
+        scenario = GOOD_SCENARIO.replace("human:\n", f"{cell}human:\n", 1)
+        files[S] = scenario.replace(ROBOT_TREE, trees)
+    return Case(S, ROBOT_TREE, trees, says, at, files, H)
 
 
 CASES = {
@@ -188,6 +207,17 @@ CASES = {
             "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
         ),
         '<ActorMovement target="{spot}"',
+    ),
+    "a place to walk to closed in by tables": person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="0;1.7;0"/>',
+        (
+            "port 'target': '0;1.7;0': no walk from the person's start [2.00, 2.00] to "
+            "[0.00, 1.70] keeps clear of the cell (the gaps on the way are narrower than a "
+            "walking person, or the robot's inner working space closes them)",
+        ),
+        "0;1.7;0",
+        cell=ISLAND,
     ),
     # --- the cell at the start ---
     "person starts inside the table": Case(
