@@ -11,13 +11,13 @@ from functools import cached_property
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
+from hrc_drake.human.navigation import FLOOR_LEVEL
 from hrc_drake.known_values import Known, known_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.human.navigation import FLOOR_LEVEL
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario

@@ -14,6 +14,7 @@ from hrc_drake.layout.reach_map import ReachMapper
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import reach_problem
 from hrc_drake.nodes.robot import TOOL_DOWN
+from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
 from hrc_drake.scenario.findings import findings
 from hrc_drake.seeding import stream
@@ -98,3 +99,16 @@ def test_the_reach_shading_says_what_the_planner_says():
     cell = into_the_table.cell(*in_the_table)
     assert into_the_table.share[cell] == 0.0 and into_the_table.blocked[cell]
     assert "would touch work_table" in planner_says(in_the_table, 0.85)
+
+
+def test_each_runs_report_shows_the_layout_with_what_validate_finds(tmp_path, mistaken_cell):
+    """A run of the mistaken cell (its layout gathered once in this module) writes
+    layout.png beside report.html, which shows it in its Layout section."""
+    scenario = load_scenario(mistaken_cell)
+    report = run(scenario, duration=0.2, out_dir=tmp_path / "run", scenario_file=mistaken_cell)
+    layout = report.files["layout"]
+    assert layout == tmp_path / "run" / "layout.png"
+    assert layout.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    html = (tmp_path / "run" / "report.html").read_text()
+    assert '<h2 id="layout">Layout</h2><img src="layout.png"' in html
+    assert len(layout_of(scenario, mistaken_cell).findings) == 3
