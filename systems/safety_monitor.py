@@ -24,6 +24,13 @@ robot is taken to move at full speed.
 
 A contact is quasi-static when the touched body region is pinned against the cell (the
 bodies welded to the world) or another robot part; see `ProximityMeter.pinned`.
+
+With safety sensors (`safety.sensors`), input `sensor_readings` (the SafetySensors'
+readings) is what the speed scale follows: the nearest detection of the person and the
+scanners' fields (`hrc_drake.safety.sensors_view`), each sensor's reading as it reports it,
+its response time after the scene. The body's true distances are still measured: the
+status's separation, S_p and violations are the real body's (S_p with the slowest sensor's
+response time), so a person the sensors miss shows as a violation.
 """
 
 import math
@@ -42,6 +49,7 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
+from hrc_drake.safety.sensors_view import RobotOutline, view
 from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
@@ -81,17 +89,27 @@ class SafetyMonitor(LeafSystem):
         self._active_parts = _active_parts(self._meter, robot.parts, carried_parts)
         self.part_names = tuple(dict.fromkeys(part.name for part in self._meter.robot))
         """What the `part` entry of `safety_signals` numbers."""
+        stop = StopModel.of_variant(variant)
+        sensors = config.sensors.all()
         self._judge = Judge(
             config,
-            SsmModel.from_config(config, StopModel.of_variant(variant), command_latency),
+            SsmModel.from_config(config.truth(), stop, command_latency),
             robot_effective_mass(robot.moving_mass, robot.tool_mass),
+            sensed={
+                name: SsmModel.from_config(config.seen_through(sensor), stop, command_latency)
+                for name, sensor in sensors.items()
+            },
+            reduced_speed=config.sensors.reduced_speed,
         )
+        self._outline = RobotOutline(inspector, robot.parts + carried_parts) if sensors else None
+        self._arm_geometries = tuple(part.geometry for part in robot.parts)
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self._path_rate = self.DeclareVectorInputPort("robot_path_rate", 1)
+        self._readings = self.DeclareAbstractInputPort("sensor_readings", message_value())
         self._scale = self.DeclareDiscreteState(np.zeros(1))  # no motion before a measurement
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
@@ -124,7 +142,8 @@ class SafetyMonitor(LeafSystem):
         )
         payload = held.mass if held is not None else 0.0
         path_rate = self._robot_path_rate(context, reading.robot_speed)
-        status = self._judge.status(time, reading, before, payload, path_rate)
+        sensing = self._sensing(context, time, geometry, path_rate)
+        status = self._judge.status(time, reading, before, payload, path_rate, sensing)
         part = self.part_names.index(status.link) if status.link else -1
         state.get_mutable_abstract_state(self._status).set_value(status)
         state.get_mutable_discrete_state(self._memory).set_value(reading.memory)
@@ -132,6 +151,18 @@ class SafetyMonitor(LeafSystem):
         signals = status.signals(reading.person_xy, part)
         state.get_mutable_discrete_state(self._signals).set_value(signals)
         return EventStatus.Succeeded()
+
+    def _sensing(self, context, time: float, held, path_rate: float):
+        """The sensors' views of the person (None without sensors); nothing read from an
+        unconnected `sensor_readings` (no sensor has reported)."""
+        if self._outline is None:
+            return None
+        readings = value_or_none(self._readings, context) or {}
+        robot = self._arm_geometries + ((held,) if held is not None else ())
+        sensors = self._judge.config.sensors
+        return view(
+            sensors, readings, time, self._outline, self._query.Eval(context), robot, path_rate
+        )
 
     def _robot_path_rate(self, context, robot_speed: float) -> float:
         if self._path_rate.HasValue(context):

@@ -1,0 +1,151 @@
+"""What the monitor makes of its sensors' readings (docs/safety.md): per sensor, how far the
+nearest detection of the person is from the robot, and which of its fields are occupied.
+
+Separations are horizontal, as ISO 13855 measures a detection zone's distance from the
+hazard: from each point where a scanner's beam met the person (or each light-curtain beam
+the person interrupts, all of it) to the robot's parts' bounding capsules (hrc_drake.safety.
+geometry), all projected onto the floor. A projected distance is never longer than the
+distance in space, and a capsule holds its part, so the sensed separation errs on the near
+side; what the sensor cannot see of the body (an arm reaching over the scan plane) is ISO
+13855's intrusion distance C, which S_p adds.
+"""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+
+from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
+from hrc_drake.safety.sensors import FieldSet, LaserScanner, Sensor, SensorsConfig
+from hrc_drake.safety.sensors_reading import (
+    SensorReading,
+    interrupted_beams,
+    person_points,
+    reported,
+)
+
+CLEAR, WARNING, PROTECTIVE = 0, 1, 2
+FIELD_STATES = ("clear", "warning", "protective")
+"""What a scanner's active fields say, from nothing in them to the protective field
+occupied (the index is the `field` safety signal)."""
+
+
+@dataclass(frozen=True, eq=False)
+class SensorView:
+    """One sensor's reported reading as the monitor reads it."""
+
+    name: str
+    separation: float = math.inf
+    """m from the nearest detection of the person to the robot, on the floor (inf: not
+    seen, or nothing reported yet)"""
+    field_set: int = -1
+    """index of the active field set (-1: the sensor has none)"""
+    field_state: int = CLEAR
+    """the active set's state: CLEAR, WARNING or PROTECTIVE occupied"""
+    detections: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    """a scanner's points on the person, a light curtain's interrupted beams' mid points"""
+    reported: bool = False
+    """the sensor has reported a reading"""
+
+    @property
+    def seen(self) -> bool:
+        return math.isfinite(self.separation)
+
+
+def active_set(fields: list[FieldSet], speed_fraction: float) -> int:
+    """The field set for a robot at `speed_fraction` of full speed: the one with the least
+    `speed` at least that (the fastest set beyond the fastest speed); -1 without fields."""
+    if not fields:
+        return -1
+    ranked = sorted(range(len(fields)), key=lambda k: fields[k].speed)
+    return next((k for k in ranked if fields[k].speed >= speed_fraction), ranked[-1])
+
+
+def occupied_field(field_set: FieldSet, points: np.ndarray) -> int:
+    """Whether any of `points` (× 3) lies in the set's protective or warning field."""
+    if not len(points):
+        return CLEAR
+    for state, corners in ((PROTECTIVE, field_set.protective), (WARNING, field_set.warning)):
+        polygon = shapely.Polygon(corners) if len(corners) >= 3 else None
+        if polygon is not None and shapely.contains_xy(polygon, points[:, 0], points[:, 1]).any():
+            return state
+    return CLEAR
+
+
+class RobotOutline:
+    """The robot's parts as the sensed separation measures them: their bounding capsules
+    in the world, from the scene's poses."""
+
+    def __init__(self, inspector, parts: list[Part]):
+        self._geometries = {
+            part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
+        }
+
+    def capsules(self, query_object, geometries) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Starts and spans (parts × 3, world) and radii of the parts `geometries`."""
+        starts, spans, radii = [], [], []
+        for geometry in geometries:
+            p0, p1, radius = self._geometries[geometry]
+            pose = query_object.GetPoseInWorld(geometry)
+            start = pose @ p0
+            starts.append(start)
+            spans.append(pose @ p1 - start)
+            radii.append(radius)
+        return np.array(starts), np.array(spans), np.array(radii)
+
+
+def horizontal_separation(starts, spans, capsules) -> float:
+    """Least floor distance from the segments (× 3; points have no span) to the capsules."""
+    if not len(starts):
+        return math.inf
+    cap_starts, cap_spans, radii = capsules
+    flat = np.array([1.0, 1.0, 0.0])
+    distances = segment_distances(starts * flat, spans * flat, cap_starts * flat, cap_spans * flat)
+    return float(max((distances - radii[None, :]).min(), 0.0))
+
+
+def sensor_view(
+    name: str,
+    sensor: Sensor,
+    reading: SensorReading | None,
+    capsules,
+    speed_fraction: float,
+) -> SensorView:
+    """What `reading` (None: nothing reported yet) tells of the person near the robot's
+    `capsules` moving at `speed_fraction` of full speed."""
+    if reading is None:
+        return SensorView(name)
+    if isinstance(sensor, LaserScanner):
+        points = person_points(sensor, reading)
+        starts, spans = points, np.zeros_like(points)
+        chosen = active_set(sensor.fields, speed_fraction)
+        state = occupied_field(sensor.fields[chosen], points) if chosen >= 0 else CLEAR
+    else:
+        beams = interrupted_beams(sensor, reading)
+        starts, spans = beams[:, :, 0], beams[:, :, 1] - beams[:, :, 0]
+        points, chosen, state = starts + spans / 2, -1, CLEAR
+    separation = horizontal_separation(starts, spans, capsules) if len(starts) else math.inf
+    return SensorView(name, separation, chosen, state, points, reported=True)
+
+
+def view(
+    config: SensorsConfig,
+    histories: dict,
+    time: float,
+    outline: RobotOutline,
+    query_object,
+    robot_geometries,
+    speed_fraction: float,
+) -> tuple[SensorView, ...]:
+    """Every sensor's view at `time` of its history of readings (`histories` by name)."""
+    reports = {
+        name: reported(histories.get(name, ()), time, sensor.latency)
+        for name, sensor in config.all().items()
+    }
+    seen = any(r is not None and r.sees_person for r in reports.values())
+    capsules = outline.capsules(query_object, robot_geometries) if seen else None
+    return tuple(
+        sensor_view(name, sensor, reports[name], capsules, speed_fraction)
+        for name, sensor in config.all().items()
+    )
