@@ -37,6 +37,7 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.evaluation.replay import dress_scene
+from hrc_drake.evaluation.replay_sensors import draw_sensors
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
@@ -367,6 +368,8 @@ def _add_visualizer(builder, scene_graph, meshcat, scenario, sources) -> ReplayR
         options.camera_target,
         scenario.robot.base_pose.GetDeterministicValue(),
     )
+    if SAFETY in sources and scenario.safety.sensors.present:
+        draw_sensors(meshcat, scenario.safety.sensors)
     roles = {VISUAL_PREFIX: Role.kIllustration}
     if options.show_collision:
         roles["collision"] = Role.kProximity

@@ -49,7 +49,7 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
-from hrc_drake.safety.sensors_view import RobotOutline, view
+from hrc_drake.safety.sensors_view import RobotOutline, SensorView, view
 from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
@@ -99,7 +99,6 @@ class SafetyMonitor(LeafSystem):
                 name: SsmModel.from_config(config.seen_through(sensor), stop, command_latency)
                 for name, sensor in sensors.items()
             },
-            reduced_speed=config.sensors.reduced_speed,
         )
         self._outline = RobotOutline(inspector, robot.parts + carried_parts) if sensors else None
         self._arm_geometries = tuple(part.geometry for part in robot.parts)
@@ -111,8 +110,10 @@ class SafetyMonitor(LeafSystem):
         self._path_rate = self.DeclareVectorInputPort("robot_path_rate", 1)
         self._readings = self.DeclareAbstractInputPort("sensor_readings", message_value())
         self._scale = self.DeclareDiscreteState(np.zeros(1))  # no motion before a measurement
-        self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))
-        self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
+        # with sensors, none has reported yet
+        initial = SafetyStatus(sensing=tuple(map(SensorView, sensors)) if sensors else None)
+        self._signals = self.DeclareDiscreteState(initial.signals((np.nan, np.nan), -1))
+        self._status = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._memory = self.DeclareDiscreteState(np.full(self._meter.memory_size, np.nan))
         self.DeclareStateOutputPort("speed_scale", self._scale)
         self.DeclareStateOutputPort("safety_signals", self._signals)

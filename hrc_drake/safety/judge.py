@@ -14,7 +14,7 @@ from hrc_drake.safety.messages import (
 )
 from hrc_drake.safety.pfl import QUASI_STATIC, TRANSIENT, assess_contact
 from hrc_drake.safety.proximity import Reading
-from hrc_drake.safety.sensors_view import PROTECTIVE, WARNING, SensorView
+from hrc_drake.safety.sensors_view import SensorView
 from hrc_drake.safety.ssm import (
     NO_TERMS,
     REDUCED,
@@ -31,13 +31,12 @@ from hrc_drake.safety.ssm import (
 class Judge:
     """The fixed inputs of judging: settings, the S_p model of the real body and the
     robot's effective mass without a carried object (m_R = M/2 + tool); with safety sensors,
-    each sensor's S_p model (by name) and the speed a warning field allows."""
+    each sensor's S_p model (by name)."""
 
     config: SafetyConfig
     model: SsmModel
     robot_mass: float
     sensed: dict[str, SsmModel] = field(default_factory=dict)
-    reduced_speed: float = 1.0
 
     def status(
         self,
@@ -107,7 +106,7 @@ class Judge:
 
     def _sensed_scale(self, sensing: tuple[SensorView, ...], hysteresis: float) -> float:
         """The largest scale every sensor's view allows: S_p with its own model within the
-        separation it senses (less `hysteresis`), and its fields' limits; a person no
+        separation it senses (less `hysteresis`), and its fields' limit; a person no
         sensor sees is not slowed for, but a sensor that has reported nothing yet holds the
         robot still (as its outputs do at power-up)."""
         scale = 1.0
@@ -115,10 +114,7 @@ class Judge:
             if self.config.sensors.speed_and_separation:
                 model = self.sensed[view.name]
                 scale = min(scale, max_safe_scale(view.separation - hysteresis, 0.0, model))
-            if view.field_state == PROTECTIVE or not view.reported:
-                scale = 0.0
-            elif view.field_state == WARNING:
-                scale = min(scale, self.reduced_speed)
+            scale = min(scale, view.speed_limit if view.reported else 0.0)
         return scale
 
     def _sensed_protective(self, sensing, path_rate: float, robot_speed: float) -> float:

@@ -15,7 +15,9 @@ sees the person through instead of knowing every point of their body (docs/safet
 
 Field sets (`FieldSet`) switch with the robot's speed: the active set is the one with the
 smallest `speed` (fraction of full speed) at least the robot's present one. Its protective
-field occupied stops the robot, its warning field occupied slows it to `reduced_speed`.
+field occupied stops the robot; otherwise the robot may move as fast as the fastest set
+whose fields are all clear allows (a warning field occupied slows it to the next slower
+set's speed), and at `reduced_speed` where no set is clear.
 """
 
 import math
@@ -135,7 +137,7 @@ class SensorsConfig:
     scanners: dict[str, LaserScanner] = field(default_factory=dict)
     light_curtains: dict[str, LightCurtain] = field(default_factory=dict)
     reduced_speed: float = 0.3
-    """fraction of full speed while a warning field is occupied"""
+    """fraction of full speed while a warning field is occupied in every field set"""
     speed_and_separation: bool = True
     """the robot also slows down for the nearest detection's distance (S_p with the
     sensor's response time, C and Z_d); false: only the fields act"""

@@ -43,6 +43,8 @@ class SensorView:
     """index of the active field set (-1: the sensor has none)"""
     field_state: int = CLEAR
     """the active set's state: CLEAR, WARNING or PROTECTIVE occupied"""
+    speed_limit: float = 1.0
+    """the fraction of full speed its fields allow (`field_limit`)"""
     detections: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     """a scanner's points on the person, a light curtain's interrupted beams' mid points"""
     reported: bool = False
@@ -60,6 +62,19 @@ def active_set(fields: list[FieldSet], speed_fraction: float) -> int:
         return -1
     ranked = sorted(range(len(fields)), key=lambda k: fields[k].speed)
     return next((k for k in ranked if fields[k].speed >= speed_fraction), ranked[-1])
+
+
+def field_limit(fields: list[FieldSet], states: list[int], active: int, reduced: float) -> float:
+    """The speed the fields allow: none with the active set's protective field occupied,
+    else the fastest set's whose fields are all clear (so that the robot speeds up only
+    where the faster set's fields are clear too), else `reduced` (a warning field occupied
+    in every set)."""
+    if active < 0:
+        return 1.0
+    if states[active] == PROTECTIVE:
+        return 0.0
+    clear = [f.speed for f, state in zip(fields, states, strict=True) if state == CLEAR]
+    return max(clear, default=reduced)
 
 
 def occupied_field(field_set: FieldSet, points: np.ndarray) -> int:
@@ -111,22 +126,26 @@ def sensor_view(
     reading: SensorReading | None,
     capsules,
     speed_fraction: float,
+    reduced_speed: float,
 ) -> SensorView:
     """What `reading` (None: nothing reported yet) tells of the person near the robot's
-    `capsules` moving at `speed_fraction` of full speed."""
+    `capsules` moving at `speed_fraction` of full speed (`reduced_speed`: what a warning
+    field allows)."""
     if reading is None:
         return SensorView(name)
     if isinstance(sensor, LaserScanner):
         points = person_points(sensor, reading)
         starts, spans = points, np.zeros_like(points)
         chosen = active_set(sensor.fields, speed_fraction)
-        state = occupied_field(sensor.fields[chosen], points) if chosen >= 0 else CLEAR
+        states = [occupied_field(field_set, points) for field_set in sensor.fields]
+        state = states[chosen] if chosen >= 0 else CLEAR
+        limit = field_limit(sensor.fields, states, chosen, reduced_speed)
     else:
         beams = interrupted_beams(sensor, reading)
         starts, spans = beams[:, :, 0], beams[:, :, 1] - beams[:, :, 0]
-        points, chosen, state = starts + spans / 2, -1, CLEAR
+        points, chosen, state, limit = starts + spans / 2, -1, CLEAR, 1.0
     separation = horizontal_separation(starts, spans, capsules) if len(starts) else math.inf
-    return SensorView(name, separation, chosen, state, points, reported=True)
+    return SensorView(name, separation, chosen, state, limit, points, reported=True)
 
 
 def view(
@@ -146,6 +165,6 @@ def view(
     seen = any(r is not None and r.sees_person for r in reports.values())
     capsules = outline.capsules(query_object, robot_geometries) if seen else None
     return tuple(
-        sensor_view(name, sensor, reports[name], capsules, speed_fraction)
+        sensor_view(name, sensor, reports[name], capsules, speed_fraction, config.reduced_speed)
         for name, sensor in config.all().items()
     )
