@@ -18,7 +18,7 @@ from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.ports import message_value
 from hrc_drake.safety.sensors import SensorsConfig
-from hrc_drake.safety.sensors_raycast import solid
+from hrc_drake.safety.sensors_raycast import solids
 from hrc_drake.safety.sensors_reading import kept, take_reading
 from hrc_drake.seeding import stream
 from hrc_drake.wiring import SAFETY_SENSORS
@@ -31,11 +31,15 @@ class SafetySensors(LeafSystem):
         super().__init__()
         self._sensors = config.all()
         geometries = list(inspector.GetAllGeometryIds(Role.kProximity))
-        self._geometries = geometries
-        self._solids = [solid(g, inspector.GetShape(g)) for g in geometries]
+        self._solids = solids([inspector.GetShape(g) for g in geometries])
         self._person = np.array([g in set(person) for g in geometries])
-        self._fixed = np.array([g in set(fixed) for g in geometries])
-        self._fixed_poses: list | None = None
+        frames = [inspector.GetFrameId(g) for g in geometries]
+        self._frames = list(dict.fromkeys(frames))
+        self._frame_of = np.array([self._frames.index(f) for f in frames])
+        self._X_FG = np.array([inspector.GetPoseInFrame(g).GetAsMatrix4() for g in geometries])
+        still = {f for g, f in zip(geometries, frames, strict=True) if g in set(fixed)}
+        self._moving = [k for k, f in enumerate(self._frames) if f not in still]
+        self._frame_poses: np.ndarray | None = None
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
@@ -72,18 +76,18 @@ class SafetySensors(LeafSystem):
         history.set_value(kept(history.get_value(), reading, sensor.latency))
         return EventStatus.Succeeded()
 
-    def _poses(self, context) -> list[np.ndarray]:
-        """World poses (3 × 4) of every geometry; the fixed ones' from the first look."""
+    def _poses(self, context) -> np.ndarray:
+        """World poses (geometries × 3 × 4) of every geometry, from their frames' (those of
+        the fixed geometries looked up once)."""
         query = self._query.Eval(context)
-        if self._fixed_poses is None:
-            self._fixed_poses = [
-                query.GetPoseInWorld(g).GetAsMatrix34() if fixed else None
-                for g, fixed in zip(self._geometries, self._fixed, strict=True)
-            ]
-        return [
-            pose if pose is not None else query.GetPoseInWorld(g).GetAsMatrix34()
-            for g, pose in zip(self._geometries, self._fixed_poses, strict=True)
-        ]
+        if self._frame_poses is None:
+            self._frame_poses = np.array(
+                [query.GetPoseInWorld(f).GetAsMatrix4() for f in self._frames]
+            )
+        frame_poses = self._frame_poses.copy()
+        for k in self._moving:
+            frame_poses[k] = query.GetPoseInWorld(self._frames[k]).GetAsMatrix4()
+        return (frame_poses[self._frame_of] @ self._X_FG)[:, :3, :]
 
 
 def add_safety_sensors(builder, scene_graph, config: SensorsConfig, person, fixed, seed: int):

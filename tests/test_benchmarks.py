@@ -21,6 +21,7 @@ SMALLEST = {
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
     "scenarios.py": ["--duration", "0.5", "cooperation"],
+    "sensing_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "sweep.py": ["--scenario", "base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
 }
 

@@ -11,7 +11,9 @@ sees the person through instead of knowing every point of their body (docs/safet
 - A light curtain is beams between two posts (`ends`, [x, y] each), one every
   `resolution` from `heights[0]` to `heights[1]` above the floor; it reports a beam
   interrupted at most `response_time` after the interruption, and nothing of where along
-  the beam.
+  the beam. Interrupted, it stops the robot (ISO 13855 places it so that the stop comes in
+  time); clear again, it lets the robot go on (automatic restart: what is behind it, it
+  does not see).
 
 Field sets (`FieldSet`) switch with the robot's speed: the active set is the one with the
 smallest `speed` (fraction of full speed) at least the robot's present one. Its protective

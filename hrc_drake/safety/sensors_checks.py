@@ -43,7 +43,7 @@ from hrc_drake.safety.iso13855 import (
     orthogonal_distance,
 )
 from hrc_drake.safety.sensors import LaserScanner, LightCurtain, SensorsConfig
-from hrc_drake.safety.sensors_raycast import cast, solid
+from hrc_drake.safety.sensors_raycast import Solids, cast, solids
 from hrc_drake.safety.sensors_reading import beams
 from hrc_drake.safety.sensors_view import active_set
 from hrc_drake.safety.stopping import StopModel
@@ -235,12 +235,12 @@ def _curtain_values(curtain: LightCurtain) -> Iterator[Problem]:
 
 @dataclass(frozen=True)
 class _Cell:
-    """The station's fixed geometry: its query, solids and names for the beams, the floor
+    """The station's fixed geometry: its query, shapes and names for the beams, the floor
     outlines of its furniture, and the robot's base and reach (with the tool)."""
 
     query: object
-    solids: list
-    poses: list
+    shapes: Solids
+    poses: np.ndarray
     names: list[str]
     obstacles: list[Polygon]
     base: np.ndarray
@@ -278,8 +278,8 @@ def _built_cell(station: StationSpec) -> _Cell:
     obstacles = [o.outline for o in cell_obstacles(plant, inspector) if o.name not in robot]
     return _Cell(
         query=query,
-        solids=[solid(g, inspector.GetShape(g)) for g in fixed],
-        poses=[query.GetPoseInWorld(g).GetAsMatrix34() for g in fixed],
+        shapes=solids([inspector.GetShape(g) for g in fixed]),
+        poses=np.array([query.GetPoseInWorld(g).GetAsMatrix34() for g in fixed]),
         names=[inspector.GetName(g).split("::")[0] for g in fixed],
         obstacles=obstacles,
         base=station.base_pose.translation()[:2],
@@ -315,7 +315,7 @@ def _curtain_placement(curtain: LightCurtain, cell: _Cell) -> Iterator[Problem]:
                 yield ("ends", k), f"the post at [{x:.2f}, {y:.2f}] is inside {inside}"
                 return
     origins, directions, length = beams(curtain)
-    ranges, which = cast(origins, directions, length, cell.solids, cell.poses)
+    ranges, which = cast(origins, directions, length, cell.shapes, cell.poses)
     for k in np.flatnonzero(which >= 0):
         yield (
             ("heights",),

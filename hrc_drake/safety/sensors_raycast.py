@@ -1,107 +1,181 @@
 """Where a sensor's beams end: rays cast against the scene's proximity shapes (boxes,
 spheres, ellipsoids, cylinders, capsules: every shape the cell, the robot, the person and
-the objects are made of), in closed form and in numpy, every ray against every shape at
-once.
+the objects are made of), in closed form and in numpy, all pairs of a ray and a shape of a
+kind at once.
 
 Drake's QueryObject has no ray cast, so each ray is taken into each shape's frame and met
 with the shape's own surface: slabs for a box, a quadric for a sphere or ellipsoid, the
 side and the caps (flat for a cylinder, round for a capsule). A ray starting inside a shape
 ends where it starts. Only shapes whose bounding capsule (hrc_drake.safety.geometry)
 reaches the beams' heights and range are met at all: a scan plane 0.3 m up crosses the
-person's shanks and the furniture's legs, not the rest.
+person's shanks and the furniture's legs, not the rest, and each beam only the shapes it
+passes near.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
-from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, GeometryId, Sphere
+from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, Sphere
 
 from hrc_drake.safety.geometry import bounding_segment
 
 MISS = np.inf
 TINY = 1e-12
+KINDS = (Box, Sphere, Ellipsoid, Cylinder, Capsule)
 
 
-@dataclass(frozen=True)
-class Solid:
-    """A shape in its geometry frame: its kind and sizes, and its bounding capsule."""
+@dataclass(frozen=True, eq=False)
+class Solids:
+    """Shapes as rays meet them, stacked: per shape its kind (index in KINDS), its sizes
+    in its frame (a box's half sizes, a sphere's radius, an ellipsoid's radii, a cylinder's
+    or capsule's radius and half length along z; unused ones 0), and its bounding capsule
+    (segment ends, 3 × 2 in its frame, and radius)."""
 
-    geometry: GeometryId
-    kind: type
+    kinds: np.ndarray
     sizes: np.ndarray
-    """box: half sizes; sphere: radius; ellipsoid: radii; cylinder, capsule: radius and
-    half length (along z)"""
     ends: np.ndarray
-    """the bounding capsule's segment ends (3 × 2), in the geometry frame"""
-    radius: float
+    radii: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.kinds)
 
 
-def solid(geometry: GeometryId, shape) -> Solid:
-    """The shape of `geometry` as rays meet it (ValueError for a shape rays cannot meet)."""
+def solids(shapes: list) -> Solids:
+    """The shapes (Drake's) as rays meet them (ValueError for one they cannot meet)."""
+    kinds, sizes, ends, radii = [], [], [], []
+    for shape in shapes:
+        if not isinstance(shape, KINDS):
+            raise ValueError(f"a safety sensor's beams cannot meet a {type(shape).__name__}")
+        kinds.append(next(k for k, kind in enumerate(KINDS) if isinstance(shape, kind)))
+        sizes.append(np.pad(_sizes(shape), (0, 3 - len(_sizes(shape)))))
+        p0, p1, radius = bounding_segment(shape)
+        ends.append(np.column_stack([p0, p1]))
+        radii.append(radius)
+    return Solids(
+        np.array(kinds, dtype=int),
+        np.array(sizes).reshape(-1, 3),
+        np.array(ends).reshape(-1, 3, 2),
+        np.array(radii),
+    )
+
+
+def _sizes(shape) -> np.ndarray:
     if isinstance(shape, Box):
-        sizes = shape.size() / 2
-    elif isinstance(shape, Sphere):
-        sizes = np.array([shape.radius()])
-    elif isinstance(shape, Ellipsoid):
-        sizes = np.array([shape.a(), shape.b(), shape.c()])
-    elif isinstance(shape, Capsule | Cylinder):
-        sizes = np.array([shape.radius(), shape.length() / 2])
-    else:
-        raise ValueError(f"a safety sensor's beams cannot meet a {type(shape).__name__}")
-    p0, p1, radius = bounding_segment(shape)
-    return Solid(geometry, type(shape), sizes, np.column_stack([p0, p1]), radius)
+        return shape.size() / 2
+    if isinstance(shape, Sphere):
+        return np.array([shape.radius()])
+    if isinstance(shape, Ellipsoid):
+        return np.array([shape.a(), shape.b(), shape.c()])
+    return np.array([shape.radius(), shape.length() / 2])
 
 
 def cast(
     origins: np.ndarray,
     directions: np.ndarray,
     length: float,
-    solids: list[Solid],
-    poses: list[np.ndarray],
+    shapes: Solids,
+    poses: np.ndarray,
+    fan: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """For rays `origins` + t `directions` (rays × 3, unit directions), 0 ≤ t ≤ `length`:
-    the distance t at which each ray first meets one of `solids` posed at `poses` (3 × 4
-    world poses), MISS where none; and the index of the solid it meets (-1 where none)."""
+    the distance t at which each ray first meets one of `shapes` posed at `poses` (shapes ×
+    3 × 4, world), MISS where none; and the index of the shape it meets (-1 where none).
+
+    Only the (shape, ray) pairs whose ray passes the sphere round the shape's bounding
+    capsule are met: a scanner's beam meets a few shapes, not all. `fan`: the rays are a
+    scanner's, from one origin in a horizontal plane, and these are their yaws (rad,
+    increasing), which finds each shape's rays by their angle."""
     best = np.full(len(origins), MISS)
     which = np.full(len(origins), -1)
-    candidates = _near(origins, directions, length, solids, poses)
-    for k in candidates:
-        pose = poses[k]
-        rotation, position = pose[:, :3], pose[:, 3]
-        o = (origins - position) @ rotation  # into the shape's frame: R^T (p - p_WG)
-        d = directions @ rotation
-        t = _MEET[solids[k].kind](o, d, solids[k].sizes)
-        closer = t < best
-        best[closer] = t[closer]
-        which[closer] = k
+    pairs = _fan_pairs if fan is not None else _pairs
+    shape, ray = pairs(origins, directions, length, shapes, poses, fan)
+    distances = np.full(len(shape), MISS)
+    for kind, meet in enumerate(_MEET):
+        chosen = np.flatnonzero(shapes.kinds[shape] == kind)
+        if not len(chosen):
+            continue
+        m, n = shape[chosen], ray[chosen]
+        rotations, positions = poses[m, :, :3], poses[m, :, 3]
+        # into each shape's frame: R^T (p - p_WG)
+        o = ((origins[n] - positions)[:, None, :] @ rotations)[:, 0]
+        d = (directions[n][:, None, :] @ rotations)[:, 0]
+        distances[chosen] = meet(o, d, shapes.sizes[m])
+    np.minimum.at(best, ray, distances)
+    first = np.isfinite(distances) & (distances == best[ray])
+    which[ray[first]] = shape[first]
     beyond = best > length
     best[beyond], which[beyond] = MISS, -1
     return best, which
 
 
-def _near(origins, directions, length, solids, poses) -> list[int]:
-    """The solids whose bounding capsule comes within reach of the rays: within their
-    heights (plus the capsule's radius) and within `length` of an origin."""
+def _bounds(origins, directions, length, shapes: Solids, poses: np.ndarray):
+    """The shapes near the rays at all (`_near`), and the spheres round their bounding
+    capsules: centres (× 3) and radii."""
+    segments = poses[:, :, :3] @ shapes.ends + poses[:, :, 3:]
+    near = np.flatnonzero(_near(origins, directions, length, segments, shapes.radii))
+    segments = segments[near]
+    reach = np.linalg.norm(segments[:, :, 1] - segments[:, :, 0], axis=1) / 2
+    return near, segments.mean(axis=2), reach + shapes.radii[near]
+
+
+def _pairs(origins, directions, length, shapes: Solids, poses: np.ndarray, _fan=None):
+    """(shape, ray) index pairs whose ray passes within the sphere round the shape's
+    bounding capsule, at most `length` along it."""
+    near, centres, reach = _bounds(origins, directions, length, shapes, poses)
+    apart = centres[:, None, :] - origins[None]
+    along = (apart * directions[None]).sum(axis=2)
+    aside = (apart * apart).sum(axis=2) - along * along
+    r = reach[:, None]
+    meets = (aside <= r * r) & (along >= -r) & (along <= length + r)
+    shape, ray = np.nonzero(meets)
+    return near[shape], ray
+
+
+def _fan_pairs(origins, directions, length, shapes: Solids, poses: np.ndarray, fan):
+    """`_pairs` for a scanner's fan of rays: each sphere covers an interval of yaws seen
+    from the origin (all of them round a sphere that holds the origin)."""
+    near, centres, reach = _bounds(origins, directions, length, shapes, poses)
+    apart = centres[:, :2] - origins[0, :2]
+    distance = np.linalg.norm(apart, axis=1)
+    middle = np.arctan2(apart[:, 1], apart[:, 0])
+    middle = fan[0] + np.mod(middle - fan[0], 2.0 * np.pi)  # on or after the first yaw
+    half = np.arcsin(np.clip(reach / np.maximum(distance, TINY), 0.0, 1.0))
+    shape, ray = [], []
+    for k in range(len(near)):
+        if distance[k] <= reach[k]:
+            hits = np.arange(len(fan))
+        else:
+            hits = np.concatenate(
+                [_yaws_within(fan, middle[k] + turn, half[k]) for turn in (-2 * np.pi, 0.0)]
+            )
+        shape.append(np.full(len(hits), near[k]))
+        ray.append(hits)
+    if not shape:
+        return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+    return np.concatenate(shape), np.concatenate(ray)
+
+
+def _yaws_within(fan: np.ndarray, middle: float, half: float) -> np.ndarray:
+    """Indices of the increasing yaws `fan` within `half` of `middle`."""
+    return np.arange(*np.searchsorted(fan, [middle - half, middle + half], side="left"))
+
+
+def _near(origins, directions, length, segments: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """Which bounding capsules (their segments, shapes × 3 × 2, world) come within reach of
+    the rays at all: within the rays' heights (plus the capsule's radius) and within
+    `length` of the origins."""
     ends = origins + length * directions
     z_low = min(origins[:, 2].min(), ends[:, 2].min())
     z_high = max(origins[:, 2].max(), ends[:, 2].max())
     centre = (origins.min(axis=0) + origins.max(axis=0)) / 2
     spread = np.linalg.norm(origins.max(axis=0) - origins.min(axis=0)) / 2 + length
-    found = []
-    for k, (shape, pose) in enumerate(zip(solids, poses, strict=True)):
-        segment = pose[:, :3] @ shape.ends + pose[:, 3:]
-        if segment[2].min() - shape.radius > z_high or segment[2].max() + shape.radius < z_low:
-            continue
-        if _point_segment(centre, segment) - shape.radius > spread:
-            continue
-        found.append(k)
-    return found
-
-
-def _point_segment(point: np.ndarray, segment: np.ndarray) -> float:
-    start, span = segment[:, 0], segment[:, 1] - segment[:, 0]
-    share = np.clip((point - start) @ span / max(span @ span, TINY), 0.0, 1.0)
-    return float(np.linalg.norm(start + share * span - point))
+    within = (segments[:, 2].min(axis=1) - radii <= z_high) & (
+        segments[:, 2].max(axis=1) + radii >= z_low
+    )
+    start, span = segments[:, :, 0], segments[:, :, 1] - segments[:, :, 0]
+    share = ((centre - start) * span).sum(axis=1) / np.maximum((span * span).sum(axis=1), TINY)
+    closest = start + np.clip(share, 0.0, 1.0)[:, None] * span
+    return within & (np.linalg.norm(closest - centre, axis=1) - radii <= spread)
 
 
 def _first_root(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -120,53 +194,63 @@ def _box(o: np.ndarray, d: np.ndarray, half: np.ndarray) -> np.ndarray:
     """Slabs: the ray is inside all three between its last entry and its first exit."""
     safe = np.where(np.abs(d) < TINY, TINY, d)
     t1, t2 = (-half - o) / safe, (half - o) / safe
-    enter = np.minimum(t1, t2).max(axis=1)
-    leave = np.maximum(t1, t2).min(axis=1)
+    enter = np.minimum(t1, t2).max(axis=-1)
+    leave = np.maximum(t1, t2).min(axis=-1)
     hit = leave >= np.maximum(enter, 0.0)
     return np.where(hit, np.maximum(enter, 0.0), MISS)
 
 
 def _sphere(o: np.ndarray, d: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    radius = sizes[0]
-    return _first_root((d * d).sum(axis=1), (o * d).sum(axis=1), (o * o).sum(axis=1) - radius**2)
+    radius = sizes[..., 0]
+    a, b, c = (d * d).sum(axis=-1), (o * d).sum(axis=-1), (o * o).sum(axis=-1) - radius**2
+    return _first_root(a, b, c)
 
 
 def _ellipsoid(o: np.ndarray, d: np.ndarray, radii: np.ndarray) -> np.ndarray:
     """The unit sphere, after scaling each axis by its radius."""
-    return _sphere(o / radii, d / radii, np.ones(1))
+    return _sphere(o / radii, d / radii, np.ones_like(radii))
 
 
-def _side(o: np.ndarray, d: np.ndarray, radius: float, half: float) -> np.ndarray:
+def _side(o: np.ndarray, d: np.ndarray, radius, half) -> np.ndarray:
     """The round side of a cylinder about z, between z = ±half (from outside it)."""
-    a = d[:, 0] ** 2 + d[:, 1] ** 2
-    b = o[:, 0] * d[:, 0] + o[:, 1] * d[:, 1]
-    c = o[:, 0] ** 2 + o[:, 1] ** 2 - radius**2
+    a = d[..., 0] ** 2 + d[..., 1] ** 2
+    b = o[..., 0] * d[..., 0] + o[..., 1] * d[..., 1]
+    c = o[..., 0] ** 2 + o[..., 1] ** 2 - radius**2
     t = _first_root(np.maximum(a, TINY), b, c)
     t = np.where((a > TINY) | (c <= 0.0), t, MISS)
-    z = o[:, 2] + np.where(np.isfinite(t), t, 0.0) * d[:, 2]
+    z = o[..., 2] + np.where(np.isfinite(t), t, 0.0) * d[..., 2]
     return np.where(np.abs(z) <= half, t, MISS)
 
 
 def _cylinder(o: np.ndarray, d: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    radius, half = sizes
+    radius, half = sizes[..., 0], sizes[..., 1]
     t = _side(o, d, radius, half)
+    dz = np.where(np.abs(d[..., 2]) < TINY, TINY, d[..., 2])
     for cap in (-half, half):
-        dz = np.where(np.abs(d[:, 2]) < TINY, TINY, d[:, 2])
-        s = (cap - o[:, 2]) / dz
-        x, y = o[:, 0] + s * d[:, 0], o[:, 1] + s * d[:, 1]
+        s = (cap - o[..., 2]) / dz
+        x, y = o[..., 0] + s * d[..., 0], o[..., 1] + s * d[..., 1]
         on_cap = (s >= 0.0) & (x * x + y * y <= radius**2)
         t = np.minimum(t, np.where(on_cap, s, MISS))
-    inside = (o[:, 0] ** 2 + o[:, 1] ** 2 <= radius**2) & (np.abs(o[:, 2]) <= half)
+    inside = (o[..., 0] ** 2 + o[..., 1] ** 2 <= radius**2) & (np.abs(o[..., 2]) <= half)
     return np.where(inside, 0.0, t)
 
 
 def _capsule(o: np.ndarray, d: np.ndarray, sizes: np.ndarray) -> np.ndarray:
-    radius, half = sizes
+    radius, half = sizes[..., 0], sizes[..., 1]
     t = _side(o, d, radius, half)
-    for end in (-half, half):
-        shifted = o - np.array([0.0, 0.0, end])
-        t = np.minimum(t, _sphere(shifted, d, np.array([radius])))
+    for sign in (-1.0, 1.0):
+        shifted = o.copy()
+        shifted[..., 2] -= sign * half
+        t = np.minimum(t, _sphere(shifted, d, sizes))
     return t
 
 
-_MEET = {Box: _box, Sphere: _sphere, Ellipsoid: _ellipsoid, Cylinder: _cylinder, Capsule: _capsule}
+_MEET = (
+    lambda o, d, sizes: _box(o, d, sizes[..., :3]),
+    _sphere,
+    _ellipsoid,
+    _cylinder,
+    _capsule,
+)
+"""Per kind (KINDS' order): the distances along rays given in the shapes' frames (pairs ×
+3: origins, directions) to the shapes of those sizes (pairs × 3)."""

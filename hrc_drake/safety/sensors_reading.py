@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hrc_drake.safety.sensors import LaserScanner, LightCurtain, Sensor
-from hrc_drake.safety.sensors_raycast import MISS, Solid, cast
+from hrc_drake.safety.sensors_raycast import MISS, Solids, cast
 from hrc_drake.seeding import substream
 
 SCAN_TOLERANCE = 1e-9
@@ -52,16 +52,18 @@ def beams(sensor: Sensor) -> tuple[np.ndarray, np.ndarray, float]:
 def take_reading(
     sensor: Sensor,
     time: float,
-    solids: list[Solid],
-    poses: list[np.ndarray],
+    shapes: Solids,
+    poses: np.ndarray,
     person: np.ndarray,
     noise: np.random.SeedSequence,
     scan: int,
 ) -> SensorReading:
-    """The reading of scan number `scan` at `time`: `person` flags the solids of the
-    person's body; `noise` is the sensor's stream (scan `scan` draws from its substream)."""
+    """The reading of scan number `scan` at `time` of the `shapes` at `poses` (shapes × 3
+    × 4): `person` flags the shapes of the person's body; `noise` is the sensor's stream
+    (scan `scan` draws from its substream)."""
     origins, directions, length = beams(sensor)
-    ranges, which = cast(origins, directions, length, solids, poses)
+    fan = sensor.beam_angles() if isinstance(sensor, LaserScanner) else None
+    ranges, which = cast(origins, directions, length, shapes, poses, fan)
     met = which >= 0
     on_person = met & person[np.maximum(which, 0)]
     if sensor.measurement_error > 0.0:
@@ -102,7 +104,3 @@ def interrupted_beams(curtain: LightCurtain, reading: SensorReading) -> np.ndarr
     origins, directions, length = beams(curtain)
     hits = reading.person
     return np.stack([origins[hits], origins[hits] + length * directions[hits]], axis=2)
-
-
-def is_light_curtain(sensor: Sensor) -> bool:
-    return isinstance(sensor, LightCurtain)

@@ -10,6 +10,7 @@ side; what the sensor cannot see of the body (an arm reaching over the scan plan
 13855's intrusion distance C, which S_p adds.
 """
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -42,7 +43,8 @@ class SensorView:
     field_set: int = -1
     """index of the active field set (-1: the sensor has none)"""
     field_state: int = CLEAR
-    """the active set's state: CLEAR, WARNING or PROTECTIVE occupied"""
+    """the active set's state: CLEAR, WARNING or PROTECTIVE occupied (a light curtain:
+    PROTECTIVE while interrupted)"""
     speed_limit: float = 1.0
     """the fraction of full speed its fields allow (`field_limit`)"""
     detections: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
@@ -82,32 +84,45 @@ def occupied_field(field_set: FieldSet, points: np.ndarray) -> int:
     if not len(points):
         return CLEAR
     for state, corners in ((PROTECTIVE, field_set.protective), (WARNING, field_set.warning)):
-        polygon = shapely.Polygon(corners) if len(corners) >= 3 else None
-        if polygon is not None and shapely.contains_xy(polygon, points[:, 0], points[:, 1]).any():
+        if len(corners) < 3:
+            continue
+        polygon = _prepared(tuple(map(tuple, corners)))
+        if shapely.contains_xy(polygon, points[:, 0], points[:, 1]).any():
             return state
     return CLEAR
 
 
+@functools.lru_cache(maxsize=256)
+def _prepared(corners: tuple) -> shapely.Polygon:
+    """A field's polygon, prepared for many point tests (made once per field)."""
+    polygon = shapely.Polygon(corners)
+    shapely.prepare(polygon)
+    return polygon
+
+
 class RobotOutline:
     """The robot's parts as the sensed separation measures them: their bounding capsules
-    in the world, from the scene's poses."""
+    in the world, from their frames' poses in the scene."""
 
     def __init__(self, inspector, parts: list[Part]):
-        self._geometries = {
-            part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
-        }
+        self._ends = {}
+        """geometry -> (its frame, its segment's ends in the frame (4 × 2), its radius)"""
+        for part in parts:
+            p0, p1, radius = bounding_segment(inspector.GetShape(part.geometry))
+            X_FG = inspector.GetPoseInFrame(part.geometry).GetAsMatrix4()
+            ends = X_FG @ np.vstack([np.column_stack([p0, p1]), np.ones(2)])
+            self._ends[part.geometry] = (inspector.GetFrameId(part.geometry), ends, radius)
 
     def capsules(self, query_object, geometries) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Starts and spans (parts × 3, world) and radii of the parts `geometries`."""
-        starts, spans, radii = [], [], []
-        for geometry in geometries:
-            p0, p1, radius = self._geometries[geometry]
-            pose = query_object.GetPoseInWorld(geometry)
-            start = pose @ p0
-            starts.append(start)
-            spans.append(pose @ p1 - start)
-            radii.append(radius)
-        return np.array(starts), np.array(spans), np.array(radii)
+        chosen = [self._ends[g] for g in geometries]
+        poses = {}
+        for frame, _, _ in chosen:
+            if frame not in poses:
+                poses[frame] = query_object.GetPoseInWorld(frame).GetAsMatrix34()
+        ends = np.array([poses[frame] @ local for frame, local, _ in chosen])
+        starts = ends[:, :, 0]
+        return starts, ends[:, :, 1] - starts, np.array([radius for _, _, radius in chosen])
 
 
 def horizontal_separation(starts, spans, capsules) -> float:
@@ -140,10 +155,11 @@ def sensor_view(
         states = [occupied_field(field_set, points) for field_set in sensor.fields]
         state = states[chosen] if chosen >= 0 else CLEAR
         limit = field_limit(sensor.fields, states, chosen, reduced_speed)
-    else:
+    else:  # a trip device: interrupted, it stops the robot, as if its protective field
         beams = interrupted_beams(sensor, reading)
         starts, spans = beams[:, :, 0], beams[:, :, 1] - beams[:, :, 0]
-        points, chosen, state, limit = starts + spans / 2, -1, CLEAR, 1.0
+        points, chosen = starts + spans / 2, -1
+        state, limit = (PROTECTIVE, 0.0) if len(beams) else (CLEAR, 1.0)
     separation = horizontal_separation(starts, spans, capsules) if len(starts) else math.inf
     return SensorView(name, separation, chosen, state, limit, points, reported=True)
 

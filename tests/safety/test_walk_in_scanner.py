@@ -1,5 +1,6 @@
-"""Closed-loop walk-ins seen through a laser scanner (tests/safety/walk_in.py): the monitor
-knows only what the scanner reports, 0.3 m above the floor, a response time late.
+"""Closed-loop walk-ins seen through a laser scanner or a light curtain (tests/safety/
+walk_in.py): the monitor knows only what the sensor reports (the scanner 0.3 m above the
+floor), a response time late.
 
 Walking in from 4.5 m at 1.6 m/s and reaching in at 2.0 m/s, the person is detected at
 the scan plane on their lower legs (checked against Drake's distances to the posed body),
@@ -7,8 +8,9 @@ the robot slows and stands still before anything touches it, with S_p built from
 scanner's intrusion distance C = 1200 mm − 0.4 H and its response time (recomputed term by
 term from the stopping data). Behind a wall of fence panels the same walk-in is never
 detected: the robot sweeps on at full speed into the person, and the run's margin, judged
-on the real body, shows the violation. An independent recomputation of the real body's
-distances and S_p agrees with the log in both.
+on the real body, shows the violation. A light curtain across the approach stops the robot
+while the person crosses it and, once they are through, knows nothing of them. An
+independent recomputation of the real body's distances and S_p agrees with the log in all.
 """
 
 import numpy as np
@@ -21,10 +23,21 @@ from hrc_drake.safety.sensors_reading import person_points
 from hrc_drake.safety.stopping import StopModel
 from tests.safety.recompute import Scene, worst_stopping_times
 from tests.safety.test_walk_in import assert_recomputation_agrees, assert_ssm_holds
-from tests.safety.walk_in import OCCLUDED, SCANNER, SEEN, START_SCANNED, Case, simulate
+from tests.safety.walk_in import (
+    CURTAIN,
+    LIGHT_CURTAIN,
+    OCCLUDED,
+    SCANNER,
+    SEEN,
+    START_SCANNED,
+    Case,
+    simulate,
+)
 
 VARIANT = "lbr_iisy3_r760"
-CASES = {kind: Case(VARIANT, 90.0, START_SCANNED, 0.5, scanner=kind) for kind in (SEEN, OCCLUDED)}
+CASES = {
+    kind: Case(VARIANT, 90.0, START_SCANNED, 0.5, sensor=kind) for kind in (SEEN, OCCLUDED, CURTAIN)
+}
 COMMAND_LATENCY = 0.01
 
 
@@ -100,6 +113,35 @@ def test_behind_a_wall_the_person_is_not_seen_and_the_margin_shows_the_violation
         outcome.part_names,
     )
     assert margin["violation"] and margin["value"] < -1.0
+
+
+def test_a_light_curtain_stops_the_robot_only_while_it_is_crossed(outcomes):
+    """It reports the person while they cross it (walking in and out) and knows nothing of
+    them behind it: the robot stops while a beam is interrupted and runs on beside the
+    person once they are through, which the margin, judged on the real body, shows. S_p at
+    the curtain holds its C = 8 (30 − 14) mm and its response time (ISO 13855's 2.0 m/s
+    where S_p is at most 0.5 m)."""
+    outcome = outcomes[CURTAIN]
+    path = outcome.case.person
+    crossing = [r for r in outcome.readings if r.sees_person]
+    assert crossing, "the curtain never saw the person cross"
+    plane = LIGHT_CURTAIN.ends[0][1]
+    for reading in crossing:
+        y = path.value(reading.time)[1, 0]  # the person's base y (plant position 1)
+        assert abs(y - plane) < 0.5, f"seen at y = {y:.2f} m, away from the curtain"
+    seen = outcome.signals_named("seen") > 0
+    assert np.all(outcome.signals_named("scale")[seen] == 0.0)
+    assert outcome.signals_named("scale")[~seen][-100:].min() == 1.0
+    assert outcome.status.totals.violations >= 1
+    speeds, times, kappa = worst_stopping_times(VARIANT)
+    rate = outcome.signals_named("path_rate")[seen]
+    v_r = outcome.signals_named("robot_speed")[seen]
+    t_s = np.where(rate > 0.0, np.interp(rate, speeds, times), 0.0)
+    t_r = 0.02 + outcome.config.period + COMMAND_LATENCY
+    robot = v_r * t_r + kappa * v_r * t_s + 8 * (0.030 - 0.014) + 0.02
+    near = 2.0 * (t_r + t_s) + robot
+    expected = np.where(near <= 0.5, near, np.maximum(1.6 * (t_r + t_s) + robot, 0.5))
+    np.testing.assert_allclose(outcome.signals_named("sensed_protective")[seen], expected)
 
 
 @pytest.mark.parametrize("kind", CASES)

@@ -7,10 +7,11 @@ plant does not see their geometry, only the monitor does.
 `simulate(case)` returns everything a test checks: the monitor's final status and logged
 signals, the robot's joint positions and the person's positions at every monitor update.
 
-A case may watch the person through a laser scanner instead (`Case.scanner`): it stands
-2 m to the side of the approach from +y (bearing 90°), 0.3 m above the floor, and
-`OCCLUDED` adds a wall of fence panels between it and the whole approach. Every reading
-it takes is kept (`Outcome.readings`).
+A case may watch the person through a safety sensor instead (`Case.sensor`): a laser
+scanner 2 m to the side of the approach from +y (bearing 90°), 0.3 m above the floor
+(`SEEN`; `OCCLUDED` adds a wall of fence panels between it and the whole approach), or a
+light curtain across that approach (`CURTAIN`). Every reading it takes is kept
+(`Outcome.readings`).
 """
 
 import functools
@@ -33,7 +34,7 @@ from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.geometry import human_parts
 from hrc_drake.safety.messages import SIGNALS
-from hrc_drake.safety.sensors import LaserScanner, SensorsConfig
+from hrc_drake.safety.sensors import LaserScanner, LightCurtain, SensorsConfig
 from hrc_drake.safety.sensors_reading import SensorReading
 from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
@@ -85,10 +86,13 @@ WALL = """
       child: wall_{k}::body
       X_PC: {{translation: [-1.0, {y}, 0.0], rotation: !Rpy {{deg: [0, 0, 90]}}}}
 """
-SEEN, OCCLUDED = "seen", "occluded"
+SEEN, OCCLUDED, CURTAIN = "scanner", "occluded-scanner", "curtain"
 SCANNER = LaserScanner(pose=[-2.0, 1.0, 0.0], response_time=0.12)
 """Beside the approach from +y, looking along +x; its response (three 40 ms scans) is
 slower than the monitor's default sensing time, so S_p shows which it uses."""
+LIGHT_CURTAIN = LightCurtain(ends=[[-1.0, 2.6], [1.0, 2.6]], heights=[0.3, 1.5])
+"""Across the approach from +y, 2.6 m out: ISO 13855's S for its 30 mm resolution and the
+R760's stop from full speed (1.55 m) beyond the reach"""
 WALL_PANELS = (1.4, 3.4)
 """y of the fence panels (2 m long, along y at x = -1, beyond the robot's reach) that hide
 the approach from it"""
@@ -109,8 +113,9 @@ class Case:
     ssm: bool = True
     stand: float = STAND
     hold: float = HOLD
-    scanner: str = ""
-    """"": the monitor knows the body; SEEN or OCCLUDED: it sees the person through SCANNER"""
+    sensor: str = ""
+    """"": the monitor knows the body; SEEN or OCCLUDED: it sees the person through
+    SCANNER, CURTAIN through LIGHT_CURTAIN"""
 
     @property
     def id(self) -> str:
@@ -118,7 +123,7 @@ class Case:
         ssm = "ssm" if self.ssm else "no-ssm"
         where = f"{self.start:.1f}-{self.stand:.2f}m"
         held = "" if self.hold == HOLD else f"-hold{self.hold:.1f}s"
-        scanned = f"-scanner-{self.scanner}" if self.scanner else ""
+        scanned = f"-{self.sensor}" if self.sensor else ""
         return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}{scanned}"
 
     @property
@@ -142,7 +147,7 @@ class Outcome:
     part_names: tuple
     scenario: Scenario
     readings: list[SensorReading]
-    """every reading the scanner took (none without one)"""
+    """every reading the sensor took (none without one)"""
 
     def signals_named(self, name: str) -> np.ndarray:
         return self.signals[SIGNALS.index(name)]
@@ -246,8 +251,8 @@ def duration(case: Case) -> float:
 
 
 def build(case: Case):
-    scene = scenario(case.variant, case.scanner == OCCLUDED)
-    sensors = SensorsConfig(scanners={"scanner": SCANNER}) if case.scanner else SensorsConfig()
+    scene = scenario(case.variant, case.sensor == OCCLUDED)
+    sensors = sensors_of(case.sensor)
     config = SafetyConfig(ssm=case.ssm, robot_speed=ROBOT_SPEED, sensors=sensors)
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(scene.plant, builder)
@@ -271,18 +276,24 @@ def build(case: Case):
         "signals": LogVectorOutput(monitor.GetOutputPort("safety_signals"), builder, config.period),
         "robot": LogVectorOutput(plant.get_state_output_port(arm), builder, config.period),
     }
-    if case.scanner:
-        scanner, logs["readings"] = _add_scanner(
+    if case.sensor:
+        sensor, logs["readings"] = _add_sensor(
             builder, scene_graph, plant, human_plant, human, sensors
         )
         builder.Connect(
-            scanner.GetOutputPort("sensor_readings"), monitor.GetInputPort("sensor_readings")
+            sensor.GetOutputPort("sensor_readings"), monitor.GetInputPort("sensor_readings")
         )
     return builder.Build(), monitor, logs, config, scene
 
 
-def _add_scanner(builder, scene_graph, plant, human_plant, human, sensors: SensorsConfig):
-    """The scanner reading the scene, and a probe keeping every reading it takes."""
+def sensors_of(sensor: str) -> SensorsConfig:
+    if sensor == CURTAIN:
+        return SensorsConfig(light_curtains={sensor: LIGHT_CURTAIN})
+    return SensorsConfig(scanners={sensor: SCANNER}) if sensor else SensorsConfig()
+
+
+def _add_sensor(builder, scene_graph, plant, human_plant, human, sensors: SensorsConfig):
+    """The sensor reading the scene, and a probe keeping every reading it takes."""
     inspector = scene_graph.model_inspector()
     person = [part.geometry for part in human_parts(human_plant, inspector, human)]
     fixed = [
@@ -290,23 +301,25 @@ def _add_scanner(builder, scene_graph, plant, human_plant, human, sensors: Senso
         for body in plant.GetBodiesWeldedTo(plant.world_body())
         for geometry in plant.GetCollisionGeometriesForBody(body)
     ]
-    scanner = add_safety_sensors(builder, scene_graph, sensors, person, fixed, seed=0)
-    probe = builder.AddSystem(ReadingsProbe(SCANNER.scan_time))
-    builder.Connect(scanner.GetOutputPort("sensor_readings"), probe.get_input_port())
-    return scanner, probe
+    sensor = add_safety_sensors(builder, scene_graph, sensors, person, fixed, seed=0)
+    ((name, config),) = sensors.all().items()
+    probe = builder.AddSystem(ReadingsProbe(name, config.scan_time))
+    builder.Connect(sensor.GetOutputPort("sensor_readings"), probe.get_input_port())
+    return sensor, probe
 
 
 class ReadingsProbe(LeafSystem):
-    """Keeps the newest reading of the scanner at every scan."""
+    """Keeps the newest reading of the sensor `name` at every scan."""
 
-    def __init__(self, period: float):
+    def __init__(self, name: str, period: float):
         super().__init__()
+        self._name = name
         self.readings: list[SensorReading] = []
         self.DeclareAbstractInputPort("sensor_readings", message_value())
         self.DeclarePeriodicPublishEvent(period, period / 2, self._keep)
 
     def _keep(self, context) -> None:
-        history = self.get_input_port().Eval(context).get("scanner", ())
+        history = self.get_input_port().Eval(context).get(self._name, ())
         if history and (not self.readings or history[-1].time > self.readings[-1].time):
             self.readings.append(history[-1])
 
