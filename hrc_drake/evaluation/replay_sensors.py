@@ -16,8 +16,7 @@ from pydrake.math import RigidTransform
 
 from hrc_drake.evaluation.recording import MESHCAT_ROOT, Recording
 from hrc_drake.safety.sensors import SensorsConfig
-from hrc_drake.safety.sensors_reading import beams
-from hrc_drake.safety.sensors_view import PROTECTIVE, WARNING
+from hrc_drake.safety.sensors_reading import PROTECTIVE, WARNING, beams
 
 SENSORS_PATH = f"{MESHCAT_ROOT}/sensors"
 MARKERS = 12

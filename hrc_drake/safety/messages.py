@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.pfl import ContactAssessment
-from hrc_drake.safety.sensors_view import CLEAR, SensorView
+from hrc_drake.safety.sensors_reading import CLEAR
+from hrc_drake.safety.sensors_view import SensorView
 from hrc_drake.safety.ssm import FREE, NO_TERMS, ZONES, SsmTerms
 
 NO_PART = ""
@@ -159,7 +160,7 @@ class SafetyStatus:
 
     @property
     def field(self) -> int:
-        """The most urgent state of the sensors' active fields (sensors_view.FIELD_STATES)."""
+        """The most urgent state of the sensors' active fields (sensors_reading.FIELD_STATES)."""
         return max((v.field_state for v in self.sensing or ()), default=CLEAR)
 
     def __deepcopy__(self, memo):
@@ -241,4 +242,4 @@ update measured them: a logger publishing at the monitor's period records the pr
 update's values. With safety sensors, `sensed_separation` is from the nearest detection of the
 person to the robot on the floor (NaN: not seen), `sensed_protective` S_p there, `seen` 1
 while a sensor reports the person, `field` the most urgent field state (index in
-`sensors_view.FIELD_STATES`); all NaN without sensors."""
+`sensors_reading.FIELD_STATES`); all NaN without sensors."""

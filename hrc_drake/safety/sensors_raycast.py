@@ -89,17 +89,16 @@ def cast(
     which = np.full(len(origins), -1)
     pairs = _fan_pairs if fan is not None else _pairs
     shape, ray = pairs(origins, directions, length, shapes, poses, fan)
+    rotations = poses[shape, :, :3]
+    # each pair's ray in its shape's frame: R^T (p - p_WG), R^T d
+    o = ((origins[ray] - poses[shape, :, 3])[:, :, None] * rotations).sum(axis=1)
+    d = (directions[ray][:, :, None] * rotations).sum(axis=1)
+    kinds = shapes.kinds[shape]
     distances = np.full(len(shape), MISS)
     for kind, meet in enumerate(_MEET):
-        chosen = np.flatnonzero(shapes.kinds[shape] == kind)
-        if not len(chosen):
-            continue
-        m, n = shape[chosen], ray[chosen]
-        rotations, positions = poses[m, :, :3], poses[m, :, 3]
-        # into each shape's frame: R^T (p - p_WG)
-        o = ((origins[n] - positions)[:, None, :] @ rotations)[:, 0]
-        d = (directions[n][:, None, :] @ rotations)[:, 0]
-        distances[chosen] = meet(o, d, shapes.sizes[m])
+        chosen = np.flatnonzero(kinds == kind)
+        if len(chosen):
+            distances[chosen] = meet(o[chosen], d[chosen], shapes.sizes[shape[chosen]])
     np.minimum.at(best, ray, distances)
     first = np.isfinite(distances) & (distances == best[ray])
     which[ray[first]] = shape[first]
@@ -108,56 +107,82 @@ def cast(
     return best, which
 
 
-def _bounds(origins, directions, length, shapes: Solids, poses: np.ndarray):
-    """The shapes near the rays at all (`_near`), and the spheres round their bounding
-    capsules: centres (× 3) and radii."""
-    segments = poses[:, :, :3] @ shapes.ends + poses[:, :, 3:]
-    near = np.flatnonzero(_near(origins, directions, length, segments, shapes.radii))
-    segments = segments[near]
-    reach = np.linalg.norm(segments[:, :, 1] - segments[:, :, 0], axis=1) / 2
-    return near, segments.mean(axis=2), reach + shapes.radii[near]
-
-
 def _pairs(origins, directions, length, shapes: Solids, poses: np.ndarray, _fan=None):
     """(shape, ray) index pairs whose ray passes within the sphere round the shape's
     bounding capsule, at most `length` along it."""
-    near, centres, reach = _bounds(origins, directions, length, shapes, poses)
+    segments = poses[:, :, :3] @ shapes.ends + poses[:, :, 3:]
+    near = np.flatnonzero(_near(origins, directions, length, segments, shapes.radii))
+    segments = segments[near]
+    centres = segments.mean(axis=2)
+    reach = np.linalg.norm(segments[:, :, 1] - segments[:, :, 0], axis=1) / 2
+    r = (reach + shapes.radii[near])[:, None]
     apart = centres[:, None, :] - origins[None]
     along = (apart * directions[None]).sum(axis=2)
     aside = (apart * apart).sum(axis=2) - along * along
-    r = reach[:, None]
     meets = (aside <= r * r) & (along >= -r) & (along <= length + r)
     shape, ray = np.nonzero(meets)
     return near[shape], ray
 
 
 def _fan_pairs(origins, directions, length, shapes: Solids, poses: np.ndarray, fan):
-    """`_pairs` for a scanner's fan of rays: each sphere covers an interval of yaws seen
-    from the origin (all of them round a sphere that holds the origin)."""
-    near, centres, reach = _bounds(origins, directions, length, shapes, poses)
-    apart = centres[:, :2] - origins[0, :2]
-    distance = np.linalg.norm(apart, axis=1)
-    middle = np.arctan2(apart[:, 1], apart[:, 0])
+    """`_pairs` for a scanner's fan of rays: the yaws, seen from the origin, of each shape's
+    box on the floor (all of them round a box that holds the origin)."""
+    segments = poses[:, :, :3] @ shapes.ends + poses[:, :, 3:]
+    near = np.flatnonzero(_near(origins, directions, length, segments, shapes.radii))
+    low, high = _footprints(shapes, poses, segments, near)
+    origin = origins[0, :2]
+    inside = np.all((low <= origin) & (origin <= high), axis=1)
+    corners = (
+        np.stack(
+            [
+                low,
+                high,
+                np.column_stack([low[:, 0], high[:, 1]]),
+                np.column_stack([high[:, 0], low[:, 1]]),
+            ],
+            axis=1,
+        )
+        - origin
+    )
+    middle = np.arctan2(*((low + high) / 2 - origin)[:, ::-1].T)
+    turns = np.arctan2(corners[:, :, 1], corners[:, :, 0]) - middle[:, None]
+    turns = np.mod(turns + np.pi, 2.0 * np.pi) - np.pi
     middle = fan[0] + np.mod(middle - fan[0], 2.0 * np.pi)  # on or after the first yaw
-    half = np.arcsin(np.clip(reach / np.maximum(distance, TINY), 0.0, 1.0))
-    shape, ray = [], []
-    for k in range(len(near)):
-        if distance[k] <= reach[k]:
-            hits = np.arange(len(fan))
-        else:
-            hits = np.concatenate(
-                [_yaws_within(fan, middle[k] + turn, half[k]) for turn in (-2 * np.pi, 0.0)]
-            )
-        shape.append(np.full(len(hits), near[k]))
-        ray.append(hits)
-    if not shape:
-        return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
-    return np.concatenate(shape), np.concatenate(ray)
+    starts, stops = [], []
+    for wrap in (-2.0 * np.pi, 0.0):
+        starts.append(np.searchsorted(fan, middle + turns.min(axis=1) + wrap, side="left"))
+        stops.append(np.searchsorted(fan, middle + turns.max(axis=1) + wrap, side="right"))
+    starts[1] = np.where(inside, 0, starts[1])
+    stops[1] = np.where(inside, len(fan), stops[1])
+    stops[0] = np.where(inside, 0, stops[0])
+    ray, owner = _ranges(np.concatenate(starts), np.concatenate(stops))
+    return np.concatenate([near, near])[owner], ray
 
 
-def _yaws_within(fan: np.ndarray, middle: float, half: float) -> np.ndarray:
-    """Indices of the increasing yaws `fan` within `half` of `middle`."""
-    return np.arange(*np.searchsorted(fan, [middle - half, middle + half], side="left"))
+def _footprints(shapes: Solids, poses, segments, near) -> tuple[np.ndarray, np.ndarray]:
+    """Floor boxes (lows and highs, near shapes × 2) that hold the shapes: a box's from its
+    corners, another shape's from its bounding capsule."""
+    radii = shapes.radii[near, None]
+    low = segments[near, :2].min(axis=2) - radii
+    high = segments[near, :2].max(axis=2) + radii
+    boxes = np.flatnonzero(shapes.kinds[near] == KINDS.index(Box))
+    if len(boxes):
+        signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+        chosen = near[boxes]
+        local = signs[None] * shapes.sizes[chosen][:, None, :]
+        corners = local @ poses[chosen, :, :3].transpose(0, 2, 1) + poses[chosen, None, :, 3]
+        low[boxes] = corners[:, :, :2].min(axis=1)
+        high[boxes] = corners[:, :, :2].max(axis=1)
+    return low, high
+
+
+def _ranges(starts: np.ndarray, stops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every index of the ranges starts[k]..stops[k] - 1, one after the other, and the k of
+    each."""
+    counts = np.maximum(stops - starts, 0)
+    owner = np.repeat(np.arange(len(starts)), counts)
+    first = np.cumsum(counts) - counts
+    return np.arange(counts.sum()) - first[owner] + starts[owner], owner
 
 
 def _near(origins, directions, length, segments: np.ndarray, radii: np.ndarray) -> np.ndarray:

@@ -6,17 +6,24 @@ error, drawn from the run's seed) and whether the beam ended on the person; a li
 curtain's the same for its beams, of which the monitor only learns which were interrupted.
 The beams that end on the person are the sensor's detections: the cell's furniture is the
 contour a scanner is taught, the robot (and what it holds) is masked by its known pose, and
-objects only block the beams.
+objects only block the beams. A scanner evaluates its fields itself: the reading says which
+of its field sets' fields the detections occupy.
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
-from hrc_drake.safety.sensors import LaserScanner, LightCurtain, Sensor
+from hrc_drake.safety.sensors import FieldSet, LaserScanner, Sensor
 from hrc_drake.safety.sensors_raycast import MISS, Solids, cast
 from hrc_drake.seeding import substream
 
+CLEAR, WARNING, PROTECTIVE = 0, 1, 2
+FIELD_STATES = ("clear", "warning", "protective")
+"""What a scanner's field set says, from nothing in it to its protective field occupied
+(the index is the `field` safety signal)."""
 SCAN_TOLERANCE = 1e-9
 """s: a reading due at the monitor's update time is reported then"""
 
@@ -24,11 +31,18 @@ SCAN_TOLERANCE = 1e-9
 @dataclass(frozen=True, eq=False)
 class SensorReading:
     """One scan: `time` when taken, per beam its `ranges` (m along the beam, MISS where it
-    met nothing in range) and whether it ended on the person (`person`)."""
+    met nothing in range) and whether it ended on the person (`person`); the detections as
+    segments (`starts`, `spans`, × 3, world: a scanner's points on the person, spans 0; a
+    light curtain's interrupted beams, whole: it does not know where along them); a
+    scanner's field sets' states as it evaluates them (`fields`, CLEAR, WARNING or
+    PROTECTIVE occupied, per set)."""
 
     time: float
     ranges: np.ndarray
     person: np.ndarray
+    starts: np.ndarray
+    spans: np.ndarray
+    fields: tuple[int, ...] = ()
 
     @property
     def sees_person(self) -> bool:
@@ -72,7 +86,34 @@ def take_reading(
         ranges = np.where(met, np.maximum(ranges + error, 0.0), MISS)
     ranges.flags.writeable = False
     on_person.flags.writeable = False
-    return SensorReading(time, ranges, on_person)
+    if isinstance(sensor, LaserScanner):
+        starts = origins[on_person] + ranges[on_person, None] * directions[on_person]
+        spans = np.zeros_like(starts)
+        fields = tuple(occupied_field(field_set, starts) for field_set in sensor.fields)
+        return SensorReading(time, ranges, on_person, starts, spans, fields)
+    starts, spans = origins[on_person], length * directions[on_person]
+    return SensorReading(time, ranges, on_person, starts, spans)
+
+
+def occupied_field(field_set: FieldSet, points: np.ndarray) -> int:
+    """Whether any of `points` (× 3) lies in the set's protective or warning field."""
+    if not len(points):
+        return CLEAR
+    for state, corners in ((PROTECTIVE, field_set.protective), (WARNING, field_set.warning)):
+        if len(corners) < 3:
+            continue
+        polygon = _prepared(tuple(map(tuple, corners)))
+        if shapely.contains_xy(polygon, points[:, 0], points[:, 1]).any():
+            return state
+    return CLEAR
+
+
+@functools.lru_cache(maxsize=256)
+def _prepared(corners: tuple) -> shapely.Polygon:
+    """A field's polygon, prepared for many point tests (made once per field)."""
+    polygon = shapely.Polygon(corners)
+    shapely.prepare(polygon)
+    return polygon
 
 
 def reported(history: tuple[SensorReading, ...], time: float, latency: float):
@@ -89,18 +130,3 @@ def kept(history: tuple[SensorReading, ...], reading: SensorReading, latency: fl
     due = reading.time - latency + SCAN_TOLERANCE
     first = max((k for k, r in enumerate(history) if r.time <= due), default=0)
     return history[first:]
-
-
-def person_points(scanner: LaserScanner, reading: SensorReading) -> np.ndarray:
-    """Where the scanner's beams met the person (points × 3, world), as measured."""
-    origins, directions, _ = beams(scanner)
-    hits = reading.person
-    return origins[hits] + reading.ranges[hits, None] * directions[hits]
-
-
-def interrupted_beams(curtain: LightCurtain, reading: SensorReading) -> np.ndarray:
-    """The beams the person interrupts, whole (beams × 3 × 2: start and end): the curtain
-    does not know where along a beam."""
-    origins, directions, length = beams(curtain)
-    hits = reading.person
-    return np.stack([origins[hits], origins[hits] + length * directions[hits]], axis=2)

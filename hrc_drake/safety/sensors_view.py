@@ -10,26 +10,14 @@ side; what the sensor cannot see of the body (an arm reaching over the scan plan
 13855's intrusion distance C, which S_p adds.
 """
 
-import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import shapely
 
 from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
 from hrc_drake.safety.sensors import FieldSet, LaserScanner, Sensor, SensorsConfig
-from hrc_drake.safety.sensors_reading import (
-    SensorReading,
-    interrupted_beams,
-    person_points,
-    reported,
-)
-
-CLEAR, WARNING, PROTECTIVE = 0, 1, 2
-FIELD_STATES = ("clear", "warning", "protective")
-"""What a scanner's active fields say, from nothing in them to the protective field
-occupied (the index is the `field` safety signal)."""
+from hrc_drake.safety.sensors_reading import CLEAR, PROTECTIVE, SensorReading, reported
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,27 +65,6 @@ def field_limit(fields: list[FieldSet], states: list[int], active: int, reduced:
         return 0.0
     clear = [f.speed for f, state in zip(fields, states, strict=True) if state == CLEAR]
     return max(clear, default=reduced)
-
-
-def occupied_field(field_set: FieldSet, points: np.ndarray) -> int:
-    """Whether any of `points` (× 3) lies in the set's protective or warning field."""
-    if not len(points):
-        return CLEAR
-    for state, corners in ((PROTECTIVE, field_set.protective), (WARNING, field_set.warning)):
-        if len(corners) < 3:
-            continue
-        polygon = _prepared(tuple(map(tuple, corners)))
-        if shapely.contains_xy(polygon, points[:, 0], points[:, 1]).any():
-            return state
-    return CLEAR
-
-
-@functools.lru_cache(maxsize=256)
-def _prepared(corners: tuple) -> shapely.Polygon:
-    """A field's polygon, prepared for many point tests (made once per field)."""
-    polygon = shapely.Polygon(corners)
-    shapely.prepare(polygon)
-    return polygon
 
 
 class RobotOutline:
@@ -149,18 +116,15 @@ def sensor_view(
     if reading is None:
         return SensorView(name)
     if isinstance(sensor, LaserScanner):
-        points = person_points(sensor, reading)
-        starts, spans = points, np.zeros_like(points)
         chosen = active_set(sensor.fields, speed_fraction)
-        states = [occupied_field(field_set, points) for field_set in sensor.fields]
-        state = states[chosen] if chosen >= 0 else CLEAR
-        limit = field_limit(sensor.fields, states, chosen, reduced_speed)
+        state = reading.fields[chosen] if chosen >= 0 else CLEAR
+        limit = field_limit(sensor.fields, list(reading.fields), chosen, reduced_speed)
     else:  # a trip device: interrupted, it stops the robot, as if its protective field
-        beams = interrupted_beams(sensor, reading)
-        starts, spans = beams[:, :, 0], beams[:, :, 1] - beams[:, :, 0]
-        points, chosen = starts + spans / 2, -1
-        state, limit = (PROTECTIVE, 0.0) if len(beams) else (CLEAR, 1.0)
+        chosen = -1
+        state, limit = (PROTECTIVE, 0.0) if reading.sees_person else (CLEAR, 1.0)
+    starts, spans = reading.starts, reading.spans
     separation = horizontal_separation(starts, spans, capsules) if len(starts) else math.inf
+    points = starts + spans / 2
     return SensorView(name, separation, chosen, state, limit, points, reported=True)
 
 

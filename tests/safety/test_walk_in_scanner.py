@@ -19,7 +19,6 @@ import pytest
 from hrc_drake.evaluation.margin import margin_metrics
 from hrc_drake.safety.log import log_of
 from hrc_drake.safety.reference import reference_model
-from hrc_drake.safety.sensors_reading import person_points
 from hrc_drake.safety.stopping import StopModel
 from tests.safety.recompute import Scene, worst_stopping_times
 from tests.safety.test_walk_in import assert_recomputation_agrees, assert_ssm_holds
@@ -67,7 +66,7 @@ def test_the_scanner_detects_the_legs_at_its_scan_height(outcomes):
     for reading in readings[:: len(readings) // 12]:
         k = min(np.searchsorted(outcome.times, reading.time), len(outcome.times) - 1)
         query, _ = scene.pose(outcome.robot_q[:, k], path.value(reading.time).ravel())
-        points = person_points(SCANNER, reading)
+        points = reading.starts
         np.testing.assert_allclose(points[:, 2], SCANNER.height)
         for point in points:
             nearest = min(
