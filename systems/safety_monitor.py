@@ -49,7 +49,7 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
-from hrc_drake.safety.sensors_view import RobotOutline, SensorView, view
+from hrc_drake.safety.sensors_view import SensorView, view
 from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
@@ -100,8 +100,6 @@ class SafetyMonitor(LeafSystem):
                 for name, sensor in sensors.items()
             },
         )
-        self._outline = RobotOutline(inspector, robot.parts + carried_parts) if sensors else None
-        self._arm_geometries = tuple(part.geometry for part in robot.parts)
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
@@ -143,7 +141,7 @@ class SafetyMonitor(LeafSystem):
         )
         payload = held.mass if held is not None else 0.0
         path_rate = self._robot_path_rate(context, reading.robot_speed)
-        sensing = self._sensing(context, time, geometry, path_rate)
+        sensing = self._sensing(context, time, reading.robot, path_rate)
         status = self._judge.status(time, reading, before, payload, path_rate, sensing)
         part = self.part_names.index(status.link) if status.link else -1
         state.get_mutable_abstract_state(self._status).set_value(status)
@@ -153,17 +151,14 @@ class SafetyMonitor(LeafSystem):
         state.get_mutable_discrete_state(self._signals).set_value(signals)
         return EventStatus.Succeeded()
 
-    def _sensing(self, context, time: float, held, path_rate: float):
+    def _sensing(self, context, time: float, robot_capsules, path_rate: float):
         """The sensors' views of the person (None without sensors); nothing read from an
         unconnected `sensor_readings` (no sensor has reported)."""
-        if self._outline is None:
+        sensors = self._judge.config.sensors
+        if not sensors.present:
             return None
         readings = value_or_none(self._readings, context) or {}
-        robot = self._arm_geometries + ((held,) if held is not None else ())
-        sensors = self._judge.config.sensors
-        return view(
-            sensors, readings, time, self._outline, self._query.Eval(context), robot, path_rate
-        )
+        return view(sensors, readings, time, robot_capsules, path_rate)
 
     def _robot_path_rate(self, context, robot_speed: float) -> float:
         if self._path_rate.HasValue(context):

@@ -19,7 +19,7 @@ from pydrake.systems.framework import EventStatus, LeafSystem
 from hrc_drake.ports import message_value
 from hrc_drake.safety.sensors import SensorsConfig
 from hrc_drake.safety.sensors_raycast import solids
-from hrc_drake.safety.sensors_reading import kept, take_reading
+from hrc_drake.safety.sensors_reading import contour, kept, take_reading
 from hrc_drake.seeding import stream
 from hrc_drake.wiring import SAFETY_SENSORS
 
@@ -27,19 +27,24 @@ from hrc_drake.wiring import SAFETY_SENSORS
 class SafetySensors(LeafSystem):
     def __init__(self, inspector, config: SensorsConfig, person, fixed, seed: int):
         """`person`: the person's geometries (what the sensors report); `fixed`: geometries
-        that never move (their poses are looked up once); `seed`: the run's."""
+        that never move (where each sensor's beams end on them is computed once); `seed`:
+        the run's."""
         super().__init__()
         self._sensors = config.all()
         geometries = list(inspector.GetAllGeometryIds(Role.kProximity))
-        self._solids = solids([inspector.GetShape(g) for g in geometries])
-        self._person = np.array([g in set(person) for g in geometries])
-        frames = [inspector.GetFrameId(g) for g in geometries]
+        still = {inspector.GetFrameId(g) for g in fixed}
+        moving = [g for g in geometries if inspector.GetFrameId(g) not in still]
+        self._still = [g for g in geometries if g not in moving]
+        self._still_shapes = solids([inspector.GetShape(g) for g in self._still])
+        self._shapes = solids([inspector.GetShape(g) for g in moving])
+        self._person = np.array([g in set(person) for g in moving])
+        frames = [inspector.GetFrameId(g) for g in moving]
         self._frames = list(dict.fromkeys(frames))
-        self._frame_of = np.array([self._frames.index(f) for f in frames])
-        self._X_FG = np.array([inspector.GetPoseInFrame(g).GetAsMatrix4() for g in geometries])
-        still = {f for g, f in zip(geometries, frames, strict=True) if g in set(fixed)}
-        self._moving = [k for k, f in enumerate(self._frames) if f not in still]
-        self._frame_poses: np.ndarray | None = None
+        self._frame_of = np.array([self._frames.index(f) for f in frames], dtype=int)
+        self._X_FG = np.array([inspector.GetPoseInFrame(g).GetAsMatrix4() for g in moving])
+        self._X_FG = self._X_FG.reshape(-1, 4, 4)
+        self._contours: dict[str, np.ndarray] = {}
+        """per sensor, where its beams end on the cell (computed at its first scan)"""
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
         )
@@ -69,25 +74,33 @@ class SafetySensors(LeafSystem):
         sensor = self._sensors[name]
         time = context.get_time()
         scan = round(time / sensor.scan_time)
+        query = self._query.Eval(context)
         reading = take_reading(
-            sensor, time, self._solids, self._poses(context), self._person, noise, scan
+            sensor,
+            time,
+            self._shapes,
+            self._poses(query),
+            self._person,
+            noise,
+            scan,
+            self._contour(name, query),
         )
         history = state.get_mutable_abstract_state(self._histories[name])
         history.set_value(kept(history.get_value(), reading, sensor.latency))
         return EventStatus.Succeeded()
 
-    def _poses(self, context) -> np.ndarray:
-        """World poses (geometries × 3 × 4) of every geometry, from their frames' (those of
-        the fixed geometries looked up once)."""
-        query = self._query.Eval(context)
-        if self._frame_poses is None:
-            self._frame_poses = np.array(
-                [query.GetPoseInWorld(f).GetAsMatrix4() for f in self._frames]
-            )
-        frame_poses = self._frame_poses.copy()
-        for k in self._moving:
-            frame_poses[k] = query.GetPoseInWorld(self._frames[k]).GetAsMatrix4()
-        return (frame_poses[self._frame_of] @ self._X_FG)[:, :3, :]
+    def _contour(self, name: str, query) -> np.ndarray:
+        """Where the sensor's beams end on the cell, which never moves: computed once."""
+        if name not in self._contours:
+            poses = np.array([query.GetPoseInWorld(g).GetAsMatrix34() for g in self._still])
+            poses = poses.reshape(-1, 3, 4)
+            self._contours[name] = contour(self._sensors[name], self._still_shapes, poses)
+        return self._contours[name]
+
+    def _poses(self, query) -> np.ndarray:
+        """World poses (shapes × 3 × 4) of the geometries that move, from their frames'."""
+        frame_poses = np.array([query.GetPoseInWorld(f).GetAsMatrix4() for f in self._frames])
+        return (frame_poses.reshape(-1, 4, 4)[self._frame_of] @ self._X_FG)[:, :3, :]
 
 
 def add_safety_sensors(builder, scene_graph, config: SensorsConfig, person, fixed, seed: int):

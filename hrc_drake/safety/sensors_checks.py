@@ -26,13 +26,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
-from pydrake.systems.framework import DiagramBuilder
 from shapely.geometry import LineString, Point, Polygon
 from shapely.ops import nearest_points, unary_union
 
-from hrc_drake.human.navigation import cell_obstacles
-from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
+from hrc_drake.iisy import VARIANTS
 from hrc_drake.safety.config import MEASURED, SafetyConfig
 from hrc_drake.safety.iso13855 import (
     COARSEST,
@@ -43,12 +40,12 @@ from hrc_drake.safety.iso13855 import (
     orthogonal_distance,
 )
 from hrc_drake.safety.sensors import LaserScanner, LightCurtain, SensorsConfig
-from hrc_drake.safety.sensors_raycast import Solids, cast, solids
+from hrc_drake.safety.sensors_cell import Cell, cell_of, inside
+from hrc_drake.safety.sensors_raycast import cast
 from hrc_drake.safety.sensors_reading import beams
 from hrc_drake.safety.sensors_view import active_set
 from hrc_drake.safety.stopping import StopModel
-from hrc_drake.station import StationSpec, add_station_models, model_parser
-from hrc_drake.wiring import ROBOT_MODEL, TOOL_MODEL
+from hrc_drake.station import StationSpec
 
 Problem = tuple[tuple | None, str]
 WAVE_STEP = 0.05
@@ -70,12 +67,12 @@ def sensor_problems(
     yield from found
     if found or station.variant not in VARIANTS:
         return
-    cell = _cell(station)
+    cell = cell_of(station)
     for name, scanner in sensors.scanners.items():
-        inside = _inside(cell, scanner.origin())
-        if inside:
+        housing = inside(cell, scanner.origin())
+        if housing:
             where = ("sensors", "scanners", name, "pose")
-            yield where, f"the scanner at {_xyz(scanner.origin())} is inside {inside}"
+            yield where, f"the scanner at {_xyz(scanner.origin())} is inside {housing}"
     for name, curtain in sensors.light_curtains.items():
         where = ("sensors", "light_curtains", name)
         yield from _prefixed(where, _curtain_placement(curtain, cell))
@@ -230,89 +227,12 @@ def _curtain_values(curtain: LightCurtain) -> Iterator[Problem]:
     yield from _positive(curtain, ("response_time",))
 
 
-# --- the cell -----------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class _Cell:
-    """The station's fixed geometry: its query, shapes and names for the beams, the floor
-    outlines of its furniture, and the robot's base and reach (with the tool)."""
-
-    query: object
-    shapes: Solids
-    poses: np.ndarray
-    names: list[str]
-    obstacles: list[Polygon]
-    base: np.ndarray
-    reach: float
-    keep: tuple
-
-
-def _cell(station: StationSpec) -> _Cell:
-    """Built once per robot, tool, base and cell in a process (parsing takes a while)."""
-    key = repr((station.variant, station.tool, station.cell, station.base_pose.GetAsMatrix34()))
-    if key not in _CELLS:
-        _CELLS[key] = _built_cell(station)
-    return _CELLS[key]
-
-
-_CELLS: dict[str, _Cell] = {}
-
-
-def _built_cell(station: StationSpec) -> _Cell:
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlant(MultibodyPlantConfig(), builder)
-    add_station_models(plant, model_parser(plant), station)
-    plant.Finalize()
-    diagram = builder.Build()
-    context = diagram.CreateDefaultContext()
-    query = scene_graph.get_query_output_port().Eval(scene_graph.GetMyContextFromRoot(context))
-    inspector = scene_graph.model_inspector()
-    robot = {ROBOT_MODEL, TOOL_MODEL}
-    fixed = [
-        geometry
-        for body in plant.GetBodiesWeldedTo(plant.world_body())
-        if plant.GetModelInstanceName(body.model_instance()) not in robot
-        for geometry in plant.GetCollisionGeometriesForBody(body)
-    ]
-    obstacles = [o.outline for o in cell_obstacles(plant, inspector) if o.name not in robot]
-    return _Cell(
-        query=query,
-        shapes=solids([inspector.GetShape(g) for g in fixed]),
-        poses=np.array([query.GetPoseInWorld(g).GetAsMatrix34() for g in fixed]),
-        names=[inspector.GetName(g).split("::")[0] for g in fixed],
-        obstacles=obstacles,
-        base=station.base_pose.translation()[:2],
-        reach=VARIANTS[station.variant].reach + _tool_length(plant, station),
-        keep=(diagram, context),
-    )
-
-
-def _tool_length(plant, station: StationSpec) -> float:
-    if not station.has_tool:
-        return 0.0
-    context = plant.CreateDefaultContext()
-    tool = plant.GetModelInstanceByName(TOOL_MODEL)
-    arm = plant.GetModelInstanceByName(ROBOT_MODEL)
-    flange = plant.GetFrameByName(FLANGE_FRAME, arm).CalcPoseInWorld(context)
-    tcp = plant.GetFrameByName(TCP_FRAME, tool).CalcPoseInWorld(context)
-    return float(np.linalg.norm(tcp.translation() - flange.translation()))
-
-
-def _inside(cell: _Cell, point: np.ndarray) -> str:
-    """The name of the cell's model `point` lies inside ("" if none)."""
-    for result in cell.query.ComputeSignedDistanceToPoint(point, 0.0):
-        if result.distance < 0.0:
-            return cell.query.inspector().GetName(result.id_G).split("::")[0]
-    return ""
-
-
-def _curtain_placement(curtain: LightCurtain, cell: _Cell) -> Iterator[Problem]:
+def _curtain_placement(curtain: LightCurtain, cell: Cell) -> Iterator[Problem]:
     for k, (x, y) in enumerate(curtain.ends):
         for height in (curtain.heights[0], curtain.heights[1]):
-            inside = _inside(cell, np.array([x, y, height]))
-            if inside:
-                yield ("ends", k), f"the post at [{x:.2f}, {y:.2f}] is inside {inside}"
+            housing = inside(cell, np.array([x, y, height]))
+            if housing:
+                yield ("ends", k), f"the post at [{x:.2f}, {y:.2f}] is inside {housing}"
                 return
     origins, directions, length = beams(curtain)
     ranges, which = cast(origins, directions, length, cell.shapes, cell.poses)
@@ -358,7 +278,7 @@ def scanner_distance(scanner: LaserScanner, timing: _Timing, speed: float) -> fl
     return horizontal_distance(stopping_time, scanner.height) + scanner.measurement_error
 
 
-def _field_problems(sensors: SensorsConfig, cell: _Cell, timing: _Timing) -> Iterator[Problem]:
+def _field_problems(sensors: SensorsConfig, cell: Cell, timing: _Timing) -> Iterator[Problem]:
     """At each speed level, the scanners' active protective fields together against the
     largest S among them."""
     guarded = {name: s for name, s in sensors.scanners.items() if s.fields}
@@ -378,7 +298,7 @@ def _field_problems(sensors: SensorsConfig, cell: _Cell, timing: _Timing) -> Ite
             yield where, _too_small(scanner, timing, speed, cell, point, hazard)
 
 
-def _too_small(scanner, timing: _Timing, speed: float, cell: _Cell, point, hazard) -> str:
+def _too_small(scanner, timing: _Timing, speed: float, cell: Cell, point, hazard) -> str:
     distance = scanner_distance(scanner, timing, speed)
     return (
         f"too small for ISO 13855's minimum distance at {speed:.0%} speed: S = K·T + C + Z_d "
@@ -404,7 +324,7 @@ def _walkable_within(hazard: Polygon, distance: float, obstacles: list[Polygon])
     return region.difference(blocked)
 
 
-def _curtain_distances(sensors: SensorsConfig, cell: _Cell, timing: _Timing):
+def _curtain_distances(sensors: SensorsConfig, cell: Cell, timing: _Timing):
     hazard = Point(*cell.base).buffer(cell.reach)
     for name, curtain in sensors.light_curtains.items():
         stopping_time = timing.stopping_time(curtain.response_time, 1.0)

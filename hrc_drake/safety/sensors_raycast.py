@@ -39,6 +39,10 @@ class Solids:
     def __len__(self) -> int:
         return len(self.kinds)
 
+    def subset(self, chosen: np.ndarray) -> "Solids":
+        """The chosen shapes (indices or a mask), in their order."""
+        return Solids(self.kinds[chosen], self.sizes[chosen], self.ends[chosen], self.radii[chosen])
+
 
 def solids(shapes: list) -> Solids:
     """The shapes (Drake's) as rays meet them (ValueError for one they cannot meet)."""

@@ -63,6 +63,18 @@ def beams(sensor: Sensor) -> tuple[np.ndarray, np.ndarray, float]:
     return starts, np.tile(span / length, (len(starts), 1)), length
 
 
+def contour(sensor: Sensor, shapes: Solids, poses: np.ndarray) -> np.ndarray:
+    """Where the sensor's beams end on shapes that never move (the cell's furniture: the
+    contour a scanner is taught), MISS where on none: per beam, m along it."""
+    origins, directions, length = beams(sensor)
+    return cast(origins, directions, length, shapes, poses, _fan(sensor))[0]
+
+
+def _fan(sensor: Sensor) -> np.ndarray | None:
+    """A scanner's beams' yaws, which `cast` finds the shapes they pass by."""
+    return sensor.beam_angles() if isinstance(sensor, LaserScanner) else None
+
+
 def take_reading(
     sensor: Sensor,
     time: float,
@@ -71,15 +83,19 @@ def take_reading(
     person: np.ndarray,
     noise: np.random.SeedSequence,
     scan: int,
+    still: np.ndarray | None = None,
 ) -> SensorReading:
     """The reading of scan number `scan` at `time` of the `shapes` at `poses` (shapes × 3
-    × 4): `person` flags the shapes of the person's body; `noise` is the sensor's stream
-    (scan `scan` draws from its substream)."""
+    × 4) before the `still` contour (`contour`, of the shapes that never move; None: all
+    shapes are among `shapes`): `person` flags the shapes of the person's body; `noise` is
+    the sensor's stream (scan `scan` draws from its substream)."""
     origins, directions, length = beams(sensor)
-    fan = sensor.beam_angles() if isinstance(sensor, LaserScanner) else None
-    ranges, which = cast(origins, directions, length, shapes, poses, fan)
-    met = which >= 0
-    on_person = met & person[np.maximum(which, 0)]
+    ranges, which = cast(origins, directions, length, shapes, poses, _fan(sensor))
+    on_person = (which >= 0) & person[np.maximum(which, 0)]
+    if still is not None:
+        on_person &= ranges < still
+        ranges = np.minimum(ranges, still)
+    met = np.isfinite(ranges)
     if sensor.measurement_error > 0.0:
         rng = np.random.default_rng(substream(noise, scan))
         error = rng.uniform(-1.0, 1.0, len(ranges)) * sensor.measurement_error

@@ -4,10 +4,10 @@ nearest detection of the person is from the robot, and which of its fields are o
 Separations are horizontal, as ISO 13855 measures a detection zone's distance from the
 hazard: from each point where a scanner's beam met the person (or each light-curtain beam
 the person interrupts, all of it) to the robot's parts' bounding capsules (hrc_drake.safety.
-geometry), all projected onto the floor. A projected distance is never longer than the
-distance in space, and a capsule holds its part, so the sensed separation errs on the near
-side; what the sensor cannot see of the body (an arm reaching over the scan plane) is ISO
-13855's intrusion distance C, which S_p adds.
+geometry, as the proximity meter places them), all projected onto the floor. A projected
+distance is never longer than the distance in space, and a capsule holds its part, so the
+sensed separation errs on the near side; what the sensor cannot see of the body (an arm
+reaching over the scan plane) is ISO 13855's intrusion distance C, which S_p adds.
 """
 
 import math
@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
+from hrc_drake.safety.geometry import segment_distances
 from hrc_drake.safety.sensors import FieldSet, LaserScanner, Sensor, SensorsConfig
 from hrc_drake.safety.sensors_reading import CLEAR, PROTECTIVE, SensorReading, reported
 
@@ -67,31 +67,6 @@ def field_limit(fields: list[FieldSet], states: list[int], active: int, reduced:
     return max(clear, default=reduced)
 
 
-class RobotOutline:
-    """The robot's parts as the sensed separation measures them: their bounding capsules
-    in the world, from their frames' poses in the scene."""
-
-    def __init__(self, inspector, parts: list[Part]):
-        self._ends = {}
-        """geometry -> (its frame, its segment's ends in the frame (4 × 2), its radius)"""
-        for part in parts:
-            p0, p1, radius = bounding_segment(inspector.GetShape(part.geometry))
-            X_FG = inspector.GetPoseInFrame(part.geometry).GetAsMatrix4()
-            ends = X_FG @ np.vstack([np.column_stack([p0, p1]), np.ones(2)])
-            self._ends[part.geometry] = (inspector.GetFrameId(part.geometry), ends, radius)
-
-    def capsules(self, query_object, geometries) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Starts and spans (parts × 3, world) and radii of the parts `geometries`."""
-        chosen = [self._ends[g] for g in geometries]
-        poses = {}
-        for frame, _, _ in chosen:
-            if frame not in poses:
-                poses[frame] = query_object.GetPoseInWorld(frame).GetAsMatrix34()
-        ends = np.array([poses[frame] @ local for frame, local, _ in chosen])
-        starts = ends[:, :, 0]
-        return starts, ends[:, :, 1] - starts, np.array([radius for _, _, radius in chosen])
-
-
 def horizontal_separation(starts, spans, capsules) -> float:
     """Least floor distance from the segments (× 3; points have no span) to the capsules."""
     if not len(starts):
@@ -129,22 +104,19 @@ def sensor_view(
 
 
 def view(
-    config: SensorsConfig,
-    histories: dict,
-    time: float,
-    outline: RobotOutline,
-    query_object,
-    robot_geometries,
-    speed_fraction: float,
+    config: SensorsConfig, histories: dict, time: float, capsules, speed_fraction: float
 ) -> tuple[SensorView, ...]:
-    """Every sensor's view at `time` of its history of readings (`histories` by name)."""
-    reports = {
-        name: reported(histories.get(name, ()), time, sensor.latency)
-        for name, sensor in config.all().items()
-    }
-    seen = any(r is not None and r.sees_person for r in reports.values())
-    capsules = outline.capsules(query_object, robot_geometries) if seen else None
+    """Every sensor's view at `time` of its history of readings (`histories` by name), the
+    robot's parts being the bounding `capsules` (starts, spans, radii) and moving at
+    `speed_fraction` of full speed."""
     return tuple(
-        sensor_view(name, sensor, reports[name], capsules, speed_fraction, config.reduced_speed)
+        sensor_view(
+            name,
+            sensor,
+            reported(histories.get(name, ()), time, sensor.latency),
+            capsules,
+            speed_fraction,
+            config.reduced_speed,
+        )
         for name, sensor in config.all().items()
     )
