@@ -242,6 +242,14 @@ def key_metrics(metrics: dict) -> list[str]:
             f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
             f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
         ]
+    sensing = metrics.get("sensing") or {}
+    if sensing.get("sensors"):
+        lines.append(
+            f"the monitor saw the person through {', '.join(sensing['sensors'])}: seen "
+            f"{sensing['time_seen']:.1f} s, not seen {sensing['time_not_seen']:.1f} s"
+        )
+    elif sensing:
+        lines.append("the monitor knew every point of the person's body (no safety sensors)")
     margin = metrics.get("margin") or {}
     if "value" in margin:
         at = margin.get("at")

@@ -141,6 +141,27 @@ def person_metrics(times: np.ndarray, signals: np.ndarray) -> dict:
     return {"walking_distance": rounded(steps.sum()), "waiting_time": rounded(dt[still].sum())}
 
 
+GROUND_TRUTH = "ground truth"
+SENSORS = "safety sensors"
+
+
+def sensing_metrics(
+    times: np.ndarray, signals: np.ndarray, status: SafetyStatus, sensors: tuple[str, ...]
+) -> dict:
+    """What the monitor saw the person through: `ground truth` (every point of their body)
+    or `safety sensors` (by name), and then how long the sensors saw them."""
+    if status.sensing is None:
+        return {"by": GROUND_TRUTH}
+    seen = signal(signals, "seen")[:-1] > 0.0
+    dt = np.diff(times)
+    return {
+        "by": SENSORS,
+        "sensors": list(sensors),
+        "time_seen": rounded(dt[seen].sum()),
+        "time_not_seen": rounded(dt[~seen].sum()),
+    }
+
+
 def task_metrics(events: list[TaskEvent], duration: float) -> dict:
     """Counts of each task event and their rate per hour of simulated time."""
     counts: dict[str, int] = {}

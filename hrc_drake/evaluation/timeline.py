@@ -1,5 +1,6 @@
-"""timeline.png (separation and S_p, speed scale, speeds, actor states and task events over
-time) and heatmap.png (top view: where the person was, where separation was smallest)."""
+"""timeline.png (separation and S_p, with safety sensors what they sensed and when they did
+not see the person; speed scale, speeds, actor states and task events over time) and
+heatmap.png (top view: where the person was, where separation was smallest)."""
 
 import math
 from pathlib import Path
@@ -59,6 +60,13 @@ def timeline_figure(times, signals, states=None, events=None):
 def _separation_panel(ax, times, signals) -> None:
     ax.plot(times, signal(signals, "separation"), label="separation", color="black")
     ax.plot(times, signal(signals, "protective"), label="S_p", color="tab:red", ls="--")
+    seen = signal(signals, "seen")
+    if np.isfinite(seen).any():  # safety sensors: what they reported, and when not
+        sensed = signal(signals, "sensed_separation")
+        ax.plot(times, sensed, label="sensed separation", color="tab:blue", lw=0.9)
+        sensed_sp = signal(signals, "sensed_protective")
+        ax.plot(times, sensed_sp, label="S_p (sensed)", color="tab:blue", ls=":", lw=0.9)
+        _shade(ax, times, seen == 0, "0.6", "person not seen")
     _shade(ax, times, signal(signals, "violation") > 0, "tab:red", "SSM violation")
     _shade(ax, times, signal(signals, "contact") > 0, "purple", "contact")
     ax.set_ylabel("m")

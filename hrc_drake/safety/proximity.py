@@ -77,6 +77,9 @@ class Reading:
     human_speed: float
     person_xy: tuple[float, float]
     memory: np.ndarray
+    robot: tuple[np.ndarray, np.ndarray, np.ndarray] = ()
+    """the watched robot parts' bounding capsules: starts and spans (parts × 3, world) and
+    radii"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,6 +127,7 @@ class ProximityMeter:
             ]
         )
         radius = np.array([r for _, _, r in segments])
+        self.part_radii = radius
         self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
         self.human_parts = np.arange(self.n_human)
         self.human_frames = np.unique(self.part_frame[: self.n_human])
@@ -171,6 +175,7 @@ class ProximityMeter:
         )
         centre = poses[self.human_frames, :, 3].mean(axis=0)
         memory = [[time, person_time], poses, rates[self.human_frames], *reference]
+        robot = ends[active.rows]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=contacts,
@@ -178,6 +183,7 @@ class ProximityMeter:
             human_speed=self._fastest(rates, self.human_parts),
             person_xy=(float(centre[0]), float(centre[1])),
             memory=np.concatenate([np.ravel(m) for m in memory]),
+            robot=(robot[:, :, 0], robot[:, :, 1] - robot[:, :, 0], self.part_radii[active.rows]),
         )
 
     def _poses(self, query_object, frames: np.ndarray) -> np.ndarray:

@@ -29,6 +29,8 @@ HAND_GAP = 0.02
 """m: the held object's surface lies within this of the holding hand's surface (outside it
 or inside it)."""
 MB_PER_MINUTE = 5.0
+LOAD_TIMEOUT = 120_000
+"""ms the page may take to load its animation (a busy machine takes more than 30 s)"""
 CHROMIUM_FLAGS = [
     "--headless",
     "--no-sandbox",
@@ -87,6 +89,12 @@ def replay(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def page(replay):
+    yield from open_page(replay)
+
+
+def open_page(replay: Path):
+    """The replay opened in headless Chromium, its animation loaded (a generator: the
+    browser closes when it is resumed)."""
     chromium = shutil.which("chromium")
     assert chromium, "Chromium is missing: run `make chromium` (Debian's chromium package)"
     with sync_playwright() as playwright:
@@ -99,7 +107,8 @@ def page(replay):
         )
         page = context.new_page()
         page.goto(replay.as_uri())
-        page.wait_for_function("() => window.viewer && viewer.animator.actions.length > 0")
+        loaded = "() => window.viewer && viewer.animator.actions.length > 0"
+        page.wait_for_function(loaded, timeout=LOAD_TIMEOUT)
         yield page
         context.close()
 
