@@ -118,7 +118,7 @@ def _write_signals(out_dir: Path, record: RunRecord) -> dict[str, Path]:
             out_dir / "timeline.png", times, signals, record.states, record.events
         ),
     }
-    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals)
+    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals, record.furniture)
     if heatmap is not None:
         files["heatmap"] = heatmap
     return files
