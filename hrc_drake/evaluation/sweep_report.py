@@ -326,10 +326,12 @@ def _section(metrics: list[str], prefixes: tuple[str, ...]) -> list[str]:
 
 
 def _in_sections(metrics) -> list[str]:
-    """Every metric but the trees' statistics, in the order of the report's sections."""
+    """Every metric but the trees' statistics: the headline's first, then the task events,
+    then the rest in the order of the report's sections."""
     names = sorted(metrics)
+    first = [m for _, m in HEADLINE if m in metrics] + _section(names, ("tasks.events.",))
     ordered = [m for _, prefixes in SECTIONS for m in _section(names, prefixes)]
-    return ordered + _section(names, ())
+    return list(dict.fromkeys(first + ordered + _section(names, ())))
 
 
 def _worst_table(worst: list[dict]) -> str:
