@@ -166,18 +166,17 @@ def test_the_replay_is_small(replay):
     assert megabytes <= MB_PER_MINUTE * DURATION / 60, f"{megabytes:.1f} MB"
 
 
-def test_the_runs_report_page_opens_with_its_realism_verdict(replay):
-    """The page of the same run: the audit's verdict first, as report.json has it, marked
-    red when a measure is beyond its limit."""
+def test_the_runs_report_page_opens_with_its_realism_verdict(page, replay):
+    """The page of the same run (in a tab beside the replay): the audit's verdict first, as
+    report.json has it, marked red when a measure is beyond its limit."""
     metrics = json.loads((replay.parent / "report.json").read_text())
     over = over_limits(metrics["realism"])
-    with chromium_page() as page:
-        opened(page, replay.parent / "report.html")
-        verdict = page.locator("#realism-verdict")
-        assert verdict.is_visible()
-        assert verdict.inner_text() == "The person's realism audit: " + "; ".join(
-            realism_verdict(metrics["realism"])
-        )
-        flagged = verdict.evaluate("(e) => e.className") == "flagged"
-        assert flagged == bool(over)
-        assert verdict.bounding_box()["y"] < page.locator("img").first.bounding_box()["y"]
+    report = opened(page.context.new_page(), replay.parent / "report.html")
+    verdict = report.locator("#realism-verdict")
+    assert verdict.is_visible()
+    assert verdict.inner_text() == "The person's realism audit: " + "; ".join(
+        realism_verdict(metrics["realism"])
+    )
+    assert (verdict.evaluate("(e) => e.className") == "flagged") == bool(over)
+    assert verdict.bounding_box()["y"] < report.locator("img").first.bounding_box()["y"]
+    report.close()
