@@ -129,7 +129,7 @@ def _write_signals(out_dir: Path, record: RunRecord) -> dict[str, Path]:
             record.events,
         ),
     }
-    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals)
+    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals, record.furniture)
     if heatmap is not None:
         files["heatmap"] = heatmap
     return files

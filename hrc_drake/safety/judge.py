@@ -119,7 +119,7 @@ class Judge:
             scale=scale,
             safe_scale=safe,
             zone=zone(scale),
-            human_speed=reading.human_speed,
+            walking_speed=reading.walking_speed,
             robot_speed=reading.robot_speed,
             path_rate=path_rate,
             human_approach=v_h,

@@ -117,14 +117,15 @@ class SafetyStatus:
     scale: float = 1.0
     safe_scale: float = 1.0
     zone: str = FREE
-    human_speed: float = 0.0
-    """fastest point of the person (m/s)"""
+    walking_speed: float = 0.0
+    """the person's pelvis along the floor (m/s)"""
     robot_speed: float = 0.0
     """fastest point of the robot (m/s)"""
     path_rate: float = 0.0
     """fraction of full speed the robot moves along its path"""
     human_approach: float = 0.0
-    """measured speed of the person's closest point towards the robot (m/s)"""
+    """measured speed of the person's closest point towards the robot, moving with its
+    body region (m/s; 0 moving away)"""
     violation: bool = False
     contact: tuple[ContactAssessment, ...] = ()
     ssm_enabled: bool = True
@@ -177,7 +178,7 @@ class SafetyStatus:
             self.scale,
             self.robot_speed,
             terms.v_r,
-            self.human_speed,
+            self.walking_speed,
             ZONES.index(self.zone),
             float(self.violation),
             float(bool(self.contact)),
@@ -211,7 +212,7 @@ SIGNALS = (
     "scale",
     "robot_speed",
     "approach_speed",
-    "human_speed",
+    "walking_speed",
     "zone",
     "violation",
     "contact",
@@ -237,7 +238,10 @@ SIGNALS = (
 """Entries of the `safety_signals` vector; `zone` is the index in ZONES, `region` in
 REGIONS and `part` in the monitor's part names (-1: no person), flags are 0/1, and an
 infinite separation (no person) is logged as NaN. `approach_speed` is v_r; `protective`
-is S_p = s_h + s_r + s_s + margins (or ISO 13855's least distance). `time` is when the
+is S_p = s_h + s_r + s_s + margins (or ISO 13855's least distance). The person's speeds:
+`walking_speed` their pelvis's along the floor, `human_approach` their closest body
+region's towards the robot (0 moving away; v_h under the `measured` rule), `v_h` the speed
+S_p assumed; `person_x`, `person_y` are where the pelvis is. `time` is when the
 update measured them: a logger publishing at the monitor's period records the previous
 update's values. With safety sensors, `sensed_separation` is from the nearest detection of the
 person to the robot on the floor (NaN: not seen), `sensed_protective` S_p there, `seen` 1
