@@ -134,12 +134,17 @@ def _panel(ax, layout: CellLayout, reach: ReachMap | None, bounds, whole: bool) 
     ax.grid(True, lw=0.3, alpha=0.5)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
+    ax.set_title(_title(reach, whole), fontsize=9)
+
+
+def _title(reach: ReachMap | None, whole: bool) -> str:
     if whole:
-        ax.set_title("the whole cell: walkable floor, places, areas", fontsize=9)
-    elif reach.linear:
-        ax.set_title(f"tool down at z = {reach.height:.3f} m (a linear move's end)", fontsize=9)
-    else:
-        ax.set_title(f"tool down at z = {reach.height:.3f} m (keeping clearance)", fontsize=9)
+        return "the whole cell: walkable floor, places, areas"
+    how = "a linear move's end" if reach.linear else "keeping clearance"
+    title = f"tool down at z = {reach.height:.3f} m ({how})"
+    if not (reach.share.any() or reach.blocked.any()):
+        title += ": out of the arm's reach"
+    return title
 
 
 def _reach(ax, reach: ReachMap) -> None:
