@@ -33,7 +33,8 @@ def findings(scenario: Scenario, path: Path) -> list[Finding]:
     scene = CellScene(scenario, skip_types=_types_named(implausible))
     found += cell_findings(scenario, scene, at, skip_locations=_named(implausible, "locations"))
     configurations = _named(implausible, "robot.configurations_deg")
-    found += tree_findings(scenario, scene, at, skip_configurations=configurations)
+    placed = all(f.where != "robot.base_pose" for f in found)
+    found += tree_findings(scenario, scene, at, configurations, robot_placed=placed)
     return found
 
 

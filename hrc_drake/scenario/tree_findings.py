@@ -28,11 +28,12 @@ from hrc_drake.yaml_check import unknown
 
 
 def tree_findings(
-    scenario: Scenario, scene: CellScene, at: Locator, skip_configurations=()
+    scenario: Scenario, scene: CellScene, at: Locator, skip_configurations=(), robot_placed=True
 ) -> list[Finding]:
     """Blackboard entries read and never set, named configurations the planner refuses
     (but `skip_configurations`, whose magnitudes were found wrong), and the checks of every
-    known value a node reads."""
+    known value a node reads; the robot's configurations and targets only when it is
+    `robot_placed` (its base not inside the cell: every one would fail from that)."""
     places = scenario.places()
     found: list[Finding] = []
     reads = []
@@ -43,8 +44,9 @@ def tree_findings(
             at.node(node, port, _never_set(key, near))
             for node, port, key, near in unwritten_inputs(tree)
         ]
-    checks = _Checks(scenario, scene, at)
-    found += checks.configurations(skip_configurations)
+    checks = _Checks(scenario, scene, at, robot_placed)
+    if robot_placed:
+        found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
         for value in known:
             found += checks.of(handle, node, port, value)
@@ -57,8 +59,9 @@ def tree_findings(
 class _Checks:
     """The checks of one known value read by one node's port."""
 
-    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator):
+    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator, robot_placed=True):
         self.scenario = scenario
+        self.robot_placed = robot_placed
         self.scene = scene
         self.at = at
         human = scenario.human
@@ -86,7 +89,8 @@ class _Checks:
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value
         if isinstance(node, RobotMove | RobotMoveLinear) and port == "target":
-            yield from self._reach(agent, node, known)
+            if self.robot_placed:
+                yield from self._reach(agent, node, known)
         elif isinstance(node, ActorMovement) and port == "target":
             yield from self._standing(agent, node, known)
         elif isinstance(node, ActorMovement) and port == "animation_name":

@@ -265,6 +265,16 @@ CASES = {
         MOVE,
         found_in=T,
     ),
+    "a robot on the table, its base in the table top": Case(
+        S,
+        "base_pose: {translation: [0.0, 0.0, 0.8]}",
+        "base_pose: {translation: [0.0, 0.7, 0.88]}",
+        (
+            "robot.base_pose: the robot's base at (0.00, 0.70, 0.88) lies 0.020 m below the top "
+            "of work_table (to stand on it: z = 0.900)",
+        ),
+        "base_pose:",
+    ),
     "configuration beyond a joint limit": Case(
         S,
         "ready: [0, -45, 90, 0, 45, 0]",

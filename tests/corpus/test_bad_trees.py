@@ -84,6 +84,13 @@ CASES = {
         ("port 'weights': needs 2 weights, one per child, got 3: 6;2;3",),
         "WeightedRandom",
     ),
+    "Parallel needing more successes than it has children": Case(
+        T,
+        MOVE,
+        f'<Parallel success_count="3">{MOVE}<AlwaysSuccess/></Parallel>',
+        ("port 'success_count': 2 children are fewer than 3: it can never succeed",),
+        "Parallel",
+    ),
     "weight out of range": Case(
         T,
         MOVE,
