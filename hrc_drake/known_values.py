@@ -22,8 +22,11 @@ from typing import Any
 from hrc_drake.bt import Tree
 from hrc_drake.bt.actions import SetBlackboard
 from hrc_drake.bt.blackboard import UNSET, Entry
+from hrc_drake.bt.controls.branches import Switch
+from hrc_drake.bt.errors import closest
 from hrc_drake.bt.node import EntryRef, Literal, TreeNode
 from hrc_drake.bt.ports import coerce
+from hrc_drake.bt.script import ScriptCode, assigned_keys
 from hrc_drake.tree_types import Pose
 
 MAX_KNOWN = 64
@@ -76,6 +79,61 @@ def known_inputs(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[TreeNod
         for port, binding in node.config.inputs.items():
             if found := values.input(binding, node, port):
                 yield node, port, found
+
+
+def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | None]]:
+    """(node, port, key, the nearest key that is set) of every input a node reads from a
+    blackboard entry that nothing ever sets: no scenario entry or SubTree literal, no
+    node's output, SetBlackboard or script (reading it ends a run: "blackboard entry 'key'
+    is not set"). None when a script's code is itself an entry (what it writes is not
+    known). SwitchN's cases are left out: an unset case matches nothing."""
+    written = _written_entries(tree)
+    if written is None:
+        return
+    for node in tree.node_list:
+        for port, binding in node.config.inputs.items():
+            entry = getattr(binding, "entry", None)
+            if entry is None or entry.value is not UNSET or id(entry) in written:
+                continue
+            if isinstance(node, Switch) and port in node.case_ports:
+                continue
+            yield node, port, binding.key, closest(binding.key, _set_keys(node, written))
+
+
+def _written_entries(tree: Tree) -> set[int] | None:
+    """The ids of the entries some node writes (outputs, SetBlackboard, scripts)."""
+    written = set()
+    for node in tree.node_list:
+        written.update(id(binding.entry) for binding in node.config.outputs.values())
+        if isinstance(node, SetBlackboard) and (entry := _set_entry(node)) is not None:
+            written.add(id(entry))
+        scripts = _script_codes(node)
+        if None in scripts:
+            return None
+        for key in (key for code in scripts for key in assigned_keys(code)):
+            if (entry := node.blackboard.entry(key)) is not None:
+                written.add(id(entry))
+    return written
+
+
+def _script_codes(node: TreeNode) -> list[str | None]:
+    """The code of every script of a node (None: code read from an entry)."""
+    config = node.config
+    codes = [script.code for _, script in config.preconditions]
+    codes += [script.code for script in config.postconditions.values()]
+    script_ports = {p.name for p in getattr(type(node), "ports", ()) if p.type is ScriptCode}
+    for port in script_ports & set(config.inputs):
+        binding = config.inputs[port]
+        codes.append(binding.value if isinstance(binding, Literal) else None)
+    return codes
+
+
+def _set_keys(node: TreeNode, written: set[int]) -> list[str]:
+    """The keys the node's blackboard and the root's hold that are set or written."""
+    entries = {**node.blackboard.root.local_entries(), **node.blackboard.local_entries()}
+    return [
+        key for key, entry in entries.items() if entry.value is not UNSET or id(entry) in written
+    ]
 
 
 class _KnownValues:

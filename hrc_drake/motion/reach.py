@@ -35,6 +35,23 @@ def reach_problem(
     return f"out of reach {held}: {_beyond(planner, pose, free_rotation)}{_upwards(pose)}"
 
 
+def configuration_problem(planner: MotionPlanner, q: np.ndarray) -> str:
+    """Why the planner refuses to move the arm to joint positions `q` ("" when it does
+    not): outside the joint limits, or touching the cell."""
+    model = planner.model
+    if not model.within_limits(q):
+        beyond = [
+            f"joint {k + 1} at {np.degrees(angle):.0f}° (limits {np.degrees(low):.0f} to "
+            f"{np.degrees(high):.0f}°)"
+            for k, (angle, low, high) in enumerate(zip(q, model.lower, model.upper, strict=True))
+            if not low - 1e-9 <= angle <= high + 1e-9
+        ]
+        return f"outside the joint limits: {', '.join(beyond)}"
+    if not model.collision_free(q):
+        return f"the {_touched(planner, q)} there"
+    return ""
+
+
 def _upwards(pose: RigidTransform) -> str:
     """A hint for a target whose rotation turns the tool up: a location's rotation is the
     tool's, and `!Rpy {deg: [0, 0, yaw]}` points it at the ceiling."""

@@ -32,7 +32,9 @@ def findings(scenario: Scenario, path: Path) -> list[Finding]:
     implausible = {f.where for f in found}
     scene = CellScene(scenario, skip_types=_types_named(implausible))
     found += cell_findings(scenario, scene, at, skip_locations=_named(implausible, "locations"))
-    found += tree_findings(scenario, scene, at)
+    configurations = _named(implausible, "robot.configurations_deg")
+    placed = all(f.where != "robot.base_pose" for f in found)
+    found += tree_findings(scenario, scene, at, configurations, robot_placed=placed)
     return found
 
 

@@ -12,9 +12,9 @@ from functools import cached_property
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
 from hrc_drake.human.navigation import FLOOR_LEVEL
-from hrc_drake.known_values import Known, known_inputs
+from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
-from hrc_drake.motion.reach import reach_problem
+from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
@@ -27,14 +27,26 @@ from hrc_drake.wiring import ROBOT_MOTION
 from hrc_drake.yaml_check import unknown
 
 
-def tree_findings(scenario: Scenario, scene: CellScene, at: Locator) -> list[Finding]:
+def tree_findings(
+    scenario: Scenario, scene: CellScene, at: Locator, skip_configurations=(), robot_placed=True
+) -> list[Finding]:
+    """Blackboard entries read and never set, named configurations the planner refuses
+    (but `skip_configurations`, whose magnitudes were found wrong), and the checks of every
+    known value a node reads; the robot's configurations and targets only when it is
+    `robot_placed` (its base not inside the cell: every one would fail from that)."""
     places = scenario.places()
     found: list[Finding] = []
     reads = []
     for agent in scenario.trees:
         tree, handle = scenario.agent_tree(agent)
         reads += [(handle, *read) for read in known_inputs(tree, sections(places))]
-    checks = _Checks(scenario, scene, at)
+        found += [
+            at.node(node, port, _never_set(key, near))
+            for node, port, key, near in unwritten_inputs(tree)
+        ]
+    checks = _Checks(scenario, scene, at, robot_placed)
+    if robot_placed:
+        found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
         for value in known:
             found += checks.of(handle, node, port, value)
@@ -47,8 +59,9 @@ def tree_findings(scenario: Scenario, scene: CellScene, at: Locator) -> list[Fin
 class _Checks:
     """The checks of one known value read by one node's port."""
 
-    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator):
+    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator, robot_placed=True):
         self.scenario = scenario
+        self.robot_placed = robot_placed
         self.scene = scene
         self.at = at
         human = scenario.human
@@ -64,10 +77,20 @@ class _Checks:
         seed = stream(scenario.seed, ROBOT_MOTION)
         return MotionPlanner(scenario.station, scenario.robot.motion, seed)
 
+    def configurations(self, skip=()) -> Iterator[Finding]:
+        """Every named configuration that the planner would refuse to move the arm to
+        (outside the joint limits, touching the cell), at its line."""
+        station = self.scenario.station
+        for name in (n for n in station.configurations_deg if n not in skip):
+            problem = configuration_problem(self.planner, station.configuration(name))
+            if problem:
+                yield self.at.field(("robot", "configurations_deg", name), problem)
+
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value
         if isinstance(node, RobotMove | RobotMoveLinear) and port == "target":
-            yield from self._reach(agent, node, known)
+            if self.robot_placed:
+                yield from self._reach(agent, node, known)
         elif isinstance(node, ActorMovement) and port == "target":
             yield from self._standing(agent, node, known)
         elif isinstance(node, ActorMovement) and port == "animation_name":
@@ -169,6 +192,15 @@ class _Checks:
             start = self.scenario.human.start[:2]
             self.walk_problems[key] = walk_problem(self.scene.navigation, start, x, y, yaw)
         return self.walk_problems[key]
+
+
+def _never_set(key: str, near: str | None) -> str:
+    """What a run would end with ("blackboard entry 'key' is not set"), said before it."""
+    hint = f" (did you mean '{near}'?)" if near else ""
+    return (
+        f"blackboard entry '{key}' is never set: no scenario parameter, location or area, "
+        f"SubTree port, node output, SetBlackboard or script writes it{hint}"
+    )
 
 
 def _resolved(agent, value) -> Pose | None:

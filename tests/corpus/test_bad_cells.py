@@ -4,6 +4,9 @@ line naming the file, the line and the field (or the tree's node and port), sayi
 probably meant, and exit status 2. On the code before these checks, validate passed every
 one of them."""
 
+import json
+from pathlib import Path
+
 import pytest
 
 from tests.corpus.corpus_helpers import (
@@ -16,6 +19,7 @@ from tests.corpus.corpus_helpers import (
 )
 
 S, T, H = "scenario.yaml", "robot.xml", "human.xml"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 MOVE = '<RobotMove target="{above}"/>'
 PERSON = """\
 <root BTCPP_format="4" main_tree_to_execute="Human">
@@ -44,17 +48,26 @@ ISLAND = "".join(
 """Three more work tables that close a square with the corpus's work table round (0, 1.7)."""
 
 
-def person(old: str, new: str, says: tuple[str, ...], at: str, cell: str = "") -> Case:
-    """The corpus scenario (with `cell` added to its cell) with a person whose tree
-    (PERSON) has `old` replaced by `new`."""
+def person(old: str, new: str, says: tuple[str, ...], at: str, changes=(), files=None) -> Case:
+    """The corpus scenario (with its texts `changes`d, old -> new, and `files` beside it)
+    with a person whose tree (PERSON) has `old` replaced by `new`."""
     tree = PERSON.replace(old, new)
     assert tree != PERSON
     trees = f"{ROBOT_TREE}  human: {{file: {H}}}\n"
-    files = {H: tree}
-    if cell:
-        scenario = GOOD_SCENARIO.replace("human:\n", f"{cell}human:\n", 1)
-        files[S] = scenario.replace(ROBOT_TREE, trees)
-    return Case(S, ROBOT_TREE, trees, says, at, files, H)
+    written = {H: tree, **(files or {})}
+    if changes:
+        scenario = GOOD_SCENARIO
+        for before, after in changes:
+            assert before in scenario
+            scenario = scenario.replace(before, after, 1)
+        written[S] = scenario.replace(ROBOT_TREE, trees)
+    return Case(S, ROBOT_TREE, trees, says, at, written, H)
+
+
+def own_clip(name: str) -> str:
+    """A clip of the scenario's own: the built-in wave under another name."""
+    clip = json.loads((MODELS / "human" / "animations" / "wave.json").read_text())
+    return json.dumps({**clip, "name": name})
 
 
 CASES = {
@@ -180,6 +193,14 @@ CASES = {
         ("no animation named 'wav' (did you mean 'wave'?)",),
         "wav",
     ),
+    "animation near one of the scenario's own clips": person(
+        'animation_name="wave"',
+        'animation_name="strech"',
+        ("no animation named 'strech' (did you mean 'stretch'?)", "stretch, turn_left"),
+        "strech",
+        changes=[("human:\n", "human:\n  clips: [stretch.json]\n")],
+        files={"stretch.json": own_clip("stretch")},
+    ),
     "walking with a clip that does not walk": person(
         '<ActorMovement target="door"/>',
         '<ActorMovement target="door" animation_name="inspect"/>',
@@ -217,7 +238,62 @@ CASES = {
             "walking person, or the robot's inner working space closes them)",
         ),
         "0;1.7;0",
-        cell=ISLAND,
+        changes=[("human:\n", f"{ISLAND}human:\n")],
+    ),
+    "a place to stand without room to turn": Case(
+        S,
+        "door: {translation: [2.0, 3.0, 0.0]",
+        "door: {translation: [0.0, 1.3, 0.0]",
+        (
+            "locations.door: a person at (0.00, 1.30) facing -90°, turning on the spot, "
+            "reaches 0.13 m into work_table: the nearest place with room to stand and turn is "
+            "[0.00, 1.43]",
+        ),
+        "door:",
+    ),
+    # --- the robot's start and configurations ---
+    "the robot's base moved away from its target": Case(
+        S,
+        "base_pose: {translation: [0.0, 0.0, 0.8]}",
+        "base_pose: {translation: [0.0, -0.5, 0.8]}",
+        (
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.42, 1.03): out of reach with the tool pointing down: 0.94 m from its "
+            "base axis at z = 1.03 m, where the lbr_iisy3_r760 reaches 0.52 m (move it 0.42 m "
+            "closer)",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "a robot on the table, its base in the table top": Case(
+        S,
+        "base_pose: {translation: [0.0, 0.0, 0.8]}",
+        "base_pose: {translation: [0.0, 0.7, 0.88]}",
+        (
+            "robot.base_pose: the robot's base at (0.00, 0.70, 0.88) lies 0.020 m below the top "
+            "of work_table (to stand on it: z = 0.900)",
+        ),
+        "base_pose:",
+    ),
+    "configuration beyond a joint limit": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [0, -45, 200, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: outside the joint limits: joint 3 at 200° "
+            "(limits -150 to 150°)",
+        ),
+        "ready:",
+    ),
+    "configuration in the table": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [-90, -45, 90, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: the link_6 and vacuum_gripper would touch "
+            "work_table there",
+        ),
+        "ready:",
     ),
     # --- the cell at the start ---
     "person starts inside the table": Case(

@@ -1,6 +1,7 @@
 """Bad behavior trees: `hrc-drake validate` names the tree file, the line, the node and the
-port in one line; a fault only the run can find (a blackboard entry nobody wrote, weights
-that do not fit) ends the run cleanly with that line, keeping what the run wrote."""
+port in one line (a blackboard entry no one ever sets too); a fault only the run can find
+(weights a script made that do not fit) ends the run cleanly with that line, keeping what
+the run wrote."""
 
 import json
 
@@ -83,6 +84,13 @@ CASES = {
         ("port 'weights': needs 2 weights, one per child, got 3: 6;2;3",),
         "WeightedRandom",
     ),
+    "Parallel needing more successes than it has children": Case(
+        T,
+        MOVE,
+        f'<Parallel success_count="3">{MOVE}<AlwaysSuccess/></Parallel>',
+        ("port 'success_count': 2 children are fewer than 3: it can never succeed",),
+        "Parallel",
+    ),
     "weight out of range": Case(
         T,
         MOVE,
@@ -116,6 +124,29 @@ CASES = {
             "reads it as velocity",
         ),
         'slow="-1"',
+    ),
+    "blackboard key typo": Case(
+        T,
+        'velocity="{speed}"',
+        'velocity="{sped}"',
+        (
+            "port 'velocity': blackboard entry 'sped' is never set: no scenario parameter, "
+            "location or area, SubTree port, node output, SetBlackboard or script writes it "
+            "(did you mean 'speed'?)",
+        ),
+        "sped",
+    ),
+    "SubTree port name typo": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n',
+        '<SubTree ID="Reach" att="pick_spot"/>\n',
+        (
+            "tree 'Reach', node 'Reach::",
+            "/OffsetPose::",
+            "port 'input': blackboard entry 'at' is never set",
+            "(did you mean 'att'?)",
+        ),
+        'input="{at}"',
     ),
     "unknown holder": Case(
         T,
