@@ -212,4 +212,4 @@ def test_validate_names_the_place_to_stand_that_cannot_work(tmp_path, capsys):
     )
     assert error.startswith(f"hrc-drake: error: {bad}:{line}: locations.handover_spot: ")
     assert "euro_pallet" in error and len(error.splitlines()) == 1
-    assert "the nearest place with room is [" in error
+    assert "the nearest place with room to stand and turn is [" in error
