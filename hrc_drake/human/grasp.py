@@ -4,8 +4,8 @@ A part that fits in one hand and is light is taken with the right hand, the palm
 right-hand face and the fingers round it; anything else with both hands, the palms on the
 two faces that face the person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
 overrides the choice; a `fragile` object always gets both hands. While held, the arms keep
-a carry posture solved for the object's size: forearms forward, the object in front of the
-belly clear of the trunk and the swinging thighs (docs/realism.md).
+a carry posture solved for the object's size: as people carry a box, close to the body at
+the waist, the upper arms hanging and the elbows bent (docs/realism.md).
 
 Hand frames: the grasp frame lies just off the palm (skeleton `_frames`), so a grasp frame
 put on a face is a palm touching it, not sinking in. With the arms hanging every hand frame
@@ -29,10 +29,16 @@ ONE_HAND_WIDTH = 0.09
 ONE_HAND_MASS = 1.0
 """kg: heavier parts are taken with both hands."""
 GRASP_ATTRIBUTE = "grasp"
-CARRY_HEIGHT = 1.0
-"""m: height of the palms while carrying (forearms about level for the default adult)."""
-TRUNK_CLEARANCE = 0.2
-"""m: from the pelvis axis to the near face of a carried object (the chest reaches 0.16)."""
+BELOW_ELBOWS = 0.05
+"""m: both hands carry this far below elbow height (the shoulder's height less the upper
+arm's length): the load at the waist, the upper arms hanging at the sides and the elbows
+bent about 85 degrees (docs/realism.md: carrying as people carry)."""
+TRUNK_CLEARANCE = 0.125
+"""m: from the pelvis axis to the near face of an object carried in both hands: close to
+the body, 2 cm in front of the belly (0.105 m for the default adult, between the hips and
+the chest)."""
+LOWEST_CARRY = 0.8
+"""m: a tall object's bottom stays at least this high, clear of the swinging thighs."""
 ONE_HAND_CARRY = (0.3, -0.12, 0.98)
 """Where the right palm carries a part, in the standing body's frame (x forward, y left)."""
 ARM_JOINTS = ("shoulder", "elbow", "wrist")
@@ -186,13 +192,15 @@ def carry_arms(body: HumanBody, hold: Hold) -> CarryArms:
 
 @lru_cache(maxsize=64)
 def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
-    """Solved once per object size: palms on the object's faces in front of the belly."""
+    """Solved once per object size: palms on the object's faces, at the waist in front of
+    the belly."""
     depth, width, height = size
     if hands == ONE_HAND:
         targets = {"right": (np.array(ONE_HAND_CARRY), _facing(0.0, "sides_fingers_forward"))}
     else:
         forward = TRUNK_CLEARANCE + depth / 2
-        z = max(CARRY_HEIGHT, 0.8 + height / 2)
+        elbows = body.sizes["shoulder_height"] - body.sizes["upper_arm"]
+        z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2)
         R = _facing(0.0, "sides_fingers_forward")
         targets = {
             "left": (np.array([forward, width / 2, z]), R),

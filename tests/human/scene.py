@@ -3,13 +3,15 @@ furniture from our cell models (the floor, a table), which the person walks roun
 person's body goes into is measured in SceneGraph, as the realism audit measures it."""
 
 import numpy as np
-from pydrake.geometry import SceneGraph
+from pydrake.geometry import Box, GeometryInstance, ProximityProperties, Role, SceneGraph
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.parsing import Parser
-from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
+from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
+from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles
 from hrc_drake.messages import NO_COMMANDS
 from hrc_drake.modelgen.cell import BODY
@@ -142,3 +144,36 @@ class Run:
                 if depth > self.overlap[0]:
                     self.overlap = (depth, where, t)
         return statuses, np.array(poses)
+
+
+class Posed:
+    """The person's collision shapes posed at q in a SceneGraph of their own, with boxes
+    (size, X_WB) standing in for held objects: how far apart they are."""
+
+    def __init__(self, q, boxes=()):
+        builder = DiagramBuilder()
+        plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+        parse_human(plant, DEFAULT_HEIGHT, DEFAULT_MASS)
+        plant.Finalize()
+        source = scene_graph.RegisterSource("objects")
+        self.boxes = []
+        for k, (size, X_WB) in enumerate(boxes):
+            instance = GeometryInstance(X_WB, Box(*size), f"box_{k}")
+            instance.set_proximity_properties(ProximityProperties())
+            self.boxes.append(scene_graph.RegisterAnchoredGeometry(source, instance))
+        diagram = builder.Build()
+        context = diagram.CreateDefaultContext()
+        plant.SetPositions(plant.GetMyContextFromRoot(context), human_body().plant_positions(q))
+        self.query = scene_graph.get_query_output_port().Eval(
+            scene_graph.GetMyContextFromRoot(context)
+        )
+
+    def distance(self, box: int, segments) -> float:
+        """Signed distance (m) from box number `box` to the body's `segments` (collision
+        geometry names start with one of them, e.g. "abdomen")."""
+        inspector = self.query.inspector()
+        return min(
+            self.query.ComputeSignedDistancePairClosestPoints(self.boxes[box], g).distance
+            for g in inspector.GetAllGeometryIds(Role.kProximity)
+            if inspector.GetName(g).split("::")[-1].startswith(tuple(segments))
+        )
