@@ -9,7 +9,7 @@ import numpy as np
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
-from hrc_drake.human.segments import Segment
+from hrc_drake.human.segments import Segment, with_clear_arms
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
@@ -46,7 +46,7 @@ class Activity:
     ) -> "Activity":
         """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
         its joins are worked out here, once, rather than at every update that needs them."""
-        segments = tuple(segments)
+        segments = tuple(with_clear_arms(performer, segment) for segment in segments)
         joins = tuple(_join(performer, before, after) for before, after in pairwise(segments))
         return cls(segments, joins, segments[-1].end(performer), final_pose)
 

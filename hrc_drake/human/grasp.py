@@ -82,7 +82,7 @@ HAND_AXES = {
 palms on an object's sides, reaching down to it or holding it in front."""
 
 
-def _facing(heading: float, hand: str) -> RotationMatrix:
+def facing(heading: float, hand: str) -> RotationMatrix:
     return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(HAND_AXES[hand])
 
 
@@ -114,7 +114,7 @@ def palm_targets(grasp: Grasp, heading: float) -> dict:
     on the faces that face the person's sides (one hand: the right one only)."""
     center = np.array(grasp.center, dtype=float) + [0.0, 0.0, grip_lift(grasp.size[2])]
     axis, width, _ = _across(grasp, heading)
-    R = _facing(heading, grip_style(grasp.size[2]))
+    R = facing(heading, grip_style(grasp.size[2]))
     return _on_sides(grasp.hands, center, axis, width, R)
 
 
@@ -122,7 +122,7 @@ def release_targets(hold: Hold, center, heading: float) -> dict:
     """Where each holding hand's grasp frame goes to put the held object's centre at
     `center` (facing `heading`)."""
     left = np.array([-math.sin(heading), math.cos(heading), 0.0])
-    R = _facing(heading, grip_style(hold.size[2]))
+    R = facing(heading, grip_style(hold.size[2]))
     center = np.asarray(center, dtype=float) + [0.0, 0.0, grip_lift(hold.size[2])]
     return _on_sides(hold.hands, center, left, hold.size[1], R)
 
@@ -131,7 +131,7 @@ def reach_target(body: HumanBody, point, heading: float) -> dict:
     """The right hand reaching to `point` on a surface: the hand level, fingers forward,
     its little-finger edge resting on the point rather than the fingers sinking in."""
     position = np.asarray(point, dtype=float) + [0.0, 0.0, hand_half_breadth(body)]
-    return {"right": (position, _facing(heading, "sides_fingers_forward"))}
+    return {"right": (position, facing(heading, "sides_fingers_forward"))}
 
 
 def outward(side: str, R: RotationMatrix) -> np.ndarray:
@@ -144,6 +144,32 @@ def hand_half_breadth(body: HumanBody) -> float:
     """Half the hand's breadth (its collision box across the palm), from the skeleton."""
     (hand,) = body.skeleton.body("right_hand").collisions
     return hand.shape.size[0] / 2
+
+
+def hand_below(body: HumanBody, R: RotationMatrix | None) -> float:
+    """How far the hand reaches below its grasp frame when that has the world orientation
+    `R` (None: any; the farthest, fingers straight down)."""
+    return hand_extent(body, R, (0.0, 0.0, -1.0))
+
+
+def hand_extent(body: HumanBody, R: RotationMatrix | None, direction) -> float:
+    """How far the hand reaches from its grasp frame along the world `direction` (a unit
+    vector) when the frame has the world orientation `R` (None: any orientation)."""
+    corners = _hand_corners(body)
+    if R is None:
+        return float(np.max(np.linalg.norm(corners, axis=1)))
+    return float(np.max(np.asarray(direction) @ (R.matrix() @ corners.T)))
+
+
+@lru_cache(maxsize=16)
+def _hand_corners(body: HumanBody) -> np.ndarray:
+    """The corners of the right hand's collision box in its grasp frame."""
+    (hand,) = body.skeleton.body("right_hand").collisions
+    q = body.standing_pose()
+    X_GH = body.frame_pose("right_hand_grasp", q).inverse() @ body.frame_pose("right_hand", q)
+    half = np.asarray(hand.shape.size) / 2
+    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    return np.array([X_GH @ (np.asarray(hand.shape.xyz) + sign * half) for sign in signs])
 
 
 def _on_sides(hands: str, center, left, width: float, R) -> dict:
@@ -196,12 +222,12 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     the belly."""
     depth, width, height = size
     if hands == ONE_HAND:
-        targets = {"right": (np.array(ONE_HAND_CARRY), _facing(0.0, "sides_fingers_forward"))}
+        targets = {"right": (np.array(ONE_HAND_CARRY), facing(0.0, "sides_fingers_forward"))}
     else:
         forward = TRUNK_CLEARANCE + depth / 2
         elbows = body.sizes["shoulder_height"] - body.sizes["upper_arm"]
         z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2)
-        R = _facing(0.0, "sides_fingers_forward")
+        R = facing(0.0, "sides_fingers_forward")
         targets = {
             "left": (np.array([forward, width / 2, z]), R),
             "right": (np.array([forward, -width / 2, z]), R),

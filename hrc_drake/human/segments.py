@@ -9,10 +9,12 @@ from math import ceil, copysign, degrees, inf, radians
 import numpy as np
 
 from hrc_drake.human.body import HumanBody
+from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
 from hrc_drake.human.performer import IDLE_CLIP, Performer, carried, place
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import AimedMotion
 from hrc_drake.human.walking import WalkSegment
 
@@ -33,28 +35,37 @@ class ClipSegment:
     anchor: tuple[float, float, float]
     speed: float = 1.0
     forever: bool = False
+    length: float | None = None
+    """Clip seconds played (None: all of it)."""
     aim: AimedMotion | None = None
     carry: CarryArms | None = None
     """Arms held in the carry posture (not with `aim`, which blends them itself)."""
+    clear: ArmCorrection | None = None
+    """The arms kept out of the furniture (`with_clear_arms`)."""
 
     def end(self, performer: Performer) -> float:
         if self.forever:
             return inf
-        return self.start + performer.clips[self.clip].duration / self.speed
+        return self.start + self._played(performer) / self.speed
+
+    def _played(self, performer: Performer) -> float:
+        return self.length if self.length is not None else performer.clips[self.clip].duration
 
     def clip_time(self, performer: Performer, t: float) -> float:
         clip_time = (t - self.start) * self.speed
         if self.forever:
             return clip_time
-        return min(max(clip_time, 0.0), performer.clips[self.clip].duration)
+        return min(max(clip_time, 0.0), self._played(performer))
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         clip_time = self.clip_time(performer, t)
         q = performer.clips[self.clip].sample(clip_time)
         placed = place(performer, q, *self.anchor)
         if self.aim is not None:
-            return self.aim.pose(placed, clip_time)
-        return carried(placed, self.carry)
+            q = self.aim.pose(placed, clip_time)
+        else:
+            q = carried(placed, self.carry)
+        return q if self.clear is None else self.clear.over(q, t)
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,6 +80,7 @@ class TurnSegment:
     clip: Clip
     cycles: int
     carry: CarryArms | None = None
+    clear: ArmCorrection | None = None
 
     @classmethod
     def between(cls, performer: Performer, start, position, yaw_from, yaw_to, carry=None):
@@ -100,7 +112,8 @@ class TurnSegment:
         authored = self.cycles * float(self.clip.root_shift[performer.root[2]])
         rest = self.yaw_to - self.yaw_from - authored
         q[performer.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
-        return carried(place(performer, q, *self.position, self.yaw_from), self.carry)
+        q = carried(place(performer, q, *self.position, self.yaw_from), self.carry)
+        return q if self.clear is None else self.clear.over(q, t)
 
 
 @lru_cache(maxsize=256)
@@ -109,3 +122,35 @@ def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
+
+
+def with_clear_arms(performer: Performer, segment: Segment) -> Segment:
+    """The segment with its arms kept out of the cell's furniture (hrc_drake.human.clearance):
+    hands that are aimed or hold something stay where they are, the rest of the arm moves;
+    a looping clip is checked over one loop."""
+    if not performer.furniture.pieces:
+        return segment
+    plain = replace(segment, clear=None)
+    end, period = plain.end(performer), 0.0
+    if end == inf:
+        period = performer.clips[plain.clip].duration
+        end = plain.start + period
+    holding = SIDES if plain.carry is not None else ()
+
+    def held(t: float) -> tuple[str, ...]:
+        """The sides whose hands stay where they are at t (aimed, or holding)."""
+        if isinstance(plain, ClipSegment) and plain.aim is not None:
+            aim = plain.aim
+            return aim.hands if aim.holds(plain.clip_time(performer, t)) else ()
+        return holding
+
+    correction = arm_correction(
+        performer.body,
+        performer.furniture,
+        lambda t: plain.pose(performer, t),
+        plain.start,
+        end,
+        held,
+        period,
+    )
+    return replace(plain, clear=correction)

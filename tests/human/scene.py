@@ -69,9 +69,10 @@ def _add_cell(builder, scene_graph, cell) -> MultibodyPlant | None:
 
 class Run:
     """A small diagram: SceneGraph, the person, a scripted command source, and `cell`
-    furniture (see `furniture`) that the person walks round."""
+    furniture (see `furniture`) that the person walks round; what the body's `segments` go
+    into is measured (`deepest`, `overlap`)."""
 
-    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0), cell=()):
+    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0), cell=(), segments=("",)):
         builder = DiagramBuilder()
         scene_graph = builder.AddSystem(SceneGraph())
         cell_plant = _add_cell(builder, scene_graph, cell)
@@ -90,6 +91,7 @@ class Run:
         self.body = self.actor.body
         self._human_geometry = set(self.plant_geometries())
         self.furnished = bool(cell)
+        self.segments = tuple(segments)
         self.overlap = (0.0, "", 0.0)
 
     def plant_geometries(self):
@@ -112,8 +114,9 @@ class Run:
         return self.status()
 
     def deepest(self) -> tuple[float, str]:
-        """How deep (m) the person's body goes into the furniture now, and where: the
-        deepest overlap of a body segment's collision shape with the cell's geometry."""
+        """How deep (m) the person's body (its `segments`: those whose collision geometry
+        names start with one of them; all by default) goes into the furniture now, and
+        where: the deepest overlap of a segment's collision shape with the cell's geometry."""
         sg_context = self.scene_graph.GetMyContextFromRoot(self.simulator.get_context())
         query = self.scene_graph.get_query_output_port().Eval(sg_context)
         inspector = query.inspector()
@@ -121,6 +124,8 @@ class Run:
         for pair in query.ComputePointPairPenetration():
             ours = [g for g in (pair.id_A, pair.id_B) if g in self._human_geometry]
             if len(ours) != 1 or pair.depth <= worst[0]:
+                continue
+            if not inspector.GetName(ours[0]).split("::")[-1].startswith(self.segments):
                 continue
             other = pair.id_B if ours[0] == pair.id_A else pair.id_A
             where = f"{inspector.GetName(ours[0])} in {inspector.GetName(other)}"

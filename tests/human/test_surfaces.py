@@ -1,0 +1,92 @@
+"""Hands on surfaces, not in them: the person working at a table (our work table model) keeps
+the arms out of it, measured in SceneGraph as the realism audit measures it (the legs and
+trunk turning at a table are the places to stand's business)."""
+
+import numpy as np
+import pytest
+
+from hrc_drake.human.clip import load_clips
+from hrc_drake.human.grasp import hold_of
+from hrc_drake.human.messages import AnimateCommand, CancelCommand, Grasp, MoveCommand
+from tests.human.scene import FLOOR, Run, furniture
+
+INTO_FURNITURE = 0.01
+"""m: how far a body segment may go into the cell's geometry (the audit's limit)."""
+STANDING = (0.0, 0.0, np.pi / 2)
+"""At a work table like the bundled scenarios' work places: facing it, the pelvis 0.15 m
+from its edge (the belly 4.5 cm from it)."""
+TABLE = furniture("work_table", 0.0, 0.55)
+"""Top 0.86-0.90 m high, from y = 0.15 to 0.95 and x = -0.6 to 0.6."""
+TOP = 0.9
+MATERIAL = (0.16, 0.12, 0.08)
+CARTON = (0.3, 0.3, 0.2)
+
+
+ARMS = ("hand", "lower_arm", "upper_arm")
+"""The collision geometry of the arms (the hands, forearms and upper arms)."""
+
+
+def _at_the_table(schedule, until: float) -> Run:
+    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, TABLE], segments=ARMS)
+    run.record(until)
+    return run
+
+
+def _duration(clip: str) -> float:
+    return load_clips()[clip].duration
+
+
+@pytest.mark.parametrize(
+    "target",
+    [(0.1, 0.35, TOP), (-0.2, 0.45, TOP), (0.15, 0.25, TOP)],
+    ids=["in front", "to the left", "near the edge"],
+)
+def test_a_reach_onto_the_table_comes_from_above(target):
+    run = _at_the_table([(0.1, AnimateCommand(1, "reach", target=target))], 3.0)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+@pytest.mark.parametrize(
+    ("center", "size"),
+    [((-0.1, 0.4, TOP + 0.04), MATERIAL), ((0.0, 0.45, TOP + 0.1), CARTON)],
+    ids=["material", "carton"],
+)
+def test_picking_up_and_putting_down_on_the_table_keeps_the_hands_out_of_it(center, size):
+    grasp = Grasp("both", center, np.pi / 2, size)
+    hold = hold_of(grasp, STANDING[2])
+    put_down = _duration("pick_table") + 0.3
+    schedule = [
+        (0.1, AnimateCommand(1, "pick_table", grasp=grasp)),
+        (put_down, AnimateCommand(2, "place_table", target=center, hold=hold)),
+    ]
+    run = _at_the_table(schedule, put_down + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_inspecting_at_the_table_keeps_the_forearms_above_it():
+    run = _at_the_table([(0.1, AnimateCommand(1, "inspect"))], _duration("inspect") + 0.3)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_reach_cancelled_on_the_table_withdraws_the_hand_before_the_person_turns_away():
+    schedule = [
+        (0.1, AnimateCommand(1, "reach", target=(0.1, 0.4, TOP))),
+        (1.0, CancelCommand(2)),
+        (1.1, MoveCommand(3, (0.0, -1.5, 0.0))),
+    ]
+    run = _at_the_table(schedule, 8.0)
+    assert run.status().results.outcome_of(3) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_step_up_to_the_table_swings_the_arms_clear_of_it():
+    """The bundled scenarios' person starts 10 cm short of their work place: the arms swing
+    as in any walk, next to the table's edge."""
+    schedule = [(0.1, MoveCommand(1, (*STANDING[:2], 0.0), (0.7071068, 0.0, 0.0, 0.7071068)))]
+    run = Run(schedule, start_pose=(0.0, -0.1, np.pi / 2), cell=[FLOOR, TABLE], segments=ARMS)
+    run.record(4.1)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
