@@ -234,14 +234,10 @@ class ArmCorrection:
 
     times: tuple[float, ...]
     offsets: tuple[np.ndarray, ...]
-    period: float = 0.0
-    """Repeats with this period (a looping clip), or not (0)."""
 
     def offset(self, t: float) -> np.ndarray | None:
         times = self.times
-        if self.period > 0.0:
-            t = times[0] + (t - times[0]) % self.period
-        if t <= times[0] or t >= times[-1]:
+        if t < times[0] or t >= times[-1]:
             return None
         k = bisect_right(times, t) - 1
         s = minimum_jerk((t - times[k]) / (times[k + 1] - times[k]))
@@ -252,10 +248,11 @@ class ArmCorrection:
         return q if offset is None else q + offset
 
 
-def arm_correction(body, furniture, pose, start, end, held, period=0.0):
+def arm_correction(body, furniture, pose, start, end, held):
     """The correction that keeps the arms out of the furniture while `pose(t)` is played from
-    `start` to `end` (None: they keep clear as they are). `held(t)`: the sides whose hands
-    must stay where they are (aimed or holding something); `period`: the poses repeat.
+    `start` to `end` (None: they keep clear as they are); it is nothing at `start` (it eases
+    in after it) unless the arms are in the furniture there. `held(t)`: the sides whose
+    hands must stay where they are (aimed or holding something).
 
     The poses are checked every SAMPLE in turn; a correction found at one check is tried
     first at the next (it usually still holds), so that it changes smoothly and the arm is
@@ -279,7 +276,7 @@ def arm_correction(body, furniture, pose, start, end, held, period=0.0):
     if not moved:
         return None
     for _ in range(VERIFICATIONS):
-        correction, added = _correction(moved, period), False
+        correction, added = _correction(moved, start), False
         for t in _near(sorted(moved), start, end):
             q, holding = pose(t), held(t)
             near = prisms.near(q[:2], NEAR)
@@ -289,7 +286,7 @@ def arm_correction(body, furniture, pose, start, end, held, period=0.0):
                 moved[t], added = (cleared if cleared is not None else corrected) - q, True
         if not added:
             return correction
-    return _correction(moved, period)
+    return _correction(moved, start)
 
 
 def _near(times: list, start: float, end: float) -> list:
@@ -301,20 +298,21 @@ def _near(times: list, start: float, end: float) -> list:
     return [float(t) for t in instants[near]]
 
 
-def _correction(moved: dict, period: float) -> ArmCorrection:
-    keys = _eased(sorted(moved.items()))
-    return ArmCorrection(tuple(t for t, _ in keys), tuple(o for _, o in keys), period)
+def _correction(moved: dict, start: float) -> ArmCorrection:
+    keys = _eased(sorted(moved.items()), start)
+    return ArmCorrection(tuple(t for t, _ in keys), tuple(o for _, o in keys))
 
 
 def _clear(body, prisms, q, holding) -> bool:
     return all(check_arm(body, prisms, q, side).depth <= TOLERANCE for side in SIDES)
 
 
-def _eased(corrected):
-    """Keys for (time, offset) corrections at sampled times: zero EASE before each run of
-    them and EASE after (runs closer than that are joined)."""
+def _eased(corrected, start: float):
+    """Keys for (time, offset) corrections at checked times: zero EASE before each run of
+    them (not before `start`) and EASE after (runs closer than that are joined)."""
     zero = np.zeros_like(corrected[0][1])
-    keys = [(corrected[0][0] - EASE, zero)]
+    first = corrected[0][0]
+    keys = [(max(first - EASE, start), zero)] if first > start else []
     for (t, offset), following in zip(corrected, [*corrected[1:], None], strict=True):
         keys.append((t, offset))
         if following is None or following[0] - t > 2 * EASE:

@@ -9,7 +9,6 @@ from math import ceil, copysign, degrees, inf, radians
 import numpy as np
 
 from hrc_drake.human.body import HumanBody
-from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
@@ -40,8 +39,6 @@ class ClipSegment:
     aim: AimedMotion | None = None
     carry: CarryArms | None = None
     """Arms held in the carry posture (not with `aim`, which blends them itself)."""
-    clear: ArmCorrection | None = None
-    """The arms kept out of the furniture (`with_clear_arms`)."""
 
     def end(self, performer: Performer) -> float:
         if self.forever:
@@ -57,15 +54,20 @@ class ClipSegment:
             return clip_time
         return min(max(clip_time, 0.0), self._played(performer))
 
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        """The sides whose hands must stay where they are at t: aimed at their targets or
+        holding what they took."""
+        if self.aim is not None:
+            return self.aim.hands if self.aim.holds(self.clip_time(performer, t)) else ()
+        return SIDES if self.carry is not None else ()
+
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         clip_time = self.clip_time(performer, t)
         q = performer.clips[self.clip].sample(clip_time)
         placed = place(performer, q, *self.anchor)
         if self.aim is not None:
-            q = self.aim.pose(placed, clip_time)
-        else:
-            q = carried(placed, self.carry)
-        return q if self.clear is None else self.clear.over(q, t)
+            return self.aim.pose(placed, clip_time)
+        return carried(placed, self.carry)
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,7 +82,6 @@ class TurnSegment:
     clip: Clip
     cycles: int
     carry: CarryArms | None = None
-    clear: ArmCorrection | None = None
 
     @classmethod
     def between(cls, performer: Performer, start, position, yaw_from, yaw_to, carry=None):
@@ -94,6 +95,9 @@ class TurnSegment:
 
     def end(self, performer: Performer) -> float:
         return self.start + self.cycles * self.clip.duration
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        return SIDES if self.carry is not None else ()
 
     def finishing(self, t: float) -> "TurnSegment":
         """This turn cut short after the cycle (two steps) under way at t, turned as far as
@@ -112,8 +116,7 @@ class TurnSegment:
         authored = self.cycles * float(self.clip.root_shift[performer.root[2]])
         rest = self.yaw_to - self.yaw_from - authored
         q[performer.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
-        q = carried(place(performer, q, *self.position, self.yaw_from), self.carry)
-        return q if self.clear is None else self.clear.over(q, t)
+        return carried(place(performer, q, *self.position, self.yaw_from), self.carry)
 
 
 @lru_cache(maxsize=256)
@@ -122,35 +125,3 @@ def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
 
 
 Segment = ClipSegment | TurnSegment | WalkSegment
-
-
-def with_clear_arms(performer: Performer, segment: Segment) -> Segment:
-    """The segment with its arms kept out of the cell's furniture (hrc_drake.human.clearance):
-    hands that are aimed or hold something stay where they are, the rest of the arm moves;
-    a looping clip is checked over one loop."""
-    if not performer.furniture.pieces:
-        return segment
-    plain = replace(segment, clear=None)
-    end, period = plain.end(performer), 0.0
-    if end == inf:
-        period = performer.clips[plain.clip].duration
-        end = plain.start + period
-    holding = SIDES if plain.carry is not None else ()
-
-    def held(t: float) -> tuple[str, ...]:
-        """The sides whose hands stay where they are at t (aimed, or holding)."""
-        if isinstance(plain, ClipSegment) and plain.aim is not None:
-            aim = plain.aim
-            return aim.hands if aim.holds(plain.clip_time(performer, t)) else ()
-        return holding
-
-    correction = arm_correction(
-        performer.body,
-        performer.furniture,
-        lambda t: plain.pose(performer, t),
-        plain.start,
-        end,
-        held,
-        period,
-    )
-    return replace(plain, clear=correction)

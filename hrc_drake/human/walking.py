@@ -15,11 +15,11 @@ from math import cos, radians, sin
 
 import numpy as np
 
-from hrc_drake.human.clearance import ArmCorrection
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer, carried, place
 from hrc_drake.human.rotations import wrap_angle
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.stepping import (
     START_PHASE,
     SWING_SLACK,
@@ -91,8 +91,6 @@ class WalkSegment:
     final_turn: float = 0.0
     """How far the heading turns from the last leg's direction over the walk's last steps
     (`final_room`), so that the person arrives facing the way they are to stand."""
-    clear: ArmCorrection | None = None
-    """The arms kept out of the furniture (hrc_drake.human.segments.with_clear_arms)."""
 
     def facing_at_the_end(self, yaw: float) -> "WalkSegment":
         """The walk turning to face `yaw` over its last steps where the corner rule allows
@@ -163,6 +161,10 @@ class WalkSegment:
 
     def end(self, performer: Performer) -> float:
         return self.over
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        """The sides whose hands hold something (they stay where they are)."""
+        return SIDES if self.carry is not None else ()
 
     def distance(self, t: float) -> float:
         """How far along the path the pelvis is at t."""
@@ -282,8 +284,7 @@ class WalkSegment:
             if slack > 0.0:  # in the air: short of its place rather than a locked knee
                 position = performer.legs.within_reach(q, side, position, forward, STANCE_KNEE)
             q = performer.legs.place_foot(q, side, position, forward)
-        q = carried(q, self.carry)
-        return q if self.clear is None else self.clear.over(q, t)
+        return carried(q, self.carry)
 
 
 def _least_knee(slack: float) -> float:
