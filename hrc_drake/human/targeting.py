@@ -221,25 +221,29 @@ def _reach(
 
 
 def _floors(body: HumanBody, furniture: Furniture, hands: dict, reaching: bool) -> dict:
-    """Per side, the height the hand rests on at its target: a reaching hand's edge on the
-    point it reaches to, palms on an object's faces above the surface it stands on."""
+    """Per side, the height the hand's lowest point keeps above at its target, and whether
+    it rests there: a reaching hand's edge on the point it reaches to, palms on an object's
+    faces anywhere above the surface it stands on."""
     floors = {}
     for side, (position, _) in hands.items():
         support = furniture.support(position)
         if reaching:
-            floors[side] = position[2] - hand_half_breadth(body)
+            floors[side] = (position[2] - hand_half_breadth(body), True)
         elif support is not None:
-            floors[side] = support.high
+            floors[side] = (support.high, False)
     return floors
 
 
 def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> np.ndarray:
-    """`_reach`, each hand with a floor moved up or down until its lowest point is REST_GAP
-    above it (IK leaves a hand tilted a little: on a surface a corner would dip into it,
-    or the hand would hover)."""
+    """`_reach`, each hand with a floor moved up until its lowest point is REST_GAP above
+    it, or, resting there, up or down (IK leaves a hand tilted a little: on a surface a
+    corner would dip into it, or the hand would hover)."""
     solved = _reach(body, q, hands)
     for _ in range(RESTING_PASSES):
-        off = {side: floors[side] + REST_GAP - _lowest(body, solved, side) for side in floors}
+        off = {}
+        for side, (floor, rests) in floors.items():
+            error = floor + REST_GAP - _lowest(body, solved, side)
+            off[side] = error if rests else max(error, 0.0)
         if all(abs(error) <= REST_GAP for error in off.values()):
             break
         hands = {

@@ -4,10 +4,12 @@ trunk turning at a table are the places to stand's business)."""
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import hold_of
 from hrc_drake.human.messages import AnimateCommand, CancelCommand, Grasp, MoveCommand
+from hrc_drake.workpieces.geometry import Solid
 from tests.human.scene import FLOOR, Run, furniture
 
 INTO_FURNITURE = 0.01
@@ -18,6 +20,9 @@ from its edge (the belly 4.5 cm from it)."""
 TABLE = furniture("work_table", 0.0, 0.55)
 """Top 0.86-0.90 m high, from y = 0.15 to 0.95 and x = -0.6 to 0.6."""
 TOP = 0.9
+HAND_ON_OBJECT = 0.02
+"""m: how far a palm closing on an object may be from its face (the audit's hand–object
+gap)."""
 MATERIAL = (0.16, 0.12, 0.08)
 CARTON = (0.3, 0.3, 0.2)
 
@@ -47,20 +52,42 @@ def test_a_reach_onto_the_table_comes_from_above(target):
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
+PALLET = furniture("euro_pallet", 0.0, 0.55, 90.0)
+"""A EUR pallet across the person's way, its near side 0.15 m in front of the pelvis."""
+ON_A_CRATE = 0.144 + 0.24 + 0.1
+"""The centre of a carton standing on a crate on the pallet."""
+
+
 @pytest.mark.parametrize(
-    ("center", "size"),
-    [((-0.1, 0.4, TOP + 0.04), MATERIAL), ((0.0, 0.45, TOP + 0.1), CARTON)],
-    ids=["material", "carton"],
+    ("cell", "center", "size", "clips"),
+    [
+        (TABLE, (-0.1, 0.4, TOP + 0.04), MATERIAL, ("pick_table", "place_table")),
+        (TABLE, (0.0, 0.45, TOP + 0.1), CARTON, ("pick_table", "place_table")),
+        (PALLET, (0.15, 0.35, ON_A_CRATE), CARTON, ("pick_floor", "place_floor")),
+    ],
+    ids=["material on the table", "carton on the table", "carton on a crate on a pallet"],
 )
-def test_picking_up_and_putting_down_on_the_table_keeps_the_hands_out_of_it(center, size):
+def test_picking_up_and_putting_down_keeps_the_hands_out_of_the_furniture(
+    cell, center, size, clips
+):
+    """The palms close on the object's faces, and the arms stay out of what it stands on."""
+    pick, place = clips
     grasp = Grasp("both", center, np.pi / 2, size)
     hold = hold_of(grasp, STANDING[2])
-    put_down = _duration("pick_table") + 0.3
+    put_down = _duration(pick) + 0.3
     schedule = [
-        (0.1, AnimateCommand(1, "pick_table", grasp=grasp)),
-        (put_down, AnimateCommand(2, "place_table", target=center, hold=hold)),
+        (0.1, AnimateCommand(1, pick, grasp=grasp)),
+        (put_down, AnimateCommand(2, place, target=center, hold=hold)),
     ]
-    run = _at_the_table(schedule, put_down + _duration("place_table") + 0.2)
+    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, cell], segments=ARMS)
+    run.record(0.1 + load_clips()[pick].events["grasp"])
+    q = run.positions()[run.body.plant_index]
+    box = Solid("box", size)
+    X_OW = RigidTransform(RotationMatrix.MakeZRotation(grasp.yaw), center).inverse()
+    for side in ("left", "right"):
+        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
+        assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
+    run.record(put_down + _duration(place) + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
