@@ -8,6 +8,7 @@ from math import inf
 import numpy as np
 
 from hrc_drake.human.clearance import ArmCorrection, arm_correction
+from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
@@ -41,19 +42,31 @@ class Activity:
     blend_offset: np.ndarray | None = None
     blend_start: float = 0.0
     blend_time: float = BLEND_TIME
+    furniture: Furniture | None = None
+    """What the arms keep out of (None: the cell's furniture; an aimed clip adds the objects
+    near its target)."""
     clear: ArmCorrection | None = None
-    """Keeps the arms out of the cell's furniture (hrc_drake.human.clearance), worked out
-    once the activity takes over (`blended_from`)."""
+    """Keeps the arms out of the furniture (hrc_drake.human.clearance), worked out once the
+    activity takes over (`blended_from`)."""
 
     @classmethod
     def plan(
-        cls, performer: Performer, segments, final_pose: tuple[float, float, float]
+        cls,
+        performer: Performer,
+        segments,
+        final_pose: tuple[float, float, float],
+        furniture: Furniture | None = None,
     ) -> "Activity":
         """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
         its joins are worked out here, once, rather than at every update that needs them."""
         segments = tuple(segments)
         joins = tuple(_join(performer, before, after) for before, after in pairwise(segments))
-        return cls(segments, joins, segments[-1].end(performer), final_pose)
+        end = segments[-1].end(performer)
+        return cls(segments, joins, end, final_pose, furniture=furniture)
+
+    def furniture_of(self, performer: Performer) -> Furniture:
+        """What the arms keep out of in this activity."""
+        return self.furniture if self.furniture is not None else performer.furniture
 
     def blended_from(self, performer: Performer, pose: np.ndarray, t: float) -> "Activity":
         """This activity taking over at t from `pose`: the difference fades out, over longer
@@ -68,7 +81,8 @@ class Activity:
     def _arms_clear(self, performer: Performer, t: float) -> ArmCorrection | None:
         """The correction that keeps the arms out of the furniture from t to the end (of
         one loop of a clip that loops for ever)."""
-        if not performer.furniture.pieces:
+        furniture = self.furniture_of(performer)
+        if not furniture.pieces:
             return None
         last = self.segments[-1]
         end = self.end
@@ -76,7 +90,7 @@ class Activity:
             end = max(last.start, t) + performer.clips[last.clip].duration
         return arm_correction(
             performer.body,
-            performer.furniture,
+            furniture,
             lambda u: self._blended_pose(performer, u),
             t,
             end,

@@ -96,6 +96,7 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
     aim, carry = None, _carry(performer, command.hold)
+    furniture = performer.furniture.with_boxes(command.nearby)
     if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
@@ -114,11 +115,11 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
             pose[2],
             carry,
             takes,
-            performer.furniture,
+            furniture,
             lowest,
         )
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
-    return Activity.plan(performer, (segment,), pose)
+    return Activity.plan(performer, (segment,), pose, furniture)
 
 
 def _aimed_hands(
@@ -164,7 +165,7 @@ def plan_stop(
         if withdrawing is None:
             return plan_idle(performer, base, t, hold)
         rest = ClipSegment(IDLE_CLIP, withdrawing.end(performer), base, forever=True)
-        return Activity.plan(performer, (withdrawing, rest), base)
+        return Activity.plan(performer, (withdrawing, rest), base, activity.furniture)
     if isinstance(stepping, ClipSegment):
         stop, pose = stepping, stepping.anchor
     elif isinstance(stepping, TurnSegment):
@@ -215,7 +216,7 @@ def _withdrawing(performer: Performer, activity, base, hold, t: float) -> ClipSe
     clip = performer.clips[IDLE_CLIP]
     aim = withdrawal(
         performer.body,
-        performer.furniture,
+        activity.furniture_of(performer),
         clip,
         lambda q: place(performer, q, *base),
         activity.pose(performer, t),

@@ -261,21 +261,36 @@ def _lowest(body: HumanBody, q: np.ndarray, side: str) -> float:
 
 
 def approached(
-    hands: dict, heading: float, reaching: bool, opening: bool = True, above=None
+    hands: dict, heading: float, reaching: bool, opening: bool = True, above=None, room=None
 ) -> dict:
     """The hands' targets moved to where they come before closing on them: above, and
     (`opening`) outwards from an object's faces (a reaching hand: back towards the body);
     hands that hold what they put down stay on it. `above` (side: height) raises a hand
-    further, so far that its grasp frame is at least that high."""
+    further, so far that its grasp frame is at least that high; `room` (side: m) is as far
+    as a palm can open outwards (a neighbouring object)."""
     out, up = APPROACH
     back = -np.array([np.cos(heading), np.sin(heading), 0.0])
     moved = {}
     for side, (position, R) in hands.items():
         away = back if reaching or R is None else outward(side, R)
-        point = np.asarray(position) + opening * out * away + [0.0, 0.0, up]
+        wide = min(out, (room or {}).get(side, out))
+        point = np.asarray(position) + opening * wide * away + [0.0, 0.0, up]
         point[2] = max(point[2], (above or {}).get(side, -np.inf))
         moved[side] = (point, R)
     return moved
+
+
+def _room(body: HumanBody, furniture: Furniture, hands: dict) -> dict:
+    """Per side, how far a palm on an object's face can open outwards before the back of the
+    hand meets something (its thickness and a margin less than the free way)."""
+    room = {}
+    for side, (position, R) in hands.items():
+        if R is None:
+            continue
+        reach = hand_below(body, R)
+        free = furniture.room(position, outward(side, R), position[2] - reach, position[2] + reach)
+        room[side] = max(free - hand_extent(body, R, outward(side, R)) - EDGE_MARGIN, 0.0)
+    return room
 
 
 def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest) -> dict:
@@ -358,11 +373,14 @@ def aim_clip(
     approach_time = APPROACH_AT * event
     putting_down = carry is not None and not takes
     above = clearing(body, furniture, hands, lowest)
-    near = approached(hands, heading, reaching, not putting_down, None if putting_down else above)
+    room = _room(body, furniture, hands)
+    near = approached(
+        hands, heading, reaching, not putting_down, None if putting_down else above, room
+    )
     near_offset = _offset(body, placed_pose, clip, approach_time, on_target, near, on_target)
     marks = (approach_time, event, hold_end)
     if putting_down:
-        opened = approached(hands, heading, False, above=above)
+        opened = approached(hands, heading, False, above=above, room=room)
         return _putting_down(
             body,
             clip,

@@ -10,6 +10,8 @@ tells the person what the hands hold, so they carry it in the carry posture.
 
 from abc import abstractmethod
 
+import numpy as np
+
 from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
@@ -22,6 +24,8 @@ from hrc_drake.workpieces.geometry import yaw_of
 
 TABLE_HEIGHT = 0.5
 """Targets below this height are picked or placed with the floor clips (a squat)."""
+NEARBY = 0.8
+"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
@@ -55,9 +59,13 @@ class PersonCommandNode(CommandNode):
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
     """How `hands` take `obj` (a cylinder is taken like the box around it)."""
+    return human.Grasp(hands, *_box(obj))
+
+
+def _box(obj: wp.ObjectStatus):
+    """An object's centre, heading and box extents (a cylinder: the box around it)."""
     size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
-    yaw = yaw_of(obj.pose.rotation())
-    return human.Grasp(hands, tuple(obj.pose.translation()), yaw, tuple(size))
+    return tuple(obj.pose.translation()), yaw_of(obj.pose.rotation()), tuple(size)
 
 
 class ActorAnimation(PersonCommandNode):
@@ -157,8 +165,29 @@ class TargetedAction(PersonCommandNode):
 
     def command(self, seq: int):
         self.contact_seq = None
+        target = self.target_point()
         return human.AnimateCommand(
-            seq, self.clip(), target=self.target_point(), hold=self.hold(), grasp=self.grasp()
+            seq,
+            self.clip(),
+            target=target,
+            hold=self.hold(),
+            grasp=self.grasp(),
+            nearby=self.nearby(target),
+        )
+
+    def nearby(self, target) -> tuple[human.Box, ...]:
+        """The free objects near `target` (not the one the action takes): the person's arms
+        keep out of them."""
+        status = self.agent.workpieces
+        if status is None:
+            return ()
+        taken = self.taken_id()
+        return tuple(
+            human.Box(*_box(obj))
+            for obj in status.objects
+            if obj.holder is None
+            and obj.id != taken
+            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(target[:2]))) <= NEARBY
         )
 
     def grasp(self) -> human.Grasp | None:
@@ -189,6 +218,11 @@ class TargetedAction(PersonCommandNode):
         if outcome is None:
             return Status.RUNNING
         return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
+
+    def taken_id(self) -> int | None:
+        """The object the action is about (None: it is about none)."""
+        names = {port.name for port in self.ports}
+        return self.get_input("object_id") if "object_id" in names else None
 
     def taken(self) -> wp.ObjectStatus:
         obj = self.agent.workpieces.object(self.get_input("object_id"))

@@ -67,15 +67,26 @@ def _add_cell(builder, scene_graph, cell) -> MultibodyPlant | None:
     return plant
 
 
-class Run:
-    """A small diagram: SceneGraph, the person, a scripted command source, and `cell`
-    furniture (see `furniture`) that the person walks round; what the body's `segments` go
-    into is measured (`deepest`, `overlap`)."""
+def _add_boxes(scene_graph, boxes) -> None:
+    """Boxes (size, X_WB) standing in the scene, as objects on a table stand."""
+    source = scene_graph.RegisterSource("objects")
+    for k, (size, X_WB) in enumerate(boxes):
+        instance = GeometryInstance(X_WB, Box(*size), f"object_{k}")
+        instance.set_proximity_properties(ProximityProperties())
+        scene_graph.RegisterAnchoredGeometry(source, instance)
 
-    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0), cell=(), segments=("",)):
+
+class Run:
+    """A small diagram: SceneGraph, the person, a scripted command source, `cell` furniture
+    (see `furniture`) that the person walks round and `objects` (boxes: size and pose) that
+    the person knows of only as the commands tell; what the body's `segments` go into is
+    measured (`deepest`, `overlap`)."""
+
+    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0), cell=(), segments=("",), objects=()):
         builder = DiagramBuilder()
         scene_graph = builder.AddSystem(SceneGraph())
         cell_plant = _add_cell(builder, scene_graph, cell)
+        _add_boxes(scene_graph, objects)
         navigation = None
         if cell_plant is not None:
             obstacles = cell_obstacles(cell_plant, scene_graph.model_inspector())
@@ -90,7 +101,7 @@ class Run:
         self.context = self.actor.GetMyContextFromRoot(self.simulator.get_mutable_context())
         self.body = self.actor.body
         self._human_geometry = set(self.plant_geometries())
-        self.furnished = bool(cell)
+        self.furnished = bool(cell) or bool(objects)
         self.segments = tuple(segments)
         self.overlap = (0.0, "", 0.0)
 
@@ -160,12 +171,12 @@ class Posed:
         plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
         parse_human(plant, DEFAULT_HEIGHT, DEFAULT_MASS)
         plant.Finalize()
-        source = scene_graph.RegisterSource("objects")
-        self.boxes = []
-        for k, (size, X_WB) in enumerate(boxes):
-            instance = GeometryInstance(X_WB, Box(*size), f"box_{k}")
-            instance.set_proximity_properties(ProximityProperties())
-            self.boxes.append(scene_graph.RegisterAnchoredGeometry(source, instance))
+        _add_boxes(scene_graph, boxes)
+        inspector = scene_graph.model_inspector()
+        self.boxes = [
+            inspector.GetGeometryIdByName(scene_graph.world_frame_id(), Role.kProximity, name)
+            for name in (f"object_{k}" for k in range(len(boxes)))
+        ]
         diagram = builder.Build()
         context = diagram.CreateDefaultContext()
         plant.SetPositions(plant.GetMyContextFromRoot(context), human_body().plant_positions(q))

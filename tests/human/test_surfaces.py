@@ -8,7 +8,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import hold_of
-from hrc_drake.human.messages import AnimateCommand, CancelCommand, Grasp, MoveCommand
+from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.scene import FLOOR, Run, furniture
 
@@ -88,6 +88,29 @@ def test_picking_up_and_putting_down_keeps_the_hands_out_of_the_furniture(
         palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
         assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
     run.record(put_down + _duration(place) + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_the_hands_keep_out_of_the_box_next_to_the_one_they_take():
+    """A box of material stands 6 cm beside the one the person takes and puts back: the
+    palms open only as far as there is room, and no part of the arms goes into it."""
+    center, beside = (-0.1, 0.4, TOP + 0.04), (0.08, 0.4, TOP + 0.04)
+    grasp = Grasp("both", center, np.pi / 2, MATERIAL)
+    nearby = (Box(beside, np.pi / 2, MATERIAL),)
+    put_down = _duration("pick_table") + 0.3
+    schedule = [
+        (0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby)),
+        (
+            put_down,
+            AnimateCommand(
+                2, "place_table", target=center, hold=hold_of(grasp, STANDING[2]), nearby=nearby
+            ),
+        ),
+    ]
+    neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(np.pi / 2), beside))
+    run = Run(schedule, STANDING, [FLOOR, TABLE], ARMS, objects=[neighbour])
+    run.record(put_down + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
