@@ -295,15 +295,32 @@ class ActorPlace(TargetedAction):
 
 
 class ActorReach(TargetedAction):
-    """Reaches one arm to a point in front (into a workspace, to straighten a part)."""
+    """Reaches one arm to a point in front (into a workspace, to straighten a part); with
+    `object_id` and `place`, the hand squares that object up there when it is on it."""
 
-    ports = (InputPort("target", Pose, description="point to reach"),)
+    ports = (
+        InputPort("target", Pose, description="point to reach"),
+        InputPort("object_id", int, default=None, description="an object to square up"),
+        InputPort("place", Pose, default=None, description="where that object is set down"),
+    )
+
+    @property
+    def contact_event(self) -> str:
+        return "reached" if self.get_input("object_id") is not None else ""
 
     def clip(self) -> str:
         return "reach"
 
     def target_point(self):
         return tuple(self.agent.transform(self.get_input("target")).translation())
+
+    def taken_id(self) -> int | None:
+        """None: the hand moves the object where it stands (it is not taken)."""
+        return None
+
+    def object_command(self, seq: int):
+        place = self.agent.transform(self.get_input("place"))
+        return wp.Move(seq, self.get_input("object_id"), place)
 
 
 class ActorHandOver(TargetedAction):

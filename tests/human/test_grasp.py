@@ -8,7 +8,14 @@ from pydrake.math import RigidTransform
 
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.grasp import carry_arms, grasp_hands, grip_lift, hold_of, palm_targets
+from hrc_drake.human.grasp import (
+    PALM_GAP,
+    carry_arms,
+    grasp_hands,
+    hold_of,
+    object_center_in_holder,
+    palm_targets,
+)
 from hrc_drake.human.messages import AnimateCommand, Grasp, Hold, MoveCommand
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.protocol import ActorState, advance
@@ -43,7 +50,7 @@ def test_palms_go_on_the_two_faces_that_face_the_persons_sides(yaw):
     for side, sign in (("left", 1), ("right", -1)):
         position, _ = targets[side]
         local = np.array([*X_inverse @ (position[:2] - grasp.center[:2]), 0.0])
-        assert box.signed_distance_to(local) == pytest.approx(0.0, abs=1e-9)
+        assert box.signed_distance_to(local) == pytest.approx(PALM_GAP, abs=1e-9)  # just off
         assert sign * (position[1] - grasp.center[1]) > 0  # on the person's own side
 
 
@@ -74,8 +81,8 @@ def test_a_box_is_carried_as_people_carry_it(size):
     hold = Hold("both", size)
     q = carry_arms(body, hold).over(body.standing_pose())
     left, right = (body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right"))
-    assert np.linalg.norm(left - right) == pytest.approx(hold.size[1], abs=0.01)
-    center = (left + right) / 2 + [0.0, 0.0, -grip_lift(size[2])]
+    assert np.linalg.norm(left - right) == pytest.approx(hold.size[1] + 2 * PALM_GAP, abs=0.01)
+    center = (left + right) / 2 + object_center_in_holder(hold)  # the person faces +x
     height = body.skeleton.height
     assert HIP_HEIGHT * height <= center[2] <= ELBOW_HEIGHT * height
     gap = Posed(q, [(size, RigidTransform(center))]).distance(0, TRUNK)
