@@ -6,6 +6,9 @@ replaying that same desired state, in the same process. The ratio full / bare is
 behaviour, the person and the measurements cost on top of simulating the robot itself.
 `cell/bare` is the same replay with the scenario's static cell in the plant (as in the
 station's dynamic plant: its contact geometry is part of every step), against the bare one.
+Where the scenario's plant steps longer than 1 ms, the bare replay also runs at 1 ms
+(`bare 1ms`, `full/bare1ms`): what the full run costs against the robot simulated as finely
+as before.
 
 The machine is shared, so the simulations are timed in turns: after a first full run that
 records the desired state, a second full run, the bare replay and the cell replay advance
@@ -28,13 +31,14 @@ from pydrake.systems.primitives import LogVectorOutput, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from hrc_drake.builder import build_diagram
-from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario import load_scenario, overridden
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from base_scenario import bare_diagram  # noqa: E402
 
 SCENARIOS = ("coexistence", "cooperation", "collaboration")
 LOG_PERIOD = 0.005
+FINE_STEP = 0.001
 SLICE = 0.5
 """Simulated seconds each simulation advances in its turn."""
 
@@ -71,10 +75,14 @@ def timed_in_turns(simulators: list, duration: float, clock) -> list[float]:
 
 
 def measure(scenario, duration: float, desired, clock) -> list[float]:
-    """Times of the full run, the bare replay and the cell replay, timed in turns."""
+    """Times of the full run, the bare replay, the cell replay and, where the scenario's
+    step is longer, the bare replay at FINE_STEP, timed in turns."""
     simulators = [full_simulator(scenario)[0]]
-    for cell in (False, True):
-        simulator = Simulator(bare_diagram(scenario, TrajectorySource(desired), cell))
+    replays = [(scenario, False), (scenario, True)]
+    if scenario.plant.time_step > FINE_STEP:
+        replays.append((overridden(scenario, [("plant.time_step", FINE_STEP)]), False))
+    for replayed, cell in replays:
+        simulator = Simulator(bare_diagram(replayed, TrajectorySource(desired), cell))
         simulator.Initialize()
         simulators.append(simulator)
     return timed_in_turns(simulators, duration, clock)
@@ -89,18 +97,22 @@ def main() -> None:
     args = parser.parse_args()
     clock = time.perf_counter if args.wall else time.process_time
     print(
-        f"{'scenario':14s} {'RTF':>6s} {'bare RTF':>9s} {'full/bare':>10s} "
-        f"{'cell/bare':>10s} {'spread':>7s}"
+        f"{'scenario':14s} {'step ms':>7s} {'RTF':>6s} {'bare RTF':>9s} {'full/bare':>10s} "
+        f"{'cell/bare':>10s} {'bare 1ms':>9s} {'full/bare1ms':>13s} {'spread':>7s}"
     )
     for name in args.scenarios:
         scenario = load_scenario(name)
         desired = desired_motion(scenario, args.duration)
         runs = [measure(scenario, args.duration, desired, clock) for _ in range(args.repeats)]
-        full, bare, cell = (min(times) for times in zip(*runs, strict=True))
+        full, bare, cell, *fine = (min(times) for times in zip(*runs, strict=True))
         spread = max(run[0] for run in runs) / full
+        fine_columns = (
+            f"{args.duration / fine[0]:9.2f} {full / fine[0]:13.2f}" if fine else f"{'':23s}"
+        )
         print(
-            f"{name:14s} {args.duration / full:6.2f} {args.duration / bare:9.2f} "
-            f"{full / bare:10.2f} {cell / bare:10.2f} {spread:7.2f}"
+            f"{name:14s} {1e3 * scenario.plant.time_step:7.1f} {args.duration / full:6.2f} "
+            f"{args.duration / bare:9.2f} {full / bare:10.2f} {cell / bare:10.2f} "
+            f"{fine_columns} {spread:7.2f}"
         )
 
 

@@ -17,6 +17,7 @@ pay for the person's or the objects' geometry.
 Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_tree_command`), so tests and notebooks can command the actors directly.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
+`robot_desired_acceleration`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
 `safety_status`, `safety_signals`, `realism` (the person's realism audit),
 `<agent>_tree_status`, `<agent>_task_events`.
@@ -34,6 +35,7 @@ from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder
+from pydrake.systems.primitives import Demultiplexer
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.evaluation.replay import dress_scene
@@ -87,6 +89,9 @@ class Station:
     controller: RobotController
     scene_graph: SceneGraph
     robot_motion: RobotMotion
+    desired_motion: Demultiplexer
+    """RobotMotion's desired state (output 0) and acceleration (output 1), as the
+    controller reads them."""
     human: HumanActor | None
     workpieces: Workpieces | None
     safety: SafetyMonitor | None
@@ -128,7 +133,7 @@ def build_diagram(
 
     human, human_plant = _add_person(builder, scene_graph, mirror, scenario)
     workpieces = _add_workpieces(builder, scene_graph, plant, mirror, scenario, human)
-    motion = add_robot_motion(
+    motion, desired = add_robot_motion(
         builder,
         spec,
         stream(scenario.seed, ROBOT_MOTION),
@@ -156,6 +161,7 @@ def build_diagram(
         controller,
         scene_graph,
         motion,
+        desired,
         human,
         workpieces,
         safety,
@@ -206,8 +212,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
     return add_human(
         builder,
         scene_graph,
-        scenario.human.height,
-        scenario.human.mass,
+        *scenario.human.size(),
         start_pose=(x, y, np.radians(yaw_deg)),
         period=scenario.human.period,
         navigation=NavigationMap(
@@ -310,8 +315,9 @@ def _export_outputs(builder, station: Station) -> None:
     sources = station.status_sources
     for source in sources:
         builder.ExportOutput(_status_output(sources, source), status_port(source))
-    motion = station.robot_motion
-    builder.ExportOutput(motion.GetOutputPort("desired_state"), "robot_desired_state")
+    desired = station.desired_motion
+    builder.ExportOutput(desired.get_output_port(0), "robot_desired_state")
+    builder.ExportOutput(desired.get_output_port(1), "robot_desired_acceleration")
     if station.safety is not None:
         builder.ExportOutput(station.safety.GetOutputPort("safety_signals"), "safety_signals")
     if station.realism_audit is not None:

@@ -26,17 +26,20 @@ from tqdm import tqdm
 import hrc_drake
 from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import Station, build_diagram
-from hrc_drake.evaluation.record import Fault, RunRecord, RunSetup
+from hrc_drake.evaluation.record import Fault, PersonRecord, RunRecord, RunSetup
 from hrc_drake.evaluation.report import Report, evaluate, write_run_directory
 from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.state_changes import StateChanges, add_state_changes
 from hrc_drake.wiring import (
+    HELD_OBJECTS,
     HUMAN,
+    POSTURE_LOG,
     ROBOT,
     ROBOT_STATE_LOG,
     SAFETY,
     SAFETY_SIGNALS_LOG,
+    WORKPIECES,
     status_port,
     tree_system,
 )
@@ -151,6 +154,7 @@ def run_setup(scenario: Scenario) -> RunSetup:
         initial_positions=tuple(scenario.station.initial_positions),
         safety=scenario.safety,
         command_latency=scenario.robot.motion.period,
+        ergonomics=scenario.ergonomics,
     )
 
 
@@ -164,6 +168,8 @@ class _Probes:
     robot_log: VectorLogSink | None = None
     signals_log: VectorLogSink | None = None
     states: StateChanges | None = None
+    posture_log: VectorLogSink | None = None
+    held: StateChanges | None = None
 
     def attach(self, builder: DiagramBuilder, station: Station) -> None:
         self.station = station
@@ -180,6 +186,20 @@ class _Probes:
             self.signals_log.set_name(SAFETY_SIGNALS_LOG)
         period = self.scenario.report.period
         self.states = add_state_changes(builder, _state_sources(station), period)
+        if station.human is not None:
+            self._attach_person(builder, station)
+
+    def _attach_person(self, builder: DiagramBuilder, station: Station) -> None:
+        """The person's joint positions and what their hands hold, every
+        `ergonomics.period` (a C++ logger; the hands are sampled in Python at that rate)."""
+        period = self.scenario.ergonomics.period
+        positions = station.human.GetOutputPort("human_positions")
+        self.posture_log = LogVectorOutput(positions, builder, period)
+        self.posture_log.set_name(POSTURE_LOG)
+        if station.workpieces is not None:
+            status = station.workpieces.GetOutputPort(status_port(WORKPIECES))
+            sources = {HELD_OBJECTS: (status, "person_holds")}
+            self.held = add_state_changes(builder, sources, period, HELD_OBJECTS, as_text=False)
 
     def record(self, context, diagram, meshcat, fault: Fault | None, wall_time) -> RunRecord:
         station = self.station
@@ -201,11 +221,20 @@ class _Probes:
             states=self.states.changes(),
             node_statistics={agent: _node_statistics(tree) for agent, tree in trees.items()},
             recording=station.recorder.recording if station.recorder is not None else None,
+            person=self._person(context),
             meshcat=meshcat,
             diagram=diagram,
             fault=fault,
             wall_time=wall_time,
         )
+
+    def _person(self, context) -> PersonRecord | None:
+        if self.posture_log is None:
+            return None
+        log = self.posture_log.FindLog(context)
+        height, mass = self.scenario.human.size()
+        holds = self.held.changes().get(HELD_OBJECTS, []) if self.held is not None else []
+        return PersonRecord(height, mass, np.array(log.sample_times()), np.array(log.data()), holds)
 
 
 def _state_sources(station: Station) -> dict:

@@ -80,6 +80,7 @@ STATION_MIRROR_GEOMETRY = "station_mirror_geometry"
 ROBOT_CONTROLLER = "robot_controller"
 ROBOT_MOTION = "robot_motion"
 ROBOT_DESIRED_MOTION = "robot_desired_motion"
+ROBOT_DESIRED_SPLIT = "robot_desired_split"
 TOOL_POSE = "tool_pose"
 HUMAN_ACTOR = "human_actor"
 HUMAN_GEOMETRY = "human_geometry"
@@ -92,6 +93,8 @@ RECORDER = "replay_recorder"
 STATE_CHANGES = "state_changes"
 ROBOT_STATE_LOG = "robot_state_log"
 SAFETY_SIGNALS_LOG = "safety_signals_log"
+POSTURE_LOG = "posture_log"
+HELD_OBJECTS = "held_objects"
 
 
 def tree_system(agent: str) -> str:

@@ -3,20 +3,23 @@
 It replaces MoveIt, ros_control and the re-planning workaround of the thesis system
 (docs/thesis-system.md): a move command is planned (inverse kinematics, collision-free path, TOPP-RA
 timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
-product of the SetSpeed fraction and the safety monitor's scale. The desired state for the
-inverse-dynamics controller is evaluated from that parameter and the time since the last update, so
-it is smooth between updates and the system has no per-step Python events and no direct feedthrough.
+product of the SetSpeed fraction and the safety monitor's scale. Each update also writes the
+desired motion until the next update as a quintic segment per joint (state, `desired_segment`);
+Drake's C++ `SymbolicVectorSystem` evaluates it at every plant step for the inverse-dynamics
+controller (`add_desired_motion`), so no Python runs between updates and nothing feeds through.
 The state machine is plain Python in hrc_drake/motion/state_machine.py: this system reads its
 inputs, runs one update of it, keeps the MotionState and publishes views of it.
 See hrc_drake/motion/messages.py for the commands and the status."""
 
 import numpy as np
 from pydrake.common.value import AbstractValue
+from pydrake.symbolic import MakeVectorVariable, Variable
 from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
-from pydrake.systems.primitives import Demultiplexer
+from pydrake.systems.primitives import Demultiplexer, SymbolicVectorSystem
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import NO_COMMANDS
+from hrc_drake.motion.execution import SEGMENT_COEFFICIENTS, hermite_segment
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import MotionInputs, MotionState, MotionStateMachine
@@ -26,6 +29,7 @@ from hrc_drake.wiring import (
     GRIPPER_ISSUER,
     ROBOT,
     ROBOT_DESIRED_MOTION,
+    ROBOT_DESIRED_SPLIT,
     ROBOT_MOTION,
     command_input,
     tree_issuer,
@@ -40,8 +44,9 @@ class RobotMotion(LeafSystem):
     (safety scale, 1.0 when unconnected), `robot_state` (arm q, v), `workpieces_status`
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
-    Outputs: `desired_motion` (q, v, vdot stacked), the same as `desired_state` (q, v) and
-    `desired_acceleration`, `path_rate` (the fraction of
+    Outputs: `desired_segment` (the time of the last update, then per joint the coefficients of
+    the desired motion's quintic in the time since: `desired_motion_system` evaluates it),
+    `path_rate` (the fraction of
     full speed it moves along its path now, for the safety monitor), `robot_status`,
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
@@ -61,6 +66,7 @@ class RobotMotion(LeafSystem):
         self._n = len(VARIANTS[station.variant].joint_names)
         initial = self._machine.initial(station.initial_positions)
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
+        self._segment = self.DeclareDiscreteState(self._segment_of(initial, 0.0))
 
         self._command = self.DeclareAbstractInputPort(
             command_input(tree_issuer(ROBOT)), message_value()
@@ -69,16 +75,7 @@ class RobotMotion(LeafSystem):
         self._robot_state = self.DeclareVectorInputPort("robot_state", 2 * self._n)
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
-        from_state_and_time = {self.time_ticket(), self.all_state_ticket()}
-        self._desired_motion = self.DeclareVectorOutputPort(
-            "desired_motion", 3 * self._n, self._calc_desired_motion, from_state_and_time
-        )
-        self.DeclareVectorOutputPort(
-            "desired_state", 2 * self._n, self._calc_desired_state, from_state_and_time
-        )
-        self.DeclareVectorOutputPort(
-            "desired_acceleration", self._n, self._calc_desired_acceleration, from_state_and_time
-        )
+        self.DeclareStateOutputPort("desired_segment", self._segment)
         self.DeclareVectorOutputPort(
             "path_rate", 1, self._calc_path_rate, {self.time_ticket(), self.all_state_ticket()}
         )
@@ -105,14 +102,11 @@ class RobotMotion(LeafSystem):
     def _state(self, context) -> MotionState:
         return context.get_abstract_state(self._state_index).get_value()
 
-    def _calc_desired_motion(self, context, output: BasicVector) -> None:
-        output.SetFromVector(self._state(context).motion_at(context.get_time()))
-
-    def _calc_desired_state(self, context, output: BasicVector) -> None:
-        output.SetFromVector(self._desired_motion.Eval(context)[: 2 * self._n])
-
-    def _calc_desired_acceleration(self, context, output: BasicVector) -> None:
-        output.SetFromVector(self._desired_motion.Eval(context)[2 * self._n :])
+    def _segment_of(self, state: MotionState, t: float) -> np.ndarray:
+        """The desired motion from `t` to the next update, as `desired_segment` holds it."""
+        period = self._options.period
+        ends = (state.motion_at(t), state.motion_at(t + period))
+        return np.concatenate([[t], hermite_segment(*ends, period).ravel()])
 
     def _calc_path_rate(self, context, output: BasicVector) -> None:
         output.SetAtIndex(0, self._state(context).path_rate_at(context.get_time()))
@@ -129,6 +123,8 @@ class RobotMotion(LeafSystem):
     def _update(self, context, new_state) -> EventStatus:
         state = self._machine.update(self._state(context), self._inputs(context))
         new_state.get_mutable_abstract_state(self._state_index).set_value(state)
+        segment = self._segment_of(state, context.get_time())
+        new_state.get_mutable_discrete_state(self._segment).set_value(segment)
         return EventStatus.Succeeded()
 
     def _inputs(self, context) -> MotionInputs:
@@ -163,21 +159,15 @@ def add_robot_motion(
     controller,
     options: MotionOptions | None = None,
     workpieces=None,
-) -> RobotMotion:
-    """Adds RobotMotion as ROBOT_MOTION between the plant and its RobotController; `seed`
-    is the planner's stream of the run's seed.
-
-    The controller reads the desired motion at every plant step: one Python output
-    (`desired_motion`), split into state and acceleration in C++, not three Python calls.
-    Feeds the acceleration forward when the controller takes a reference acceleration. With
-    `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
-    commands and reads its status; without, Grip and Release fail with a reason.
-    """
+) -> tuple[RobotMotion, Demultiplexer]:
+    """Adds RobotMotion as ROBOT_MOTION between the plant and its RobotController, with its
+    desired motion (`add_desired_motion`); `seed` is the planner's stream of the run's seed.
+    With `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
+    commands and reads its status; without, Grip and Release fail with a reason. Returns
+    RobotMotion and the desired motion's split (outputs q, v and vdot)."""
     motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(station, seed, options))
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
-    n = motion.GetOutputPort("desired_acceleration").size()
-    split = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, Demultiplexer([2 * n, n]))
-    builder.Connect(motion.GetOutputPort("desired_motion"), split.get_input_port())
+    split = add_desired_motion(builder, motion, plant.time_step())
     builder.Connect(split.get_output_port(0), controller.GetInputPort("desired_state"))
     if controller.HasInputPort("desired_acceleration"):
         builder.Connect(split.get_output_port(1), controller.GetInputPort("desired_acceleration"))
@@ -189,4 +179,49 @@ def add_robot_motion(
         builder.Connect(
             workpieces.GetOutputPort("workpieces_status"), motion.GetInputPort("workpieces_status")
         )
-    return motion
+    return motion, split
+
+
+def add_desired_motion(builder, motion: RobotMotion, time_step: float) -> Demultiplexer:
+    """Adds the C++ evaluation of `motion`'s desired segment for a plant stepping every
+    `time_step` (ROBOT_DESIRED_MOTION) and its split (ROBOT_DESIRED_SPLIT) into the desired
+    state (q, v: output 0) and acceleration (output 1): what the controller reads at every
+    plant step."""
+    joints = (motion.GetOutputPort("desired_segment").size() - 1) // SEGMENT_COEFFICIENTS
+    evaluator = desired_motion_system(joints, time_step)
+    desired = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, evaluator)
+    builder.Connect(motion.GetOutputPort("desired_segment"), desired.get_input_port())
+    split = builder.AddNamedSystem(ROBOT_DESIRED_SPLIT, Demultiplexer([2 * joints, joints]))
+    builder.Connect(desired.get_output_port(), split.get_input_port())
+    return split
+
+
+def desired_motion_system(joints: int, time_step: float) -> SymbolicVectorSystem:
+    """q, v and vdot (stacked) at the context's time t from a `desired_segment` input,
+    evaluated in C++ (each joint's quintic in Horner form), as a plant stepping every
+    `time_step` h can follow them exactly: v is the backward difference
+    (q(t) - q(t - h)) / h and vdot the central one (q(t + h) - 2 q(t) + q(t - h)) / h².
+
+    A discrete plant steps v' = v + h vdot, q' = q + h v' (semi-implicit Euler, as SAP
+    does), so with these references and exact inverse dynamics q stays on q(t) at every
+    step; with v(t) and vdot(t) instead the velocity would lag half a step and the PD hold
+    a steady error of about Kd h vdot / (2 Kp), twice as large at 2 ms as at 1 ms."""
+    t = Variable("t")
+    segment = MakeVectorVariable(1 + joints * SEGMENT_COEFFICIENTS, "segment")
+    since = t - segment[0]
+    rows = np.array(segment[1:]).reshape(joints, SEGMENT_COEFFICIENTS).tolist()
+    h = time_step
+    before, now, after = ([_horner(row, since + k * h) for row in rows] for k in (-1, 0, 1))
+    velocities = [(q - q_before) / h for q, q_before in zip(now, before, strict=True)]
+    accelerations = [
+        (q_after - 2.0 * q + q_before) / (h * h)
+        for q_before, q, q_after in zip(before, now, after, strict=True)
+    ]
+    return SymbolicVectorSystem(time=t, input=segment, output=now + velocities + accelerations)
+
+
+def _horner(coefficients, x):
+    value = coefficients[-1]
+    for c in reversed(coefficients[:-1]):
+        value = c + x * value
+    return value

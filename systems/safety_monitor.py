@@ -22,6 +22,11 @@ Input `robot_path_rate` (size 1, RobotMotion's `path_rate`): the fraction of ful
 robot moves at along its path, which its stopping time depends on. Unconnected, a moving
 robot is taken to move at full speed.
 
+While the person is far (`Judge.far`: full speed stays safe even if the next measurement
+came `far_period` later and the person ran at the fastest speed of any rule), the monitor
+measures every `far_period` rather than every `period`; the updates in between only check
+whether the object in the gripper changed (which measures at once).
+
 A contact is quasi-static when the touched body region is pinned against the cell (the
 bodies welded to the world) or another robot part; see `ProximityMeter.pinned`.
 """
@@ -46,6 +51,9 @@ from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
 from hrc_drake.workpieces.messages import ROBOT_HOLDER
+
+NOTHING_HELD = -1.0
+"""The held object's id in the monitor's schedule when the gripper holds nothing."""
 
 
 @dataclass(frozen=True)
@@ -96,6 +104,9 @@ class SafetyMonitor(LeafSystem):
         self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))
         self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
         self._memory = self.DeclareDiscreteState(np.full(self._meter.memory_size, np.nan))
+        self._due = self.DeclareDiscreteState(np.array([0.0, NOTHING_HELD]))
+        """When the next measurement is due, and the id of the object held at the last."""
+        self._period = config.period
         self.DeclareStateOutputPort("speed_scale", self._scale)
         self.DeclareStateOutputPort("safety_signals", self._signals)
         self.DeclareStateOutputPort("safety_status", self._status)
@@ -111,9 +122,13 @@ class SafetyMonitor(LeafSystem):
         return self._human
 
     def _update(self, context, state) -> EventStatus:
-        before: SafetyStatus = context.get_abstract_state(self._status).get_value()
         held = self._held_object(context)
         time = context.get_time()
+        held_id = held.id if held is not None else NOTHING_HELD
+        due, held_before = context.get_discrete_state(self._due).value()
+        if time < due - self._period / 2 and held_id == held_before:
+            return EventStatus.DidNothing()
+        before: SafetyStatus = context.get_abstract_state(self._status).get_value()
         geometry = held.geometry_id if held is not None else None
         reading = self._meter.measure(
             self._query.Eval(context),
@@ -131,6 +146,8 @@ class SafetyMonitor(LeafSystem):
         state.get_mutable_discrete_state(self._scale).set_value([status.scale])
         signals = status.signals(reading.person_xy, part)
         state.get_mutable_discrete_state(self._signals).set_value(signals)
+        period = self._judge.config.far_period if self._judge.far(status) else self._period
+        state.get_mutable_discrete_state(self._due).set_value([time + period, held_id])
         return EventStatus.Succeeded()
 
     def _robot_path_rate(self, context, robot_speed: float) -> float:

@@ -1,8 +1,9 @@
 """StateChanges: when each actor's state changed over a run, for the timeline figure.
 
 A periodic publish samples one attribute of each connected status (the robot's `mode`, the
-person's `state`, a tree's `running_path`) and keeps, per actor, the (time, state) pairs at
-which it changed. It has no outputs and changes nothing in the simulation.
+person's `state`, a tree's `running_path`; as text unless asked to keep the value, e.g.
+what the person's hands hold) and keeps, per actor, the (time, state) pairs at which it
+changed. It has no outputs and changes nothing in the simulation.
 """
 
 from pydrake.systems.framework import DiagramBuilder, LeafSystem, OutputPort
@@ -16,8 +17,9 @@ class StateChanges(LeafSystem):
     maps each actor (an input port of that name) to the status attribute that is its
     state."""
 
-    def __init__(self, fields: dict[str, str], period: float):
+    def __init__(self, fields: dict[str, str], period: float, as_text: bool = True):
         super().__init__()
+        self._as_text = as_text
         self._inputs = {
             actor: (self.DeclareAbstractInputPort(actor, message_value()), attribute)
             for actor, attribute in fields.items()
@@ -27,7 +29,8 @@ class StateChanges(LeafSystem):
 
     def _sample(self, context) -> None:
         for actor, (port, attribute) in self._inputs.items():
-            state = str(getattr(port.Eval(context), attribute))
+            state = getattr(port.Eval(context), attribute)
+            state = str(state) if self._as_text else state
             history = self._changes.setdefault(actor, [])
             if not history or history[-1][1] != state:
                 history.append((context.get_time(), state))
@@ -37,12 +40,16 @@ class StateChanges(LeafSystem):
 
 
 def add_state_changes(
-    builder: DiagramBuilder, sources: dict[str, tuple[OutputPort, str]], period: float
+    builder: DiagramBuilder,
+    sources: dict[str, tuple[OutputPort, str]],
+    period: float,
+    name: str = STATE_CHANGES,
+    as_text: bool = True,
 ) -> StateChanges:
-    """Adds the sampler named `state_changes`, every `period` s, connected to each actor's
-    (status output, attribute) in `sources`."""
+    """Adds a sampler named `name`, every `period` s, connected to each actor's (status
+    output, attribute) in `sources`."""
     fields = {actor: attribute for actor, (_, attribute) in sources.items()}
-    sampler = builder.AddNamedSystem(STATE_CHANGES, StateChanges(fields, period))
+    sampler = builder.AddNamedSystem(name, StateChanges(fields, period, as_text))
     for actor, (port, _) in sources.items():
         builder.Connect(port, sampler.GetInputPort(actor))
     return sampler

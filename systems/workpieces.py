@@ -14,6 +14,8 @@ construction. A slot without a live object is parked far below the floor, 10 m f
 next, and is not reported.
 """
 
+import dataclasses
+
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import (
@@ -28,7 +30,7 @@ from pydrake.geometry import (
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame
-from pydrake.systems.framework import Context, DiagramBuilder, LeafSystem
+from pydrake.systems.framework import Context, DiagramBuilder, EventStatus, LeafSystem
 
 from hrc_drake.areas import Area
 from hrc_drake.ports import message_value, value_or_none
@@ -38,7 +40,7 @@ from hrc_drake.wiring import WORKPIECES, WORKPIECES_SYSTEM, command_input, issue
 from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
-from hrc_drake.workpieces.update import initial_world, next_world
+from hrc_drake.workpieces.update import initial_world, next_world, still
 from hrc_drake.workpieces.world import Workcell, World, holder_frames, since
 
 PARKING_DEPTH = -1000.0
@@ -58,7 +60,8 @@ class Workpieces(LeafSystem):
     (HandPoses); an unconnected holder input means that holder does not exist.
     Outputs: `geometry_pose` (FramePoseVector for SceneGraph) and `workpieces_status`
     (WorkpiecesStatus), both from state only, extrapolated from the last update to the
-    context's time. State: one immutable World, updated every `config.period`.
+    context's time. State: one immutable World, updated every `config.period` while
+    anything moves, is held or is commanded (`hrc_drake.workpieces.update.still`).
     """
 
     def __init__(
@@ -84,6 +87,7 @@ class Workpieces(LeafSystem):
             self._poses.set_value(frame_id, X_WS)
         self._written = [None] * len(self.frame_ids)  # the piece each slot's pose is of
         self._resting = (None, [])
+        self._still_status = (None, None)
         initial = initial_world(self.cell)
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
@@ -134,12 +138,17 @@ class Workpieces(LeafSystem):
     def world(self, context: Context) -> World:
         return context.get_abstract_state(self._state).get_value()
 
-    def _update(self, context: Context, state) -> None:
+    def _update(self, context: Context, state) -> EventStatus:
+        """The next world, unless nothing moves, is held or is commanded (`still`): then
+        the update did nothing, and Drake leaves the state as it is."""
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
+        if still(self.cell, self.world(context), commands):
+            return EventStatus.DidNothing()
         tool, hands = value_or_none(self._tool, context), value_or_none(self._hands, context)
         frames = holder_frames(tool, hands)
         world = next_world(self.cell, self.world(context), context.get_time(), commands, frames)
         state.get_mutable_abstract_state(self._state).set_value(world)
+        return EventStatus.Succeeded()
 
     def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:
         """Every slot's pose while `world` lasts, but for the moving pieces, and their drifts.
@@ -174,7 +183,16 @@ class Workpieces(LeafSystem):
             poses.set_value(frame_id, drift.after(dt))
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
-        status = self.cell.status(self.world(context), context.get_time(), self.geometry_ids)
+        """The world at the context's time. While no piece moves (the usual case: they rest,
+        or are held by a holder at rest) the objects are the same at every time, so they are
+        made once per World, not at every evaluation."""
+        world, time = self.world(context), context.get_time()
+        if self._still_status[0] is world:
+            output.set_value(dataclasses.replace(self._still_status[1], time=time))
+            return
+        status = self.cell.status(world, time, self.geometry_ids)
+        still = not any(p.velocity.get_coeffs().any() for p in world.pieces.values())
+        self._still_status = (world if still else None, status)
         output.set_value(status)
 
 

@@ -14,6 +14,7 @@ BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 SMALLEST = {
     "base_scenario.py": ["--duration", "0.5", "--repeats", "1"],
     "bt_tick.py": [],
+    "ergonomics_cost.py": ["--duration", "0.5", "getting_started"],
     "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
@@ -21,7 +22,7 @@ SMALLEST = {
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
     "scenarios.py": ["--duration", "0.5", "cooperation"],
-    "sweep.py": ["--scenario", "base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
+    "sweep.py": ["base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
 }
 
 

@@ -34,6 +34,9 @@ KEY_METRICS = (
     ("monitor_ssm_violations", ("safety", "ssm_violations", "count")),
     ("contacts", ("safety", "contacts", "count")),
     ("time_stopped", ("safety", "time_stopped")),
+    ("rula_max", ("ergonomics", "rula", "max", "score")),
+    ("reba_max", ("ergonomics", "reba", "max", "score")),
+    ("lifting_index_max", ("ergonomics", "lifting_index_max", "value")),
 )
 """(column, path in the run's metrics) of each trial's line."""
 MAX_SEPARATION_SHOWN = 4.0

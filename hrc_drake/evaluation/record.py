@@ -5,17 +5,19 @@ diagram.svg) and the Meshcat the replay was drawn in (for replay.html's scene) a
 objects.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from pydrake.geometry import Meshcat
 from pydrake.systems.framework import Diagram
 
+from hrc_drake.ergonomics.config import ErgonomicsOptions
 from hrc_drake.evaluation.realism import AuditState
 from hrc_drake.evaluation.recording import Recording
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.messages import SafetyStatus
+from hrc_drake.workpieces.messages import HeldObject
 
 
 @dataclass(frozen=True)
@@ -34,6 +36,21 @@ class RunSetup:
     """the monitor's settings (whether or not the station has a monitor)"""
     command_latency: float
     """s: the robot's command update period, part of S_p's reaction time"""
+    ergonomics: ErgonomicsOptions = field(default_factory=ErgonomicsOptions)
+
+
+@dataclass(frozen=True, eq=False)
+class PersonRecord:
+    """The person's body over the run, for the ergonomic scores: their size, their joint
+    positions (the kinematic plant's q, one column per time, every `ergonomics.period`)
+    and from which times their hands held what."""
+
+    height: float
+    mass: float
+    times: np.ndarray
+    positions: np.ndarray
+    holds: list[tuple[float, tuple[HeldObject, ...]]]
+    """Known by identity (eq=False): its evaluation is computed once per record."""
 
 
 @dataclass(frozen=True)
@@ -73,6 +90,7 @@ class RunRecord:
     """per agent, per node path: ticks, successes, failures, time running, first failure"""
     recording: Recording | None
     """what replay.html animates"""
+    person: PersonRecord | None
     meshcat: Meshcat | None
     diagram: Diagram
     fault: Fault | None

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from hrc_drake.diagram_export import write_diagram
+from hrc_drake.evaluation.ergonomics import ergonomic_rows, ergonomics_html, ergonomics_metrics
 from hrc_drake.evaluation.margin import margin_metrics, margin_model
 from hrc_drake.evaluation.metrics import (
     bt_metrics,
@@ -63,6 +64,7 @@ def evaluate(record: RunRecord) -> dict:
         "tasks": task_metrics(record.events, setup.duration),
         "bt": bt_metrics(record.node_statistics),
         "realism": realism_metrics(record.realism),
+        "ergonomics": ergonomics_metrics(record),
         **_signal_metrics(record),
     }
     if record.fault is not None:
@@ -105,7 +107,8 @@ def write_run_directory(out_dir: Path, record: RunRecord, metrics: dict) -> dict
         )
     if record.signals is not None:
         files.update(_write_signals(out_dir, record))
-    files["report_html"] = write_run_html(out_dir / "report.html", metrics, files)
+    sections = ergonomics_html(record, metrics)
+    files["report_html"] = write_run_html(out_dir / "report.html", metrics, files, sections)
     return files
 
 
@@ -115,7 +118,11 @@ def _write_signals(out_dir: Path, record: RunRecord) -> dict[str, Path]:
     files = {
         "safety_log": write_safety_log(out_dir / "safety.npz", signals, record.safety_parts),
         "timeline": plot_timeline(
-            out_dir / "timeline.png", times, signals, record.states, record.events
+            out_dir / "timeline.png",
+            times,
+            signals,
+            {**record.states, **ergonomic_rows(record)},
+            record.events,
         ),
     }
     heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals)

@@ -17,8 +17,9 @@ NODE_COLUMNS = ("ticks", "successes", "failures", "time_running")
 SECTIONS_STYLE = "display:flex;flex-wrap:wrap;gap:0 2.5em;align-items:flex-start"
 
 
-def write_run_html(path: Path, metrics: dict, files: dict[str, Path]) -> Path:
-    """`files` are the run directory's other files (figures, replay) by role."""
+def write_run_html(path: Path, metrics: dict, files: dict[str, Path], sections: str = "") -> Path:
+    """`files` are the run directory's other files (figures, replay) by role; `sections`
+    is more HTML shown after the realism audit (the ergonomics)."""
     title = f"{metrics.get('scenario', '')} seed {metrics.get('seed', '')}"
     parts = [f"<h1>Run: {escape(title)}</h1>"]
     if "replay" in files:
@@ -29,6 +30,8 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path]) -> Path:
     if metrics.get("realism"):
         header = ["measure", "worst", "limit", "where", "within"]
         parts.append("<h2>Realism</h2>" + html_table(header, realism_rows(metrics["realism"])))
+    if sections:
+        parts.append(sections)
     parts.append("<h2>Metrics</h2>" + _metric_sections(metrics))
     trees = metrics.get("bt") or {}
     if trees:
@@ -43,7 +46,7 @@ def _metric_sections(metrics: dict) -> str:
     run = [[name, value] for name, value in metrics.items() if not isinstance(value, dict)]
     sections = {"run": run} if run else {}
     for name, value in metrics.items():
-        if isinstance(value, dict) and name not in ("bt", "realism") and value:
+        if isinstance(value, dict) and name not in ("bt", "realism", "ergonomics") and value:
             sections[name] = [[key, v] for key, v in flatten(value).items()]
     tables = [
         f"<div><h3>{escape(name)}</h3>{html_table(['metric', 'value'], rows)}</div>"

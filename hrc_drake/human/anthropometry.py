@@ -24,7 +24,8 @@ from hrc_drake.human.skeleton import (
 
 DEFAULT_HEIGHT = 1.75
 DEFAULT_MASS = 75.0
-HEIGHT_RANGE = (1.55, 1.95)
+HEIGHT_RANGE = (1.45, 1.95)
+"""m: from below a 1st-percentile woman to a 99th-percentile man of ANSUR II"""
 
 
 def _rev(name, axis, lower, upper) -> Dof:

@@ -21,8 +21,8 @@ one. They are written to models/iisy/stopping/<variant>.yaml:
     .venv/bin/python -m hrc_drake.modelgen stopping    # re-measure and rewrite the files
 
 The measurement executes the commanded motion with ideal tracking (RobotMotion's desired
-state fed back as the robot state); tests/motion check the station's stop (plant and
-controller) against it. The safety monitor reads the data with
+state, as the controller reads it, fed back as the robot state); tests/motion check the
+station's stop (plant and controller) against it. The safety monitor reads the data with
 `hrc_drake.safety.stopping.load_stops(variant)`.
 """
 
@@ -46,7 +46,7 @@ from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.safety.stopping import Stop, stopping_file
 from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec
-from hrc_drake.systems.robot_motion import RobotMotion
+from hrc_drake.systems.robot_motion import RobotMotion, add_desired_motion
 from hrc_drake.wiring import (
     ROBOT,
     ROBOT_MODEL,
@@ -77,9 +77,9 @@ class _IdealRobot:
         station = StationSpec(variant)
         builder = DiagramBuilder()
         self.motion = builder.AddSystem(RobotMotion(station, stream(0, ROBOT_MOTION), options))
-        builder.Connect(
-            self.motion.GetOutputPort("desired_state"), self.motion.GetInputPort("robot_state")
-        )
+        split = add_desired_motion(builder, self.motion, SAMPLE)
+        builder.Connect(split.get_output_port(0), self.motion.GetInputPort("robot_state"))
+        builder.ExportOutput(split.get_output_port(0), "desired_state")
         command = command_input(tree_issuer(ROBOT))
         builder.ExportInput(self.motion.GetInputPort(command), command)
         builder.ExportInput(self.motion.GetInputPort("speed_scale"), "speed_scale")
@@ -99,7 +99,7 @@ class _IdealRobot:
         self.diagram.GetInputPort(command_input(tree_issuer(ROBOT))).FixValue(self.context, command)
 
     def desired(self) -> np.ndarray:
-        return self.motion.GetOutputPort("desired_state").Eval(self.motion_context)
+        return self.diagram.GetOutputPort("desired_state").Eval(self.context)
 
     def outcome(self, seq: int) -> str | None:
         return (

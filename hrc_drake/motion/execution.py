@@ -103,3 +103,28 @@ def next_progress(
     chosen = min(max(wanted, low), high) if low <= high else 0.5 * (low + high)
     change = min(chosen, wanted) if speeding_up else max(chosen, wanted)
     return dataclasses.replace(progress, rate_change=change)
+
+
+SEGMENT_COEFFICIENTS = 6
+"""A desired-motion segment is a quintic per joint: its value, speed and acceleration match
+the desired motion at both ends of the segment."""
+
+
+def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.ndarray:
+    """The quintic (joints × 6 coefficients in powers of the time since the segment's start)
+    that leaves `start` and reaches `end` after `duration`, each (q, q̇, q̈) stacked.
+
+    RobotMotion chooses ṙ at each update and holds it until the next, so the desired motion
+    over one period is known at the update: this segment carries it to Drake's C++ systems,
+    which evaluate it at every plant step (exact at the updates, where ṙ changes; between
+    them within the error of a quintic over one period)."""
+    q0, v0, a0 = np.split(np.asarray(start, dtype=float), 3)
+    q1, v1, a1 = np.split(np.asarray(end, dtype=float), 3)
+    T = duration
+    h = q1 - q0 - v0 * T - 0.5 * a0 * T * T
+    dv = (v1 - v0 - a0 * T) * T
+    da = (a1 - a0) * T * T
+    c3 = (10.0 * h - 4.0 * dv + 0.5 * da) / T**3
+    c4 = (-15.0 * h + 7.0 * dv - da) / T**4
+    c5 = (6.0 * h - 3.0 * dv + 0.5 * da) / T**5
+    return np.column_stack([q0, v0, 0.5 * a0, c3, c4, c5])

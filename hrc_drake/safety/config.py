@@ -30,6 +30,11 @@ class SafetyConfig:
     robot is one whose fastest point exceeds `moving_speed`: only a moving robot violates
     SSM or causes a contact.
 
+    While the person is so far from the robot that the monitor would allow full speed even
+    if it measured only every `far_period` (with the `measured` rule: and the person came at
+    `v_h`), it measures every `far_period` instead of every `period` (`Judge.far`); 0
+    measures every `period` always.
+
     A contact is quasi-static (clamping) when the touched body region has cell geometry or
     another robot part within `clamping_gap` on its far side; otherwise it is transient.
     """
@@ -37,6 +42,7 @@ class SafetyConfig:
     enabled: bool = True
     ssm: bool = True
     period: float = 0.01
+    far_period: float = 0.05
     v_h_rule: str = ISO_13855
     v_h: float = 1.6
     v_h_near: float = 2.0

@@ -1,10 +1,12 @@
 """From one proximity reading to the monitor's status: S_p, violation, speed scale,
 contact assessments and the run's running totals."""
 
+import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 
-from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.config import CONSTANT, MEASURED, SafetyConfig
 from hrc_drake.safety.messages import (
     CARRIED,
     ContactRecord,
@@ -34,6 +36,27 @@ class Judge:
     config: SafetyConfig
     model: SsmModel
     robot_mass: float
+
+    @functools.cached_property
+    def far_model(self) -> SsmModel:
+        """S_p's model as if the monitor measured only every `far_period`, with a person who
+        may come at ISO 13855's approach speed even where the rule is `measured`."""
+        config = self.config
+        rule = CONSTANT if config.v_h_rule == MEASURED else config.v_h_rule
+        slow = dataclasses.replace(config, period=config.far_period, v_h_rule=rule)
+        latency = self.model.lead_time - config.period
+        return SsmModel.from_config(slow, self.model.stop, latency)
+
+    def far(self, status: SafetyStatus) -> bool:
+        """Whether the next `far_period` may pass unmeasured: the robot may move at full
+        speed, nothing touches, and at the separation less the hysteresis a monitor that
+        measured every `far_period` would keep full speed (`far_model`). Then no measurement
+        in between could have slowed the robot (tests/safety/test_far_rate.py)."""
+        config = self.config
+        if config.far_period <= config.period or status.scale < 1.0 or status.contact:
+            return False
+        room = status.separation - config.hysteresis
+        return max_safe_scale(room, 0.0, self.far_model) >= 1.0
 
     def status(
         self,

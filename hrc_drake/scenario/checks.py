@@ -26,6 +26,7 @@ from hrc_drake.areas import Area
 from hrc_drake.directives_check import directive_problems
 from hrc_drake.human.anthropometry import HEIGHT_RANGE
 from hrc_drake.human.clip_files import read_clip_file
+from hrc_drake.human.survey import PERCENTILE_RANGE, SEXES
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
 from hrc_drake.safety.config import V_H_RULES
@@ -35,6 +36,7 @@ from hrc_drake.scenario.schema import RobotConfig, Scenario
 from hrc_drake.station import TOOLS, add_station_models, model_parser
 from hrc_drake.wiring import AGENTS, STATION_MODELS
 from hrc_drake.workpieces.config import problems
+from hrc_drake.workpieces.messages import COUPLINGS
 from hrc_drake.yaml_check import InputError, first_line, schema_fields, unknown
 
 Problem = tuple[tuple | None, str]
@@ -90,6 +92,11 @@ FIELD_RULES: dict[str, Rule] = {
     "simulator.integration_scheme": one_of(GetIntegrationSchemes()),
     "human.height": within(*HEIGHT_RANGE, " m"),
     "human.mass": positive,
+    "human.sex": one_of(SEXES),
+    "human.percentile": within(*PERCENTILE_RANGE),
+    "ergonomics.period": positive,
+    "ergonomics.work_hours": within(0, 24, " h"),
+    "ergonomics.coupling": one_of(COUPLINGS),
     "trees.*.period": positive,
     "safety.period": positive,
     "safety.v_h_rule": one_of(V_H_RULES),

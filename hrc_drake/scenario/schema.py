@@ -20,7 +20,9 @@ from pydrake.systems.analysis import SimulatorConfig
 
 from hrc_drake.agent_trees import AgentTree, load_agent_tree
 from hrc_drake.areas import Area
+from hrc_drake.ergonomics.config import ErgonomicsOptions
 from hrc_drake.human.protocol import UPDATE_PERIOD
+from hrc_drake.human.survey import survey_size
 from hrc_drake.iisy import TOOL_BODY
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.nodes.agent import Places
@@ -58,17 +60,27 @@ class VisualizationOptions:
 
 @dataclass
 class HumanConfig:
-    """The person: body height and mass (segments scale with them), where they start (x, y
-    in metres, facing yaw in degrees) and how often their protocol and pose are updated
-    (above Meshcat's frame rate; their realism is audited at the same rate)."""
+    """The person: body height and mass (segments scale with them), or a sex and a
+    percentile of a published survey (`percentile` given: they set height and mass, see
+    hrc_drake.human.anthropometry.survey_size), where they start (x, y in metres, facing
+    yaw in degrees) and how often their protocol and pose are updated (above Meshcat's
+    frame rate; their realism is audited at the same rate)."""
 
     height: float = 1.75
     mass: float = 75.0
+    sex: str = "male"
+    percentile: float | None = None
     start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
     period: float = UPDATE_PERIOD
     clips: list[str] = field(default_factory=list)
     """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
     which trees play by their file names."""
+
+    def size(self) -> tuple[float, float]:
+        """Height (m) and mass (kg) of the person."""
+        if self.percentile is None:
+            return self.height, self.mass
+        return survey_size(self.sex, self.percentile)
 
 
 @dataclass
@@ -98,6 +110,7 @@ class Scenario:
     locations: dict[str, Transform] = field(default_factory=dict)
     visualization: VisualizationOptions = field(default_factory=VisualizationOptions)
     report: ReportOptions = field(default_factory=ReportOptions)
+    ergonomics: ErgonomicsOptions = field(default_factory=ErgonomicsOptions)
     human: HumanConfig | None = None
     workpieces: WorkpiecesConfig = field(default_factory=WorkpiecesConfig)
     safety: SafetyConfig = field(default_factory=SafetyConfig)

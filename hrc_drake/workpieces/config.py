@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 from pydrake.common.schema import Transform
 
-from hrc_drake.workpieces.messages import Attributes
+from hrc_drake.workpieces.messages import COUPLING, COUPLINGS, Attributes
 from hrc_drake.yaml_check import REQUIRED
 
 BOX = "box"
@@ -163,6 +163,10 @@ def _type_problems(object_type: ObjectType) -> list[Problem]:
         found.append((("color",), "needs four values [r, g, b, a] between 0 and 1"))
     if object_type.capacity < 0:
         found.append((("capacity",), f"must not be negative, got {object_type.capacity}"))
+    coupling = object_type.attributes.get(COUPLING)
+    if coupling is not None and coupling not in COUPLINGS:
+        known = ", ".join(COUPLINGS)
+        found.append((("attributes", COUPLING), f"unknown coupling '{coupling}'; known: {known}"))
     return found
 
 

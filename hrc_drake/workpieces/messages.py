@@ -33,6 +33,11 @@ HOLDERS = (ROBOT_HOLDER, *PERSON_HOLDERS)
 GRASPABLE = "graspable"
 """Attribute: an object whose `graspable` attribute is false cannot be attached."""
 
+COUPLING = "coupling"
+"""Attribute: how well hands hold an object of this type, one of COUPLINGS (NIOSH's coupling;
+the person's ergonomic scores use it)."""
+COUPLINGS = ("good", "fair", "poor")
+
 Attributes = dict[str, float | bool | str]
 
 
@@ -152,6 +157,19 @@ class ObjectStatus:
 
 
 @dataclass(frozen=True)
+class HeldObject:
+    """An object in the person's hands as a run's record keeps it (what ergonomics needs:
+    its load and how it is held); `coupling` is the type's `coupling` attribute, "" if it
+    has none."""
+
+    id: int
+    type: str
+    mass: float
+    holder: str
+    coupling: str = ""
+
+
+@dataclass(frozen=True)
 class WorkpiecesStatus:
     """Every live object (by increasing id), each issuer's recent command results, and how
     many more objects of each type can be spawned."""
@@ -167,6 +185,14 @@ class WorkpiecesStatus:
 
     def held_by(self, holder: str) -> ObjectStatus | None:
         return next((o for o in self.objects if o.holder == holder), None)
+
+    @property
+    def person_holds(self) -> tuple[HeldObject, ...]:
+        return tuple(
+            HeldObject(o.id, o.type, o.mass, o.holder, str(o.attributes.get(COUPLING, "")))
+            for o in self.objects
+            if o.holder in PERSON_HOLDERS
+        )
 
     def results_of(self, issuer: str) -> ResultLog:
         return self.results.get(issuer, ResultLog())

@@ -11,6 +11,8 @@
    (hrc_drake.workpieces.settling).
 
 Steps 1 and 2 happen as the update's working copy (hrc_drake.workpieces.step) is made.
+An update that would change nothing but the holders' samples is not needed (`still`): no new
+command, and every object at rest on something that does not move.
 """
 
 from hrc_drake.messages import newer_commands
@@ -48,6 +50,23 @@ def next_world(
     remove_past_belt_ends(step)
     settle(step, instantly=False)
     return step.world()
+
+
+def still(
+    cell: Workcell, world: World, commands: dict[str, WorkpiecesCommand | tuple | None]
+) -> bool:
+    """Whether the next update can be left out: no issuer has a new command, and no object
+    is held, falling, moving or on a belt. The holders' samples go stale meanwhile; a grasp
+    after a pause takes its holder's velocity from the last sample before it."""
+    if any(newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers):
+        return False
+    return all(_resting(piece, cell) for piece in world.pieces.values())
+
+
+def _resting(piece, cell: Workcell) -> bool:
+    if piece.holder is not None or piece.support is None or piece.support in cell.belts:
+        return False
+    return not piece.velocity.get_coeffs().any()
 
 
 def _empty_world() -> World:

@@ -120,18 +120,17 @@ def record(station: Station, seq: int, actions=None, timeout: float = 10.0) -> T
     simulation times to callables(station) applied once that time is reached."""
     trace = Trace()
     pending = sorted((actions or {}).items())
-    motion_context = station.motion.GetMyContextFromRoot(station.context)
     model = station.motion.planner.model
+    desired_state = station.diagram.GetOutputPort("robot_desired_state")
+    desired_acceleration = station.diagram.GetOutputPort("robot_desired_acceleration")
 
     def monitor(context):
-        desired = station.motion.GetOutputPort("desired_state").Eval(motion_context)
+        desired = desired_state.Eval(context)
         status = station.status()
         trace.t.append(context.get_time())
         trace.tool.append(model.tool_pose(station.q()).translation())
         trace.velocity.append(desired[6:].copy())
-        trace.acceleration.append(
-            station.motion.GetOutputPort("desired_acceleration").Eval(motion_context).copy()
-        )
+        trace.acceleration.append(desired_acceleration.Eval(context).copy())
         trace.speed_scale.append(status.speed_scale)
         trace.outcomes.append(status.results.outcome_of(seq))
         trace.modes.append(status.mode)

@@ -9,6 +9,7 @@ import pytest
 
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.runner import run
+from hrc_drake.safety.config import SafetyConfig
 from hrc_drake.safety.log import read_safety_log
 from hrc_drake.safety.messages import SIGNALS
 from hrc_drake.scenario import load_scenario
@@ -29,9 +30,15 @@ def run_directory(tmp_path_factory):
 
 
 def test_one_entry_per_monitor_update(run_directory):
+    """Every period, or every far_period while the person was far (Judge.far: beyond about
+    2.5 m for the iisy 3)."""
     _, log = run_directory
     assert set(SIGNALS) <= set(log)
-    np.testing.assert_allclose(np.diff(log["time"]), 0.01, atol=1e-9)
+    steps = np.diff(log["time"])
+    config = SafetyConfig()
+    far = np.isclose(steps, config.far_period, rtol=0, atol=1e-9)
+    assert np.all(far | np.isclose(steps, config.period, rtol=0, atol=1e-9))
+    assert np.all(log["separation"][:-1][far] > 2.5)
     assert log["time"][0] == 0.0 and log["time"][-1] >= DURATION - 0.02
     assert list(log["regions"]) == list(REGIONS)
 

@@ -222,7 +222,7 @@ def build(case: Case):
     plant.SetDefaultPositions(arm, scene.station.initial_positions)
     controller = add_robot_controller(builder, scene.station, plant, arm)
     seed = stream(scene.seed, ROBOT_MOTION)
-    motion = add_robot_motion(builder, scene.station, seed, plant, arm, controller)
+    motion, _ = add_robot_motion(builder, scene.station, seed, plant, arm, controller)
     shuttle = builder.AddSystem(Shuttle(sweep_goals()))
     builder.Connect(motion.GetOutputPort("robot_status"), shuttle.get_input_port())
     builder.Connect(shuttle.get_output_port(), motion.GetInputPort("robot_tree_command"))
@@ -258,11 +258,17 @@ def simulate(case: Case) -> Outcome:
     simulator.AdvanceTo(duration(case))
     context = simulator.get_context()
     status = monitor.GetOutputPort("safety_status").Eval(monitor.GetMyContextFromRoot(context))
-    # A logger at time t records the monitor's update of t - period, which measured the
-    # robot state the other logger recorded at t - period.
-    signals = logs["signals"].FindLog(context).data()[:, 1:]
-    robot = logs["robot"].FindLog(context).data()[:6, :-1]
-    times = signals[SIGNALS.index("time")]
+    # A logger at time t records the monitor's last update, of t - period or (while the
+    # person is far and the monitor measures every far_period) earlier: each update once,
+    # with the robot state the other logger recorded at the update's time.
+    logged = logs["signals"].FindLog(context).data()[:, 1:]
+    measured = logged[SIGNALS.index("time")]
+    updates = np.flatnonzero(np.diff(measured, append=np.inf) != 0.0)
+    signals, times = logged[:, updates], measured[updates]
+    robot_log = logs["robot"].FindLog(context)
+    columns = np.searchsorted(robot_log.sample_times(), times)
+    assert np.allclose(robot_log.sample_times()[columns], times)
+    robot = robot_log.data()[:6, columns]
     path = case.person
     return Outcome(
         case=case,

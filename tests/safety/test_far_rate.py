@@ -1,0 +1,55 @@
+"""The monitor measures less often only where no measurement in between could have changed
+its answer: while it is `far`, a person coming at ISO 13855's walking speed (1.6 m/s: the
+monitor goes slow only well beyond ISO 13855's 0.5 m, where that speed applies) and the
+robot's fastest point coming at full speed for a whole `far_period` still leave a separation
+at which the monitor, measuring at its own period, keeps full speed."""
+
+import numpy as np
+import pytest
+
+from hrc_drake.safety.config import CONSTANT, ISO_13855, MEASURED, SafetyConfig
+from hrc_drake.safety.judge import Judge
+from hrc_drake.safety.messages import SafetyStatus
+from hrc_drake.safety.ssm import SsmModel, max_safe_scale
+from hrc_drake.safety.stopping import StopModel
+
+STOP = StopModel(speeds=(0.0, 0.33, 0.66, 1.0), times=(0.01, 0.2, 0.4, 0.6), distance_factor=0.5)
+LATENCY = 0.01
+SEPARATIONS = np.arange(0.0, 6.0, 0.005)
+
+
+def judge(config: SafetyConfig) -> Judge:
+    return Judge(config, SsmModel.from_config(config, STOP, LATENCY), robot_mass=10.0)
+
+
+def far_separations(j: Judge) -> np.ndarray:
+    status = [SafetyStatus(separation=d, scale=1.0) for d in SEPARATIONS]
+    return np.array([s.separation for s in status if j.far(s)])
+
+
+@pytest.mark.parametrize("rule", [ISO_13855, CONSTANT, MEASURED])
+@pytest.mark.parametrize("far_period", [0.03, 0.05, 0.1])
+def test_no_measurement_between_far_ones_could_slow_the_robot(rule, far_period):
+    config = SafetyConfig(v_h_rule=rule, far_period=far_period, robot_speed=1.5)
+    j = judge(config)
+    far = far_separations(j)
+    assert far.size > 0 and far.min() > 1.0  # it goes slow far away, and only there
+    assert far.min() > config.near_distance
+    closing = config.v_h + config.robot_speed
+    for elapsed in np.linspace(0.0, far_period, 11):
+        for person_speed in (0.0, config.v_h / 2, config.v_h):
+            for d in far:
+                left = d - closing * elapsed
+                assert max_safe_scale(left, person_speed, j.model) >= 1.0, (d, elapsed)
+
+
+def test_near_or_slowed_or_touching_measures_every_period():
+    j = judge(SafetyConfig())
+    assert not j.far(SafetyStatus(separation=0.8, scale=1.0))
+    assert not j.far(SafetyStatus(separation=5.0, scale=0.5))
+    assert j.far(SafetyStatus(separation=5.0, scale=1.0))
+
+
+def test_far_period_at_or_below_the_period_never_goes_slow():
+    j = judge(SafetyConfig(far_period=0.0))
+    assert far_separations(j).size == 0
