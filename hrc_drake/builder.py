@@ -218,6 +218,7 @@ def _add_person(builder, scene_graph, mirror, scenario):
         navigation=NavigationMap(
             cell_obstacles(mirror, scene_graph.model_inspector()),
             keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
+            height=scenario.human.height,
         ),
         clips=clip_catalog(scenario.human.clips),
     )

@@ -3,7 +3,7 @@ movement (turn towards the path, walk it round sharp corners and the cell's geom
 to the target orientation), of an animation (a clip, aimed at a target or grasp with
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
-from math import atan2, hypot
+from math import atan2, hypot, radians
 
 import numpy as np
 
@@ -18,6 +18,7 @@ from hrc_drake.human.grasp import (
     release_targets,
 )
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
+from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
@@ -33,12 +34,17 @@ from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
+FINAL_TURN_WALKING = radians(45.0)
+"""A walk turns to face its place over its last steps by at most this; further, the person
+turns on the spot there: the closing steps of a walk at full pace that turns further slide
+a foot (measured: 50° 3.9 cm, 57° 7.7 cm, 70° 12 cm; at most 0.4 cm up to 45°)."""
 
 
 def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
     """Turn towards the path, walk it, then turn to the target orientation. Without given
-    waypoints the path goes round the cell's geometry (the navigation map); a place to
-    stand (a target with an orientation) that is not clear moves to the nearest that is."""
+    waypoints the path goes round the cell's geometry (the navigation map); a target where
+    the person would have no room to stand and turn moves to the nearest place that has.
+    Unreachable when there is no such place or no walk keeps clear of the cell."""
     clip = performer.clips.get(command.animation_name)
     if clip is None or not clip.loop or clip.animation_distance <= 0:
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
@@ -47,12 +53,13 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     waypoints = command.waypoints
     standing = _yaw_of(command.target_quaternion)
     oriented = tuple(command.target_quaternion) != NULL_QUATERNION
-    if performer.navigation is not None:
-        if oriented:
-            goal = performer.navigation.clear_spot(*goal, standing)
-        if not waypoints:
-            waypoints = performer.navigation.path((x, y), goal)
-    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
+    navigation = performer.navigation
+    if navigation is not None:
+        goal, waypoints = _walk_round(
+            navigation, (x, y), goal, standing if oriented else None, waypoints
+        )
+    walkable = navigation.walkable if navigation is not None else None
+    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal], walkable)
     segments: list[Segment] = []
     start = t
     heading = yaw
@@ -69,7 +76,8 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
             )
             start = segments[-1].end(performer)
         walk = WalkSegment(start, tuple(stretch), clip.name, distance, speed, carry)
-        if oriented and k == len(stretches) - 1:
+        last = oriented and k == len(stretches) - 1
+        if last and abs(wrap_angle(standing - walk.directions[-1])) <= FINAL_TURN_WALKING:
             walk = walk.facing_at_the_end(standing)
         walk = walk.stepped(performer)
         segments.append(walk)
@@ -85,6 +93,16 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     if not segments:
         segments.append(TurnSegment.between(performer, t, (x, y), yaw, yaw, carry))
     return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
+
+
+def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):
+    """The place to stand nearest `goal` that has room, and the waypoints of the walk there
+    (the given ones, or round the cell's geometry)."""
+    try:
+        goal = navigation.clear_spot(*goal, yaw)
+        return goal, waypoints or tuple(navigation.path(start, goal))
+    except NoWay as error:
+        raise Unreachable(str(error)) from None
 
 
 def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float) -> Activity:
@@ -237,12 +255,14 @@ def _yaw_of(quaternion) -> float:
     return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
 
 
-def _without_short_legs(path: list) -> list:
+def _without_short_legs(path: list, walkable=None) -> list:
     """The path without waypoints closer than MIN_LEG to the point before them (the goal
-    stays): a short leg would make the person swing round on the spot while walking."""
+    stays): a short leg would make the person swing round on the spot while walking. A
+    waypoint stays where the leg past it would not be `walkable` (a, b)."""
     kept = [path[0]]
-    for point in path[1:-1]:
-        if hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) >= MIN_LEG:
+    for point, after in zip(path[1:-1], path[2:], strict=True):
+        short = hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) < MIN_LEG
+        if not short or (walkable is not None and not walkable(kept[-1], after)):
             kept.append(point)
     goal = path[-1]
     if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:
