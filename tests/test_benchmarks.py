@@ -23,6 +23,7 @@ SMALLEST = {
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
     "scenarios.py": ["--duration", "0.5", "cooperation"],
     "sweep.py": ["base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
+    "tracking.py": ["--duration", "0.5", "cooperation"],
 }
 
 
