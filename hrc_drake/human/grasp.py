@@ -120,10 +120,12 @@ def grip_lift(height: float) -> float:
     return max(GRIP_ABOVE_SUPPORT - height / 2, 0.0)
 
 
-PALM_GAP = 0.005
+PALM_GAP = 0.008
 """m: palms close on an object's faces this far off them: the hands are aimed by IK to a
 centimetre or so, and a palm a little off the face holds it (the realism audit allows 2 cm)
-where one a little in would be in it."""
+where one a little in would be in it; and the forearm (a capsule of 3.6 cm radius, its axis
+2 cm off the palm) then reaches less than a centimetre past the face's plane (5 mm off, it
+went 1.1 cm into collaboration's carton taken from the pallet's far side, seed 0)."""
 PALM_FROM_NEAR_FACE = 0.055
 """m: palms on the side faces of a deep object hold it this far from its near face, no
 further forward: the wrist (8.5 cm behind the grasp frame) then stands 3 cm behind that
