@@ -39,6 +39,7 @@ from pydrake.systems.primitives import Demultiplexer
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.evaluation.replay import dress_scene
+from hrc_drake.evaluation.replay_sensors import draw_sensors
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
@@ -53,6 +54,7 @@ from hrc_drake.systems.replay_recorder import ReplayRecorder
 from hrc_drake.systems.robot_controller import RobotController, add_robot_controller
 from hrc_drake.systems.robot_motion import RobotMotion, add_robot_motion
 from hrc_drake.systems.safety_monitor import SafetyMonitor, add_safety_monitor
+from hrc_drake.systems.safety_sensors import SafetySensors, add_safety_sensors
 from hrc_drake.systems.workpieces import Workpieces, add_workpieces
 from hrc_drake.wiring import (
     COMMANDED_BY,
@@ -98,6 +100,7 @@ class Station:
     realism_audit: RealismAudit | None
     trees: dict[str, BehaviorTreeSystem]
     recorder: ReplayRecorder | None
+    sensors: SafetySensors | None = None
 
     @property
     def status_sources(self) -> dict:
@@ -144,6 +147,7 @@ def build_diagram(
         workpieces,
     )
     safety = _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, scenario)
+    sensors = _add_sensors(builder, scene_graph, mirror, human_plant, safety, scenario)
     audit = _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario)
     if human is not None:
         for reader in filter(None, (motion, safety)):
@@ -168,6 +172,7 @@ def build_diagram(
         audit,
         trees,
         recorder,
+        sensors,
     )
     _export_outputs(builder, station)
     _export_open_inputs(builder, [motion, human, workpieces])
@@ -269,6 +274,30 @@ def _add_safety(builder, scene_graph, mirror, human_plant, motion, workpieces, s
     return safety
 
 
+def _add_sensors(builder, scene_graph, mirror, human_plant, safety, scenario):
+    """The safety sensors the monitor sees the person through, reading the world scene:
+    they report the person's geometry, and the mirror's anchored bodies never move."""
+    config = scenario.safety.sensors
+    if safety is None or not config.present:
+        return None
+    instance = human_plant.GetModelInstanceByName(HUMAN_MODEL)
+    person = [
+        geometry
+        for body in human_plant.GetBodyIndices(instance)
+        for geometry in human_plant.GetCollisionGeometriesForBody(human_plant.get_body(body))
+    ]
+    fixed = [
+        geometry
+        for body in mirror.GetBodiesWeldedTo(mirror.world_body())
+        for geometry in mirror.GetCollisionGeometriesForBody(body)
+    ]
+    sensors = add_safety_sensors(builder, scene_graph, config, person, fixed, scenario.seed)
+    builder.Connect(
+        sensors.GetOutputPort("sensor_readings"), safety.GetInputPort("sensor_readings")
+    )
+    return sensors
+
+
 def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario):
     """The realism audit of the person, sampled at the person's own rate."""
     if human is None:
@@ -346,6 +375,8 @@ def _add_visualizer(builder, scene_graph, meshcat, scenario, sources) -> ReplayR
         options.camera_target,
         scenario.robot.base_pose.GetDeterministicValue(),
     )
+    if SAFETY in sources and scenario.safety.sensors.present:
+        draw_sensors(meshcat, scenario.safety.sensors)
     roles = {VISUAL_PREFIX: Role.kIllustration}
     if options.show_collision:
         roles["collision"] = Role.kProximity

@@ -26,7 +26,7 @@ from tqdm import tqdm
 import hrc_drake
 from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import Station, build_diagram
-from hrc_drake.evaluation.record import Fault, PersonRecord, RunRecord, RunSetup
+from hrc_drake.evaluation.record import Fault, Footprint, PersonRecord, RunRecord, RunSetup
 from hrc_drake.evaluation.report import Report, evaluate, write_run_directory
 from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
@@ -221,6 +221,7 @@ class _Probes:
             states=self.states.changes(),
             node_statistics={agent: _node_statistics(tree) for agent, tree in trees.items()},
             recording=station.recorder.recording if station.recorder is not None else None,
+            furniture=_furniture(station),
             person=self._person(context),
             meshcat=meshcat,
             diagram=diagram,
@@ -235,6 +236,17 @@ class _Probes:
         height, mass = self.scenario.human.size()
         holds = self.held.changes().get(HELD_OBJECTS, []) if self.held is not None else []
         return PersonRecord(height, mass, np.array(log.sample_times()), np.array(log.data()), holds)
+
+
+def _furniture(station: Station) -> tuple[Footprint, ...]:
+    """The floor outlines the person's navigation map walks round (the cell's furniture)."""
+    navigation = station.human.navigation if station.human is not None else None
+    if navigation is None:
+        return ()
+    return tuple(
+        Footprint(o.name, tuple((float(x), float(y)) for x, y in o.outline.exterior.coords[:-1]))
+        for o in navigation.obstacles
+    )
 
 
 def _state_sources(station: Station) -> dict:

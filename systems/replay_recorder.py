@@ -5,8 +5,9 @@ slots and the static cell included, as JSON-like keys of doubles. The recorder k
 samples as arrays instead (`hrc_drake.evaluation.recording.Recording`), so that
 `hrc_drake.evaluation.replay` can keep only the keys that change what is seen. Besides the
 frames' world poses it samples, when the station has them, the robot's safety state (from the
-monitor's speed scale) and who holds which workpiece (from the workpieces' status), so the
-replay can show the one and tests can find the other.
+monitor's speed scale), the safety sensors' fields and detections (from the monitor's view
+of them) and who holds which workpiece (from the workpieces' status), so the replay can show
+them and tests can find them.
 
 Frames are named as MeshcatVisualizer names them: `/drake/<prefix>/<frame name>` with `::`
 turned into `/`, for every frame with geometry of the visualizer's role.
@@ -17,7 +18,13 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import QueryObject, Role
 from pydrake.systems.framework import LeafSystem
 
-from hrc_drake.evaluation.recording import Recording, meshcat_path, safety_state
+from hrc_drake.evaluation.recording import (
+    Recording,
+    detections,
+    meshcat_path,
+    safety_state,
+    sensor_samples,
+)
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.workpieces.messages import WorkpiecesStatus
 
@@ -62,6 +69,9 @@ class ReplayRecorder(LeafSystem):
         safety = value_or_none(self._safety, context)
         if safety is not None:
             recording.safety.append(safety_state(safety))
+        if safety is not None and safety.sensing is not None:
+            recording.sensors.append(sensor_samples(safety.sensing))
+            recording.detections.append(detections(safety.sensing))
         workpieces = value_or_none(self._workpieces, context)
         if workpieces is not None:
             recording.held.append(self._held(query.inspector(), workpieces))

@@ -29,6 +29,13 @@ whether the object in the gripper changed (which measures at once).
 
 A contact is quasi-static when the touched body region is pinned against the cell (the
 bodies welded to the world) or another robot part; see `ProximityMeter.pinned`.
+
+With safety sensors (`safety.sensors`), input `sensor_readings` (the SafetySensors'
+readings) is what the speed scale follows: the nearest detection of the person and the
+scanners' fields (`hrc_drake.safety.sensors_view`), each sensor's reading as it reports it,
+its response time after the scene. The body's true distances are still measured: the
+status's separation, S_p and violations are the real body's (S_p with the slowest sensor's
+response time), so a person the sensors miss shows as a violation.
 """
 
 import math
@@ -47,6 +54,7 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import CARRIED, SafetyStatus
 from hrc_drake.safety.pfl import robot_effective_mass
 from hrc_drake.safety.proximity import ProximityMeter
+from hrc_drake.safety.sensors_view import SensorView, view
 from hrc_drake.safety.ssm import SsmModel
 from hrc_drake.safety.stopping import StopModel
 from hrc_drake.wiring import ROBOT_MODEL, SAFETY_MONITOR, TOOL_MODEL
@@ -89,10 +97,16 @@ class SafetyMonitor(LeafSystem):
         self._active_parts = _active_parts(self._meter, robot.parts, carried_parts)
         self.part_names = tuple(dict.fromkeys(part.name for part in self._meter.robot))
         """What the `part` entry of `safety_signals` numbers."""
+        stop = StopModel.of_variant(variant)
+        sensors = config.sensors.all()
         self._judge = Judge(
             config,
-            SsmModel.from_config(config, StopModel.of_variant(variant), command_latency),
+            SsmModel.from_config(config.truth(), stop, command_latency),
             robot_effective_mass(robot.moving_mass, robot.tool_mass),
+            sensed={
+                name: SsmModel.from_config(config.seen_through(sensor), stop, command_latency)
+                for name, sensor in sensors.items()
+            },
         )
         self._query = self.DeclareAbstractInputPort(
             "query_object", AbstractValue.Make(QueryObject())
@@ -100,9 +114,12 @@ class SafetyMonitor(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self._path_rate = self.DeclareVectorInputPort("robot_path_rate", 1)
+        self._readings = self.DeclareAbstractInputPort("sensor_readings", message_value())
         self._scale = self.DeclareDiscreteState(np.zeros(1))  # no motion before a measurement
-        self._signals = self.DeclareDiscreteState(SafetyStatus().signals((np.nan, np.nan), -1))
-        self._status = self.DeclareAbstractState(AbstractValue.Make(SafetyStatus()))
+        # with sensors, none has reported yet
+        initial = SafetyStatus(sensing=tuple(map(SensorView, sensors)) if sensors else None)
+        self._signals = self.DeclareDiscreteState(initial.signals((np.nan, np.nan), -1))
+        self._status = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._memory = self.DeclareDiscreteState(np.full(self._meter.memory_size, np.nan))
         self._due = self.DeclareDiscreteState(np.array([0.0, NOTHING_HELD]))
         """When the next measurement is due, and the id of the object held at the last."""
@@ -139,7 +156,8 @@ class SafetyMonitor(LeafSystem):
         )
         payload = held.mass if held is not None else 0.0
         path_rate = self._robot_path_rate(context, reading.robot_speed)
-        status = self._judge.status(time, reading, before, payload, path_rate)
+        sensing = self._sensing(context, time, reading.robot, path_rate)
+        status = self._judge.status(time, reading, before, payload, path_rate, sensing)
         part = self.part_names.index(status.link) if status.link else -1
         state.get_mutable_abstract_state(self._status).set_value(status)
         state.get_mutable_discrete_state(self._memory).set_value(reading.memory)
@@ -149,6 +167,15 @@ class SafetyMonitor(LeafSystem):
         period = self._judge.config.far_period if self._judge.far(status) else self._period
         state.get_mutable_discrete_state(self._due).set_value([time + period, held_id])
         return EventStatus.Succeeded()
+
+    def _sensing(self, context, time: float, robot_capsules, path_rate: float):
+        """The sensors' views of the person (None without sensors); nothing read from an
+        unconnected `sensor_readings` (no sensor has reported)."""
+        sensors = self._judge.config.sensors
+        if not sensors.present:
+            return None
+        readings = value_or_none(self._readings, context) or {}
+        return view(sensors, readings, time, robot_capsules, path_rate)
 
     def _robot_path_rate(self, context, robot_speed: float) -> float:
         if self._path_rate.HasValue(context):

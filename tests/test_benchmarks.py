@@ -22,6 +22,7 @@ SMALLEST = {
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
     "scenarios.py": ["--duration", "0.5", "cooperation"],
+    "sensing_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "sweep.py": ["base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
     "tracking.py": ["--duration", "0.5", "cooperation"],
 }

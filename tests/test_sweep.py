@@ -133,3 +133,33 @@ def test_sweep_workers_print_none_of_drakes_info_messages(tmp_path):
     done = subprocess.run(command, capture_output=True, text=True, check=True)
     assert "2 runs" in done.stdout or "0 failed" in done.stdout, done.stdout
     assert "drake" not in done.stderr.lower(), done.stderr
+
+
+def test_sweep_takes_a_duration_as_run_and_falsify_do(tmp_path, hrc_drake):
+    out = tmp_path / "sweep"
+    args = ("sweep", "base", "--seeds", "0:2", "--duration", "0.2", "--workers", "1")
+    status, said, err = hrc_drake(*args, "--out", out)
+    assert status == 0, err
+    rows = [json.loads(line) for line in (out / "runs.jsonl").read_text().splitlines()]
+    assert [row["metrics"]["duration"] for row in rows] == [0.2, 0.2]
+    assert [row["key"] for row in rows] == ["seed=0 duration=0.2", "seed=1 duration=0.2"]
+    assert rows[0]["set"] == {"duration": 0.2}  # a replay command sets it too
+    assert "  duration=0.2: none of 2 runs violates ISO/TS 15066\n" in said
+    status, _, err = hrc_drake(*args, "--set", "duration=1,2", "--out", tmp_path / "both")
+    assert status == 2 and err.count("\n") == 1
+    assert "--set duration: --duration 0.2 sets it already" in err
+    status, _, err = hrc_drake("sweep", "base", "--duration", "-1", "--out", tmp_path / "bad")
+    assert status == 2 and "--duration -1.0" in err, err
+
+
+def test_a_sweep_is_named_by_its_scenarios_name_not_its_file(tmp_path):
+    """The corpus's scenario.yaml is called `corpus`: so are the report and its title, also
+    when the sweep is asked for from Python."""
+    from tests.corpus.corpus_helpers import write_workspace
+
+    path = write_workspace(tmp_path)
+    result = sweep(plan(path, parse_seeds("0:1"), ["duration=0.05"]), tmp_path / "out")
+    page = result.files["report_html"].read_text()
+    assert "<title>sweep corpus</title>" in page
+    assert "<h1>Sweep of corpus: 1 runs (0 failed)</h1>" in page
+    assert json.loads(result.files["summary"].read_text())["scenario"] == "corpus"

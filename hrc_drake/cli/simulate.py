@@ -58,6 +58,7 @@ def add_commands(commands) -> None:
     sweep = commands.add_parser("sweep", help="run many seeds (and parameter grids) of a scenario")
     sweep.add_argument("scenario", help="a scenario file, or the name of a bundled scenario")
     sweep.add_argument("--seeds", default="0:10", help="START:STOP, N or a comma list (0:10)")
+    sweep.add_argument("--duration", type=float, help="simulated seconds of each run")
     add_set_option(sweep)
     add_execution_options(sweep, "sweep", "sweeps")
     sweep.add_argument(
@@ -109,15 +110,15 @@ def _run(args) -> int:
             serve=serve,
         )
     except RunStopped as stopped:
-        _print_node_failures(stopped.report.metrics)
+        _print_node_failures(scenario.name, stopped.report.metrics)
         raise
+    _print_node_failures(scenario.name, report.metrics)
     print(
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
     )
     for line in key_metrics(report.metrics):
         print(f"  {line}")
-    _print_node_failures(report.metrics)
     print_files(report.files)
     return 0
 
@@ -144,38 +145,40 @@ def _fresh_directory(path: Path) -> Path:
     return candidate
 
 
-def _print_node_failures(metrics: dict) -> None:
+def _print_node_failures(name: str, metrics: dict) -> None:
+    """Before anything else: the actions that went wrong, and why."""
     from hrc_drake.evaluation.metrics import node_failures
 
     failures = node_failures(metrics.get("bt", {}))
     if failures:
-        print("  tree nodes that failed:")
+        count = f"{len(failures)} tree node{'s' if len(failures) != 1 else ''}"
+        print(f"{name}: {count} failed (an actor refused or could not carry out a command):")
     for line in failures:
-        print(f"    {line}")
+        print(f"  {line}")
 
 
 def _sweep(args) -> int:
-    from hrc_drake.scenario import load_scenario, resolve_scenario_path
+    from hrc_drake.evaluation.sweep_report import verdicts
+    from hrc_drake.scenario import resolve_scenario_path
     from hrc_drake.sweep import parse_seeds, plan, sweep
 
-    scenario = load_scenario(args.scenario)
-    specs = plan(resolve_scenario_path(args.scenario), parse_seeds(args.seeds), args.set)
-    out = args.out or Path("sweeps") / scenario.name
+    fixed, options = (), {}
+    if args.duration is not None:
+        fixed, options = (("duration", args.duration),), {"duration": f"--duration {args.duration}"}
+    path = resolve_scenario_path(args.scenario)
+    specs = plan(path, parse_seeds(args.seeds), args.set, fixed, options)
+    out = args.out or Path("sweeps") / specs.name
     result = sweep(
-        specs,
-        out,
-        args.workers,
-        args.dask,
-        progress=True,
-        scenario_name=scenario.name,
-        retry_failed=args.retry_failed,
+        specs, out, args.workers, args.dask, progress=True, retry_failed=args.retry_failed
     )
     for warning in result.warnings:
         print(f"{PROG}: warning: {warning}", file=sys.stderr)
     print(
-        f"{scenario.name}: {len(result.rows)} runs ({result.skipped} already done, "
+        f"{specs.name}: {len(result.rows)} runs ({result.skipped} already done, "
         f"{len(result.failed)} failed)"
     )
+    for line in verdicts(result.rows):
+        print(f"  {line}")
     print_files(result.files)
     return 0
 
@@ -185,8 +188,7 @@ def _falsify(args) -> int:
 
     overrides, options = single_sets(args, "falsify", "a falsify: parameter searches a field")
     search = prepare(args.scenario, args.seed, overrides, options)
-    name = search.scenario_path.stem
-    out = args.out or Path("searches") / name
+    out = args.out or Path("searches") / search.name
     result = falsify(
         search,
         args.budget,
@@ -198,18 +200,19 @@ def _falsify(args) -> int:
     )
     for warning in result.warnings:
         print(f"{PROG}: warning: {warning}", file=sys.stderr)
-    for line in falsify_lines(name, result):
+    for line in falsify_lines(result):
         print(line)
     print_files(result.files)
     return 0
 
 
-def falsify_lines(name: str, result) -> list[str]:
+def falsify_lines(result) -> list[str]:
     """What a search found, in a few lines: the verdict and the worst cases."""
     verdict = (
         f"{len(result.violations)} violate ISO/TS 15066" if result.violations else "no violation"
     )
-    lines = [f"{name}: {len(result.trials)} trials ({len(result.failed)} failed), {verdict}"]
+    trials = f"{len(result.trials)} trials ({len(result.failed)} failed)"
+    lines = [f"{result.search.name}: {trials}, {verdict}"]
     for trial in result.worst:
         margin = trial.margin
         at = margin.get("at")
@@ -226,7 +229,10 @@ def _metres(value) -> str:
 
 
 def key_metrics(metrics: dict) -> list[str]:
-    """The figures a user looks at first: output, safety, how much the robot was slowed."""
+    """The figures a user looks at first: output, safety, how much the robot was slowed,
+    and whether the person moved as a person does (the realism audit)."""
+    from hrc_drake.evaluation.realism import realism_verdict
+
     lines = [
         f"{name}: {count} ({metrics['tasks']['throughput_per_hour'][name]:g}/h)"
         for name, count in metrics.get("tasks", {}).get("events", {}).items()
@@ -242,11 +248,23 @@ def key_metrics(metrics: dict) -> list[str]:
             f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
             f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
         ]
+    sensing = metrics.get("sensing") or {}
+    if sensing.get("sensors"):
+        lines.append(
+            f"the monitor saw the person through {', '.join(sensing['sensors'])}: seen "
+            f"{sensing['time_seen']:.1f} s, not seen {sensing['time_not_seen']:.1f} s"
+        )
+    elif sensing:
+        lines.append("the monitor knew every point of the person's body (no safety sensors)")
     margin = metrics.get("margin") or {}
     if "value" in margin:
         at = margin.get("at")
         where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
         lines.append(f"safety margin: {_metres(margin['value'])}{where}")
+    verdict = realism_verdict(metrics.get("realism") or {})
+    if verdict:
+        lines.append(f"realism: {verdict[0]}")
+        lines += [f"  {line}" for line in verdict[1:]]
     return lines
 
 

@@ -65,6 +65,7 @@ def _at(metrics: dict, path: tuple):
 def summary(search, result) -> dict:
     lowest = result.worst[0] if result.worst else None
     return {
+        "name": search.name,
         "scenario": str(search.scenario_path),
         "seed": search.seed,
         "sampler": search.config.sampler,
@@ -210,7 +211,7 @@ def falsify_html(found: dict, files: dict[str, Path], out_dir: Path) -> str:
     )
     lowest = found["lowest_margin"]
     parts = [
-        f"<h1>Worst cases of {escape(Path(found['scenario']).stem)}</h1>",
+        f"<h1>Worst cases of {escape(found['name'])}</h1>",
         f"<p>{verdict}; lowest margin {_number(lowest)} m (seed {found['seed']}, sampler "
         f"{escape(found['sampler'])}). The margin is the least separation minus S_p while the "
         "robot moves, or less for a contact near its limit; below 0 is a violation.</p>",
@@ -228,7 +229,7 @@ def falsify_html(found: dict, files: dict[str, Path], out_dir: Path) -> str:
             + "".join(f"<li>{escape(w)}</li>" for w in found["warnings"])
             + "</ul>"
         )
-    return page(f"falsify {Path(found['scenario']).stem}", "\n".join(parts))
+    return page(f"falsify {found['name']}", "\n".join(parts))
 
 
 def _worst_cases(worst: list[dict], out_dir: Path) -> str:

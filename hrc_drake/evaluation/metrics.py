@@ -16,7 +16,7 @@ from hrc_drake.safety.messages import ContactRecord, SafetyStatus, ViolationEpis
 from hrc_drake.safety.ssm import ZONES
 
 WAITING_SPEED = 0.05
-"""m/s below which the person counts as waiting (standing)."""
+"""m/s of the pelvis below which the person counts as waiting (standing)."""
 SECONDS_PER_HOUR = 3600.0
 
 
@@ -130,15 +130,37 @@ def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: fl
 
 
 def person_metrics(times: np.ndarray, signals: np.ndarray) -> dict:
-    """The person's walking distance (floor plane) and time standing still."""
+    """The person's walking distance (the pelvis's path along the floor) and time standing
+    still (the pelvis slower than WAITING_SPEED)."""
     xy = np.stack([signal(signals, "person_x"), signal(signals, "person_y")])
     known = np.all(np.isfinite(xy), axis=0)
     if times.size < 2 or not known.any():
         return {}
     steps = np.linalg.norm(np.diff(xy[:, known], axis=1), axis=0)
     dt = np.diff(times)
-    still = (signal(signals, "human_speed")[1:] < WAITING_SPEED) & known[1:]
+    still = (signal(signals, "walking_speed")[1:] < WAITING_SPEED) & known[1:]
     return {"walking_distance": rounded(steps.sum()), "waiting_time": rounded(dt[still].sum())}
+
+
+GROUND_TRUTH = "ground truth"
+SENSORS = "safety sensors"
+
+
+def sensing_metrics(
+    times: np.ndarray, signals: np.ndarray, status: SafetyStatus, sensors: tuple[str, ...]
+) -> dict:
+    """What the monitor saw the person through: `ground truth` (every point of their body)
+    or `safety sensors` (by name), and then how long the sensors saw them."""
+    if status.sensing is None:
+        return {"by": GROUND_TRUTH}
+    seen = signal(signals, "seen")[:-1] > 0.0
+    dt = np.diff(times)
+    return {
+        "by": SENSORS,
+        "sensors": list(sensors),
+        "time_seen": rounded(dt[seen].sum()),
+        "time_not_seen": rounded(dt[~seen].sum()),
+    }
 
 
 def task_metrics(events: list[TaskEvent], duration: float) -> dict:

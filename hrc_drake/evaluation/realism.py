@@ -182,24 +182,89 @@ def realism_metrics(state: AuditState | None) -> dict:
     }
 
 
-def realism_rows(metrics: dict) -> list[list]:
-    """The report page's realism table: measure, worst value, limit, where and when, ok."""
-    rows = []
+MEASURES = {
+    "penetration_static": ("body in the cell's geometry", "m"),
+    "penetration_objects": ("body in an object", "m"),
+    "hand_object_gap": ("holding hand off its object", "m"),
+    "carried_tilt_deg": ("carried object tilted", "deg"),
+    "foot_slip": ("standing foot slid", "m"),
+    "pelvis_speed_swing": ("pelvis speed swing within a stride", "fraction"),
+}
+"""What each measure of the audit means to a reader, and its unit (report.json's)."""
+
+
+@dataclass(frozen=True)
+class Check:
+    """One measure of a run's audit against its limit: the worst value, what and where it
+    was (with when), or how many strides it was measured over."""
+
+    measure: str
+    worst: float
+    limit: float
+    where: str
+
+    @property
+    def within(self) -> bool:
+        return self.worst <= self.limit
+
+    @property
+    def excess(self) -> float:
+        """How many times its limit the worst value is: measures of different units
+        compare by it."""
+        return self.worst / self.limit
+
+    def __str__(self) -> str:
+        """`body in the cell's geometry 34.0 cm (limit 1 cm): pelvis in work_table at 36.2 s`"""
+        description, unit = MEASURES[self.measure]
+        return (
+            f"{description} {_amount(self.worst, unit, 1)} "
+            f"(limit {_amount(self.limit, unit, 0)}): {self.where}"
+        )
+
+
+def _amount(value: float, unit: str, decimals: int) -> str:
+    """Centimetres, degrees or per cent: what a reader pictures at this scale."""
+    if unit == "m":
+        return f"{100 * value:.{decimals}f} cm"
+    if unit == "deg":
+        return f"{value:.{decimals}f}°"
+    return f"{100 * value:.{decimals}f} %"
+
+
+def realism_checks(metrics: dict) -> list[Check]:
+    """Every measure of the report's `realism` section against its limit (none without a
+    person)."""
+    if not metrics:
+        return []
+    checks = []
     for name, limit in LIMITS.items():
         worst = metrics[name]
-        where = next(v for k, v in worst.items() if k not in ("max", "time"))
-        rows.append(
-            [name, worst["max"], limit, f"{where} at {worst['time']:.1f} s", worst["max"] <= limit]
-        )
+        what = next(v for k, v in worst.items() if k not in ("max", "time"))
+        checks.append(Check(name, worst["max"], limit, f"{what} at {worst['time']:.1f} s"))
     pelvis = metrics["pelvis_speed"]
-    swing = pelvis["variation_max"]
-    rows.append(
-        [
-            "pelvis_speed_swing",
-            swing,
-            PELVIS_SPEED_SWING,
-            f"{pelvis['strides']} strides",
-            swing <= PELVIS_SPEED_SWING,
-        ]
-    )
-    return rows
+    strides = f"worst of {pelvis['strides']} strides of steady walking"
+    checks.append(Check("pelvis_speed_swing", pelvis["variation_max"], PELVIS_SPEED_SWING, strides))
+    return checks
+
+
+def over_limits(metrics: dict) -> list[Check]:
+    """The measures beyond their limits, the farthest beyond first."""
+    return sorted((c for c in realism_checks(metrics) if not c.within), key=lambda c: -c.excess)
+
+
+def realism_verdict(metrics: dict) -> list[str]:
+    """The audit's verdict in a line (and one more line per further measure over its
+    limit); none without a person."""
+    checks = realism_checks(metrics)
+    if not checks:
+        return []
+    over = over_limits(metrics)
+    if not over:
+        return [f"within its limits ({len(checks)} measures)"]
+    first = f"{len(over)} of {len(checks)} measures over their limits; worst: {over[0]}"
+    return [first, *(f"also: {check}" for check in over[1:])]
+
+
+def realism_rows(metrics: dict) -> list[list]:
+    """The report page's realism table: measure, worst value, limit, where and when, ok."""
+    return [[c.measure, c.worst, c.limit, c.where, c.within] for c in realism_checks(metrics)]

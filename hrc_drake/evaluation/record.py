@@ -54,6 +54,15 @@ class PersonRecord:
 
 
 @dataclass(frozen=True)
+class Footprint:
+    """A piece of the cell's furniture seen from above: its name and the corners of its
+    floor outline (x, y in m), as the person's navigation map walks round it."""
+
+    name: str
+    outline: tuple[tuple[float, float], ...]
+
+
+@dataclass(frozen=True)
 class Fault:
     """A tree fault that stopped the run early: when, and the tree's own message (file,
     line, node and port)."""
@@ -90,6 +99,8 @@ class RunRecord:
     """per agent, per node path: ticks, successes, failures, time running, first failure"""
     recording: Recording | None
     """what replay.html animates"""
+    furniture: tuple[Footprint, ...]
+    """the cell's furniture the person walks round (none without a person)"""
     person: PersonRecord | None
     meshcat: Meshcat | None
     diagram: Diagram

@@ -13,8 +13,10 @@ than as one map of doubles per key. A static cell object or a parked workpiece s
 costs two keys, not 32 a second.
 
 The page also carries the run's timeline as JSON (`<script id="hrc-replay">`): the safety
-states and who held which workpiece when, with the Meshcat paths of the holding hands. A
-caption shows the replay time and the robot's safety state.
+states, who held which workpiece when, with the Meshcat paths of the holding hands, and with
+safety sensors whether they saw the person. A caption shows the replay time, the robot's
+safety state and whether the person is seen. The sensors themselves, their fields and
+detections are drawn and animated by `hrc_drake.evaluation.replay_sensors`.
 """
 
 import base64
@@ -34,6 +36,7 @@ from hrc_drake.evaluation.recording import (
     STOPPED,
     Recording,
 )
+from hrc_drake.evaluation.replay_sensors import sensor_tracks
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, RIGHT_HAND
 
 POSITION_TOLERANCE = 0.001
@@ -269,6 +272,7 @@ def animation_message(recording: Recording) -> bytes:
     ]
     if recording.safety:
         tracks += ring_tracks(times, recording.safety)
+    tracks += [Track(*spec) for spec in sensor_tracks(recording)]
     by_path: dict[str, list[Track]] = {}
     for track in tracks:
         by_path.setdefault(track.path, []).append(track)
@@ -285,12 +289,18 @@ def animation_message(recording: Recording) -> bytes:
 
 
 def timeline(recording: Recording, human_path: str) -> dict:
+    """The run's states over time for the page (and tests): safety states, held objects
+    and, with safety sensors, whether they saw the person (`seen`, else absent)."""
     times = np.array(recording.times)
-    return {
+    found = {
         "duration": float(times[-1]) if times.size else 0.0,
         "safety": state_changes(times, recording.safety) if recording.safety else [],
         "held": held_spans(times, recording.held, human_path) if recording.held else [],
     }
+    if recording.sensors:
+        seen = [any(s.seen for s in sample) for sample in recording.sensors]
+        found["seen"] = state_changes(times, seen)
+    return found
 
 
 CAPTION_SCRIPT = """
@@ -301,16 +311,18 @@ CAPTION_SCRIPT = """
   caption.style.cssText = "position:fixed;left:12px;bottom:12px;padding:4px 10px;" +
     "font:14px sans-serif;background:rgba(255,255,255,0.8);border-radius:4px";
   document.body.appendChild(caption);
-  const stateAt = (t) => {
+  const at = (changes, t) => {
     let state = "";
-    for (const [start, s] of run.safety) { if (start <= t + 1e-6) state = s; }
+    for (const [start, s] of changes) { if (start <= t + 1e-6) state = s; }
     return state;
   };
   const update = () => {
     const actions = viewer.animator.actions;
     const t = actions.length ? Math.max(...actions.map((a) => a.time)) : 0;
-    const state = stateAt(t);
-    caption.textContent = t.toFixed(1) + " s" + (state ? " \u00b7 robot: " + state : "");
+    const state = at(run.safety, t);
+    let text = t.toFixed(1) + " s" + (state ? " \u00b7 robot: " + state : "");
+    if (run.seen) text += at(run.seen, t) ? " \u00b7 person seen" : " \u00b7 person not seen";
+    caption.textContent = text;
     requestAnimationFrame(update);
   };
   requestAnimationFrame(update);

@@ -22,6 +22,7 @@ from hrc_drake.evaluation.metrics import (
     robot_metrics,
     rounded,
     safety_metrics,
+    sensing_metrics,
     task_metrics,
     utilisation_metrics,
 )
@@ -75,7 +76,7 @@ def evaluate(record: RunRecord) -> dict:
 def _signal_metrics(record: RunRecord) -> dict:
     """The sections measured on the monitor's logged signals (empty without a monitor)."""
     if record.signals is None:
-        return {"utilisation": {"robot": {}}, "person": {}, "margin": {}}
+        return {"utilisation": {"robot": {}}, "person": {}, "margin": {}, "sensing": {}}
     times, signals = record.signal_times, record.signals
     moving_speed = record.setup.safety.moving_speed
     margin = margin_metrics(
@@ -89,6 +90,9 @@ def _signal_metrics(record: RunRecord) -> dict:
         "utilisation": {"robot": utilisation_metrics(times, signals, moving_speed)},
         "person": person_metrics(times, signals),
         "margin": margin,
+        "sensing": sensing_metrics(
+            times, signals, record.safety_status, tuple(record.setup.safety.sensors.all())
+        ),
     }
 
 
@@ -125,7 +129,7 @@ def _write_signals(out_dir: Path, record: RunRecord) -> dict[str, Path]:
             record.events,
         ),
     }
-    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals)
+    heatmap = plot_heatmap(out_dir / "heatmap.png", times, signals, record.furniture)
     if heatmap is not None:
         files["heatmap"] = heatmap
     return files

@@ -5,9 +5,9 @@ every node folded away below."""
 from html import escape
 from pathlib import Path
 
-from hrc_drake.evaluation.html import html_table, page
+from hrc_drake.evaluation.html import html_table, page, verdict
 from hrc_drake.evaluation.metrics import flatten
-from hrc_drake.evaluation.realism import realism_rows
+from hrc_drake.evaluation.realism import over_limits, realism_rows, realism_verdict
 
 SUMMARY_DEPTH = 2
 """Tree nodes down to this depth (the tree's top loop and its activities) are summarised..."""
@@ -22,14 +22,20 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path], sections: 
     is more HTML shown after the realism audit (the ergonomics)."""
     title = f"{metrics.get('scenario', '')} seed {metrics.get('seed', '')}"
     parts = [f"<h1>Run: {escape(title)}</h1>"]
+    realism = metrics.get("realism") or {}
+    if realism:
+        said = "The person's realism audit: " + "; ".join(realism_verdict(realism))
+        parts.append(verdict(said, bool(over_limits(realism)), "realism-verdict"))
     if "replay" in files:
         parts.append(f'<p><a href="{files["replay"].name}">Replay (Meshcat)</a></p>')
     for role in ("timeline", "heatmap"):
         if role in files:
             parts.append(f'<img src="{files[role].name}" style="max-width:100%">')
-    if metrics.get("realism"):
+    if realism:
         header = ["measure", "worst", "limit", "where", "within"]
-        parts.append("<h2>Realism</h2>" + html_table(header, realism_rows(metrics["realism"])))
+        rows = realism_rows(realism)
+        over = {k for k, row in enumerate(rows) if not row[-1]}
+        parts.append("<h2>Realism</h2>" + html_table(header, rows, over))
     if sections:
         parts.append(sections)
     parts.append("<h2>Metrics</h2>" + _metric_sections(metrics))

@@ -1,5 +1,7 @@
-"""timeline.png (separation and S_p, speed scale, speeds, actor states and task events over
-time) and heatmap.png (top view: where the person was, where separation was smallest)."""
+"""timeline.png (separation and S_p, with safety sensors what they sensed and when they did
+not see the person; speed scale, speeds, actor states and task events over time) and
+heatmap.png (top view: where the person was, where separation was smallest, and the cell's
+furniture)."""
 
 import math
 from pathlib import Path
@@ -7,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from hrc_drake.evaluation.figures import save_figure
+from hrc_drake.evaluation.record import Footprint
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.log import signal
 
@@ -15,6 +18,16 @@ HEAT_CELL = 0.1
 LEGEND_COLUMNS = 4
 LEGEND_ROW = 0.22
 """Height of a legend row, in the figure's height ratios."""
+SPEEDS = {
+    "robot_speed": ("robot: fastest point", "tab:blue"),
+    "approach_speed": ("robot: towards the person (v_r)", "tab:cyan"),
+    "walking_speed": ("person: walking (pelvis)", "tab:orange"),
+    "human_approach": ("person: closest region towards the robot", "tab:red"),
+}
+"""The speeds panel: signal -> (legend, colour); docs/safety.md defines them."""
+FURNITURE = "0.35"
+"""The heat map's colour of the cell's furniture (a grey both colour maps set off)."""
+LABEL = {"facecolor": "white", "alpha": 0.7, "edgecolor": "none", "pad": 1.0}
 
 
 def plot_timeline(
@@ -41,9 +54,8 @@ def timeline_figure(times, signals, states=None, events=None):
     axes[1].step(times, signal(signals, "scale"), where="post", color="tab:green")
     axes[1].set_ylim(-0.05, 1.05)
     axes[1].set_ylabel("speed scale")
-    for name, color in (("robot_speed", "tab:blue"), ("approach_speed", "tab:cyan")):
-        axes[2].plot(times, signal(signals, name), color=color, label=name.replace("_", " "))
-    axes[2].plot(times, signal(signals, "human_speed"), color="tab:orange", label="person speed")
+    for name, (label, color) in SPEEDS.items():
+        axes[2].plot(times, signal(signals, name), color=color, label=label, lw=1)
     axes[2].set_ylabel("m/s")
     axes[2].legend(fontsize=7, loc="upper right")
     end = float(times[-1]) if times.size else 0.0
@@ -59,6 +71,13 @@ def timeline_figure(times, signals, states=None, events=None):
 def _separation_panel(ax, times, signals) -> None:
     ax.plot(times, signal(signals, "separation"), label="separation", color="black")
     ax.plot(times, signal(signals, "protective"), label="S_p", color="tab:red", ls="--")
+    seen = signal(signals, "seen")
+    if np.isfinite(seen).any():  # safety sensors: what they reported, and when not
+        sensed = signal(signals, "sensed_separation")
+        ax.plot(times, sensed, label="sensed separation", color="tab:blue", lw=0.9)
+        sensed_sp = signal(signals, "sensed_protective")
+        ax.plot(times, sensed_sp, label="S_p (sensed)", color="tab:blue", ls=":", lw=0.9)
+        _shade(ax, times, seen == 0, "0.6", "person not seen")
     _shade(ax, times, signal(signals, "violation") > 0, "tab:red", "SSM violation")
     _shade(ax, times, signal(signals, "contact") > 0, "purple", "contact")
     ax.set_ylabel("m")
@@ -149,8 +168,18 @@ def _shade(ax, times, mask, color, label) -> None:
         )
 
 
-def plot_heatmap(path: Path, times: np.ndarray, signals: np.ndarray) -> Path | None:
-    """Time the person spent per floor cell, and the smallest separation seen from it."""
+def plot_heatmap(
+    path: Path, times: np.ndarray, signals: np.ndarray, furniture: tuple[Footprint, ...] = ()
+) -> Path | None:
+    """Time the person spent per floor cell, and the smallest separation seen from it, with
+    the cell's furniture drawn over both (a walk through a table shows inside its outline);
+    None when the person was never seen."""
+    fig = heatmap_figure(times, signals, furniture)
+    return save_figure(fig, path) if fig is not None else None
+
+
+def heatmap_figure(times, signals, furniture=()):
+    """The figure of `plot_heatmap` (None when the person was never seen)."""
     import matplotlib.pyplot as plt
 
     x, y = signal(signals, "person_x"), signal(signals, "person_y")
@@ -160,7 +189,8 @@ def plot_heatmap(path: Path, times: np.ndarray, signals: np.ndarray) -> Path | N
     dt = np.append(np.diff(times), 0.0)[known]
     x, y = x[known], y[known]
     separation = signal(signals, "separation")[known]
-    edges_x, edges_y = _edges(x), _edges(y)
+    corners = np.array([c for piece in furniture for c in piece.outline]).reshape(-1, 2)
+    edges_x, edges_y = _edges(np.append(x, corners[:, 0])), _edges(np.append(y, corners[:, 1]))
     time_spent, _, _ = np.histogram2d(x, y, [edges_x, edges_y], weights=dt)
     closest = np.full(time_spent.shape, np.nan)
     ix = np.clip(np.digitize(x, edges_x) - 1, 0, len(edges_x) - 2)
@@ -175,11 +205,29 @@ def plot_heatmap(path: Path, times: np.ndarray, signals: np.ndarray) -> Path | N
         shown = np.where(grid > 0, grid, np.nan) if grid is time_spent else grid
         image = ax.imshow(shown.T, origin="lower", extent=extent, cmap=cmap, aspect="equal")
         fig.colorbar(image, ax=ax, label=title)
+        _draw_furniture(ax, furniture)
         ax.plot(0, 0, "k+", ms=12)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
         ax.set_title(f"person: {title}")
-    return save_figure(fig, path)
+    return fig
+
+
+def _draw_furniture(ax, furniture: tuple[Footprint, ...]) -> None:
+    """Each piece's outline, hatched, and its name once at the middle of its pieces."""
+    from matplotlib.patches import Polygon
+
+    by_name: dict[str, list] = {}
+    for piece in furniture:
+        ax.add_patch(
+            Polygon(
+                piece.outline, closed=True, fill=False, edgecolor=FURNITURE, hatch="///", lw=1.0
+            )
+        )
+        by_name.setdefault(piece.name, []).extend(piece.outline)
+    for name, corners in by_name.items():
+        centre = np.mean(corners, axis=0)
+        ax.text(*centre, name, fontsize=6, ha="center", va="center", color=FURNITURE, bbox=LABEL)
 
 
 def _edges(values: np.ndarray) -> np.ndarray:

@@ -48,6 +48,8 @@ class Search:
     seed: int
     config: FalsifyConfig
     digest: str
+    name: str
+    """the scenario's `name`: what the search's directory, report and progress are called"""
 
     def spec(self, values: dict, out_dir: str = "") -> RunSpec:
         """The run of a trial that set the parameters to `values` (by name)."""
@@ -122,7 +124,8 @@ def prepare(
         )
     runs = tuple((name, value) for name, value in fixed if not name.startswith("falsify."))
     chosen = scenario.seed if seed is None else seed
-    return Search(path, scenario_arg, runs, chosen, scenario.falsify, scenario_hash(path))
+    digest = scenario_hash(path)
+    return Search(path, scenario_arg, runs, chosen, scenario.falsify, digest, scenario.name)
 
 
 def falsify(
@@ -189,7 +192,7 @@ def run_trials(
         study = optuna.create_study(direction="minimize", sampler=sampler(config, search.seed))
         trials: list[Trial] = []
         with tqdm(
-            total=budget, unit="trial", desc="falsify", disable=None if progress else True
+            total=budget, unit="trial", desc=search.name, disable=None if progress else True
         ) as bar:
             for start in range(0, budget, config.batch):
                 asked = [study.ask(space) for _ in range(min(config.batch, budget - start))]

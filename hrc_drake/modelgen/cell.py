@@ -1,4 +1,5 @@
-"""SDFormat models of the workcell: floor, tables, pedestal, conveyor, pallet, bin, shelf, parts.
+"""SDFormat models of the workcell: floor, tables, pedestal, conveyor, pallet, bin, shelf,
+fence, parts.
 
 Every model is one link named `body` with z up. Fixtures have their body origin on the floor
 (bottom centre), so the builder welds `body` to a floor pose; loose objects (parts, boxes)
@@ -25,6 +26,7 @@ ALUMINIUM: Color = (0.76, 0.77, 0.79, 1.0)
 RUBBER: Color = (0.13, 0.13, 0.14, 1.0)
 FLOOR_GREY: Color = (0.66, 0.66, 0.64, 1.0)
 BIN_BLUE: Color = (0.2, 0.36, 0.66, 1.0)
+GUARD_YELLOW: Color = (0.93, 0.76, 0.12, 1.0)
 CARDBOARD: Color = (0.72, 0.55, 0.35, 1.0)
 LEG = 0.05
 """m: square legs and uprights."""
@@ -143,6 +145,16 @@ def shelf(length: float, width: float, board_heights: tuple[float, ...], mass: f
     return CellObject(parts, mass, frames)
 
 
+def fence(length: float, height: float, mass: float) -> CellObject:
+    """A safety fence panel along x from the floor up (its mesh is one thin sheet), on two
+    posts at its ends."""
+    sheet = 0.02
+    parts = [block("panel", (length, sheet, height), (0, 0, height / 2), GUARD_YELLOW)]
+    for i, x in enumerate((-(length - LEG) / 2, (length - LEG) / 2)):
+        parts.append(block(f"post_{i}", (LEG, LEG, height), (x, 0, height / 2), STEEL))
+    return CellObject(parts, mass)
+
+
 def loose_box(size: tuple[float, float, float], mass: float, color: Color) -> CellObject:
     """A part or carton centred on its body origin, with `bottom`, `top` and `grasp` frames."""
     half = size[2] / 2
@@ -163,6 +175,7 @@ CELL_OBJECTS: dict[str, Callable[[], CellObject]] = {
     "euro_pallet": euro_pallet,
     "bin": lambda: open_bin(0.6, 0.4, 0.22, 2.0),
     "shelf": lambda: shelf(0.8, 0.4, (0.1, 0.6, 1.1, 1.6), 25.0),
+    "fence": lambda: fence(2.0, 1.4, 20.0),
     "part_small": lambda: loose_box((0.06, 0.04, 0.03), 0.1, (0.3, 0.45, 0.72, 1.0)),
     "part_medium": lambda: loose_box((0.12, 0.08, 0.05), 0.4, (0.86, 0.5, 0.12, 1.0)),
     "box_small": lambda: loose_box((0.3, 0.2, 0.2), 1.2, CARDBOARD),

@@ -1,7 +1,10 @@
 """The scenario's `safety:` section (loadable with Drake's `yaml_load_typed`; every field
 has a default, so a scenario without the section gets a monitor with ISO defaults)."""
 
-from dataclasses import dataclass
+import dataclasses
+from dataclasses import dataclass, field
+
+from hrc_drake.safety.sensors import Sensor, SensorsConfig
 
 ISO_13855 = "iso13855"
 CONSTANT = "constant"
@@ -37,6 +40,11 @@ class SafetyConfig:
 
     A contact is quasi-static (clamping) when the touched body region has cell geometry or
     another robot part within `clamping_gap` on its far side; otherwise it is transient.
+
+    With `sensors` (hrc_drake.safety.sensors) the monitor sees the person only through
+    them: it slows down for their detections, with each sensor's own response time, ISO
+    13855 intrusion distance C and measurement error Z_d in S_p. Without, it knows every
+    point of the person's body (ground truth).
     """
 
     enabled: bool = True
@@ -57,3 +65,21 @@ class SafetyConfig:
     moving_speed: float = 0.01
     contact_area_cm2: float = 1.0
     clamping_gap: float = 0.02
+    sensors: SensorsConfig = field(default_factory=SensorsConfig)
+
+    def truth(self) -> "SafetyConfig":
+        """The settings the real body is judged by (the run's violations and margin): with
+        sensors, the person is known as late as the slowest sensor reports them."""
+        if not self.sensors.present:
+            return self
+        return dataclasses.replace(self, sensing_time=self.sensors.response_time)
+
+    def seen_through(self, sensor: Sensor) -> "SafetyConfig":
+        """The settings S_p is computed with for the person as `sensor` sees them: its
+        response time, its intrusion distance C and its measurement error Z_d."""
+        return dataclasses.replace(
+            self,
+            sensing_time=sensor.response_time,
+            intrusion_distance=sensor.intrusion,
+            sensor_uncertainty=sensor.measurement_error,
+        )

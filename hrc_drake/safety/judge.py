@@ -4,7 +4,7 @@ contact assessments and the run's running totals."""
 import dataclasses
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from hrc_drake.safety.config import CONSTANT, MEASURED, SafetyConfig
 from hrc_drake.safety.messages import (
@@ -16,6 +16,7 @@ from hrc_drake.safety.messages import (
 )
 from hrc_drake.safety.pfl import QUASI_STATIC, TRANSIENT, assess_contact
 from hrc_drake.safety.proximity import Reading
+from hrc_drake.safety.sensors_view import SensorView
 from hrc_drake.safety.ssm import (
     NO_TERMS,
     REDUCED,
@@ -30,12 +31,14 @@ from hrc_drake.safety.ssm import (
 
 @dataclass(frozen=True)
 class Judge:
-    """The fixed inputs of judging: settings, the S_p model and the robot's effective mass
-    without a carried object (m_R = M/2 + tool)."""
+    """The fixed inputs of judging: settings, the S_p model of the real body and the
+    robot's effective mass without a carried object (m_R = M/2 + tool); with safety sensors,
+    each sensor's S_p model (by name)."""
 
     config: SafetyConfig
     model: SsmModel
     robot_mass: float
+    sensed: dict[str, SsmModel] = field(default_factory=dict)
 
     @functools.cached_property
     def far_model(self) -> SsmModel:
@@ -51,9 +54,13 @@ class Judge:
         """Whether the next `far_period` may pass unmeasured: the robot may move at full
         speed, nothing touches, and at the separation less the hysteresis a monitor that
         measured every `far_period` would keep full speed (`far_model`). Then no measurement
-        in between could have slowed the robot (tests/safety/test_far_rate.py)."""
+        in between could have slowed the robot (tests/safety/test_far_rate.py). Never with
+        safety sensors: their S_p counts one monitor period from a report to the robot, so
+        the monitor reads every report as it comes."""
         config = self.config
         if config.far_period <= config.period or status.scale < 1.0 or status.contact:
+            return False
+        if status.sensing is not None:
             return False
         room = status.separation - config.hysteresis
         return max_safe_scale(room, 0.0, self.far_model) >= 1.0
@@ -65,8 +72,11 @@ class Judge:
         before: SafetyStatus,
         payload: float,
         path_rate: float,
+        sensing: tuple[SensorView, ...] | None = None,
     ) -> SafetyStatus:
-        """`path_rate`: the fraction of full speed the robot moves at along its path."""
+        """`path_rate`: the fraction of full speed the robot moves at along its path;
+        `sensing`: the sensors' views of the person, which the scale then follows (the
+        violation is still judged on the real body, `reading`)."""
         config = self.config
         closest = reading.closest
         moving = reading.robot_speed > config.moving_speed
@@ -75,8 +85,14 @@ class Judge:
             separation, v_h = closest.distance, max(closest.human_approach, 0.0)
             v_r = max(closest.robot_approach, 0.0)
             terms = protective_separation(self.model, path_rate, reading.robot_speed, v_r, v_h)
-        safe = max_safe_scale(separation, v_h, self.model)
-        safe_with_margin = max_safe_scale(separation - config.hysteresis, v_h, self.model)
+        if sensing is None:
+            safe = max_safe_scale(separation, v_h, self.model)
+            safe_with_margin = max_safe_scale(separation - config.hysteresis, v_h, self.model)
+            sensed_protective = math.nan
+        else:
+            safe = self._sensed_scale(sensing, 0.0)
+            safe_with_margin = self._sensed_scale(sensing, config.hysteresis)
+            sensed_protective = self._sensed_protective(sensing, path_rate, reading.robot_speed)
         scale = next_scale(before.scale, safe, safe_with_margin, config.min_scale)
         scale = scale if config.ssm else 1.0
         robot_mass = self.robot_mass + payload
@@ -103,15 +119,41 @@ class Judge:
             scale=scale,
             safe_scale=safe,
             zone=zone(scale),
-            human_speed=reading.human_speed,
+            walking_speed=reading.walking_speed,
             robot_speed=reading.robot_speed,
             path_rate=path_rate,
             human_approach=v_h,
             violation=moving and separation < terms.total,
             contact=contact,
             ssm_enabled=config.ssm,
+            sensing=sensing,
+            sensed_protective=sensed_protective,
         )
         return _replaced(now, totals=updated_totals(before, now, config.moving_speed))
+
+    def _sensed_scale(self, sensing: tuple[SensorView, ...], hysteresis: float) -> float:
+        """The largest scale every sensor's view allows: S_p with its own model within the
+        separation it senses (less `hysteresis`), and its fields' limit; a person no
+        sensor sees is not slowed for, but a sensor that has reported nothing yet holds the
+        robot still (as its outputs do at power-up)."""
+        scale = 1.0
+        for view in sensing:
+            if self.config.sensors.speed_and_separation:
+                model = self.sensed[view.name]
+                scale = min(scale, max_safe_scale(view.separation - hysteresis, 0.0, model))
+            scale = min(scale, view.speed_limit if view.reported else 0.0)
+        return scale
+
+    def _sensed_protective(self, sensing, path_rate: float, robot_speed: float) -> float:
+        """S_p at the nearest detection, with its sensor's model; the robot's fastest point
+        stands in for its speed towards the person, whose direction the sensor cannot
+        know."""
+        seen = [view for view in sensing if view.seen]
+        if not seen:
+            return math.nan
+        nearest = min(seen, key=lambda view: view.separation)
+        model = self.sensed[nearest.name]
+        return protective_separation(model, path_rate, robot_speed, robot_speed, 0.0).total
 
 
 def updated_totals(before: SafetyStatus, now: SafetyStatus, moving_speed: float) -> SafetyTotals:

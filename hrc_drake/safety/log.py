@@ -3,7 +3,7 @@ anyone can check the verdict (numpy: `np.load("safety.npz")`).
 
 Arrays: one per entry of SIGNALS (see `hrc_drake.safety.messages`; `time` is when each
 update measured), plus the names the numbered entries refer to: `regions` (for `region`),
-`parts` (for `part`) and `zones` (for `zone`).
+`parts` (for `part`), `zones` (for `zone`) and `fields` (for `field`).
 """
 
 from pathlib import Path
@@ -12,6 +12,7 @@ import numpy as np
 
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.messages import SIGNALS
+from hrc_drake.safety.sensors_reading import FIELD_STATES
 from hrc_drake.safety.ssm import ZONES
 
 
@@ -37,6 +38,7 @@ def write_safety_log(path: Path, signals: np.ndarray, parts) -> Path:
         regions=np.array(REGIONS),
         parts=np.array(parts),
         zones=np.array(ZONES),
+        fields=np.array(FIELD_STATES),
     )
     return path
 

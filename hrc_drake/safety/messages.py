@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.pfl import ContactAssessment
+from hrc_drake.safety.sensors_reading import CLEAR
+from hrc_drake.safety.sensors_view import SensorView
 from hrc_drake.safety.ssm import FREE, NO_TERMS, ZONES, SsmTerms
 
 NO_PART = ""
@@ -115,18 +117,24 @@ class SafetyStatus:
     scale: float = 1.0
     safe_scale: float = 1.0
     zone: str = FREE
-    human_speed: float = 0.0
-    """fastest point of the person (m/s)"""
+    walking_speed: float = 0.0
+    """the person's pelvis along the floor (m/s)"""
     robot_speed: float = 0.0
     """fastest point of the robot (m/s)"""
     path_rate: float = 0.0
     """fraction of full speed the robot moves along its path"""
     human_approach: float = 0.0
-    """measured speed of the person's closest point towards the robot (m/s)"""
+    """measured speed of the person's closest point towards the robot, moving with its
+    body region (m/s; 0 moving away)"""
     violation: bool = False
     contact: tuple[ContactAssessment, ...] = ()
     ssm_enabled: bool = True
     totals: SafetyTotals = SafetyTotals()
+    sensing: tuple[SensorView, ...] | None = None
+    """each safety sensor's view of the person, which the scale follows (None: no sensors,
+    the monitor knows the person's body)"""
+    sensed_protective: float = math.nan
+    """S_p at the nearest detection, with that sensor's response time, C and Z_d (m)"""
 
     @property
     def protective(self) -> float:
@@ -137,6 +145,24 @@ class SafetyStatus:
     def approach_speed(self) -> float:
         """v_r: the robot's closest point towards the person (m/s)"""
         return self.ssm.v_r
+
+    @property
+    def sensed_separation(self) -> float:
+        """m from the nearest detection of the person to the robot (inf: not seen; NaN:
+        no sensors)"""
+        if self.sensing is None:
+            return math.nan
+        return min((v.separation for v in self.sensing), default=math.inf)
+
+    @property
+    def seen(self) -> bool:
+        """The person is seen: by a sensor, or always without sensors."""
+        return self.sensing is None or math.isfinite(self.sensed_separation)
+
+    @property
+    def field(self) -> int:
+        """The most urgent state of the sensors' active fields (sensors_reading.FIELD_STATES)."""
+        return max((v.field_state for v in self.sensing or ()), default=CLEAR)
 
     def __deepcopy__(self, memo):
         return self  # immutable: Drake's state copies may share it
@@ -152,7 +178,7 @@ class SafetyStatus:
             self.scale,
             self.robot_speed,
             terms.v_r,
-            self.human_speed,
+            self.walking_speed,
             ZONES.index(self.zone),
             float(self.violation),
             float(bool(self.contact)),
@@ -169,7 +195,15 @@ class SafetyStatus:
             self.path_rate,
             self.safe_scale,
             self.time,
+            _finite_or_nan(self.sensed_separation),
+            self.sensed_protective,
+            float(self.seen) if self.sensing is not None else math.nan,
+            float(self.field) if self.sensing is not None else math.nan,
         ]
+
+
+def _finite_or_nan(value: float) -> float:
+    return value if math.isfinite(value) else math.nan
 
 
 SIGNALS = (
@@ -178,7 +212,7 @@ SIGNALS = (
     "scale",
     "robot_speed",
     "approach_speed",
-    "human_speed",
+    "walking_speed",
     "zone",
     "violation",
     "contact",
@@ -196,10 +230,20 @@ SIGNALS = (
     "path_rate",
     "safe_scale",
     "time",
+    "sensed_separation",
+    "sensed_protective",
+    "seen",
+    "field",
 )
 """Entries of the `safety_signals` vector; `zone` is the index in ZONES, `region` in
 REGIONS and `part` in the monitor's part names (-1: no person), flags are 0/1, and an
 infinite separation (no person) is logged as NaN. `approach_speed` is v_r; `protective`
-is S_p = s_h + s_r + s_s + margins (or ISO 13855's least distance). `time` is when the
+is S_p = s_h + s_r + s_s + margins (or ISO 13855's least distance). The person's speeds:
+`walking_speed` their pelvis's along the floor, `human_approach` their closest body
+region's towards the robot (0 moving away; v_h under the `measured` rule), `v_h` the speed
+S_p assumed; `person_x`, `person_y` are where the pelvis is. `time` is when the
 update measured them: a logger publishing at the monitor's period records the previous
-update's values."""
+update's values. With safety sensors, `sensed_separation` is from the nearest detection of the
+person to the robot on the floor (NaN: not seen), `sensed_protective` S_p there, `seen` 1
+while a sensor reports the person, `field` the most urgent field state (index in
+`sensors_reading.FIELD_STATES`); all NaN without sensors."""

@@ -9,6 +9,11 @@ differencing at the monitor's rate would read 0 or too fast); the capsule gaps a
 less how far the parts moved, until a part moved `REFRESH_DISTANCE`. All of it lives in the
 reading's `memory`, which the monitor keeps as vector state.
 
+The person has two speeds here. `walking_speed` is the pelvis's along the floor. A pair's
+`human_approach` is that of the person's witness point towards the robot, moving with its
+body region's own frame: the closest region's approach never differences points of two
+regions, so when another region becomes the closest the speed is that region's own.
+
 Only the active parts are measured: the person, the arm and tool, and the object the robot
 holds, not every workpiece it might hold. Frames of inactive parts are NaN in the memory; a
 part that becomes active has no previous pose, so it counts as resting for that update.
@@ -22,6 +27,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
+
+PELVIS = "pelvis"
+"""The body region whose motion along the floor is the person's walking."""
 
 BOUND_SLACK = 1e-6
 """m taken off every capsule bound, so that rounding (in the bound or in Drake's distance)
@@ -74,9 +82,14 @@ class Reading:
     closest: PairReading | None
     contacts: tuple[PairReading, ...]
     robot_speed: float
-    human_speed: float
+    walking_speed: float
+    """the person's pelvis along the floor (m/s), between their pose samples"""
     person_xy: tuple[float, float]
+    """where the person's pelvis is on the floor"""
     memory: np.ndarray
+    robot: tuple[np.ndarray, np.ndarray, np.ndarray] = ()
+    """the watched robot parts' bounding capsules: starts and spans (parts × 3, world) and
+    radii"""
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,9 +137,10 @@ class ProximityMeter:
             ]
         )
         radius = np.array([r for _, _, r in segments])
+        self.part_radii = radius
         self.radii = radius[: self.n_human, None] + radius[None, self.n_human :] + BOUND_SLACK
-        self.human_parts = np.arange(self.n_human)
         self.human_frames = np.unique(self.part_frame[: self.n_human])
+        self.pelvis_frame = self.part_frame[[part.name for part in human].index(PELVIS)]
         sizes = [2, 12 * len(self.frames), 12 * len(self.human_frames)]
         bounds = np.cumsum([0, *sizes, 6 * len(self.geometries), self.radii.size])
         self._memory_parts = [slice(a, b) for a, b in itertools.pairwise(bounds)]
@@ -169,15 +183,17 @@ class ProximityMeter:
             for x in readings
             if x.distance <= 0.0
         )
-        centre = poses[self.human_frames, :, 3].mean(axis=0)
+        pelvis, pelvis_rate = poses[self.pelvis_frame, :2, 3], rates[self.pelvis_frame, :2, 3]
         memory = [[time, person_time], poses, rates[self.human_frames], *reference]
+        robot = ends[active.rows]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=contacts,
             robot_speed=self._fastest(rates, active.rows),
-            human_speed=self._fastest(rates, self.human_parts),
-            person_xy=(float(centre[0]), float(centre[1])),
+            walking_speed=math.hypot(*pelvis_rate),
+            person_xy=(float(pelvis[0]), float(pelvis[1])),
             memory=np.concatenate([np.ravel(m) for m in memory]),
+            robot=(robot[:, :, 0], robot[:, :, 1] - robot[:, :, 0], self.part_radii[active.rows]),
         )
 
     def _poses(self, query_object, frames: np.ndarray) -> np.ndarray:
@@ -238,8 +254,8 @@ class ProximityMeter:
         return gaps, (ends, all_gaps)
 
     def _fastest(self, rates: np.ndarray, parts: np.ndarray) -> float:
-        """Speed of the fastest end of the parts' bounding segments (a robot's tool tip,
-        a person's hand)."""
+        """Speed of the fastest end of the parts' bounding segments (the robot's tool tip,
+        or a carried object's corner)."""
         velocities = self._ends(rates, parts)
         return math.sqrt((velocities * velocities).sum(axis=1).max())
 

@@ -21,11 +21,11 @@ ISO_APPROACH = ("v_h_rule", "v_h", "v_h_near", "near_distance")
 
 
 def reference_model(config: SafetyConfig, stop: StopModel, command_latency: float) -> SsmModel:
-    """S_p's model with the monitor's reaction time and margins, the robot's `stop` and
-    command latency (s), and ISO 13855's approach speeds (2.0 m/s where S_p is at most
-    0.5 m, else 1.6 m/s)."""
+    """S_p's model with the monitor's reaction time (with sensors, their slowest response)
+    and margins, the robot's `stop` and command latency (s), and ISO 13855's approach
+    speeds (2.0 m/s where S_p is at most 0.5 m, else 1.6 m/s)."""
     iso = {name: getattr(SafetyConfig(), name) for name in ISO_APPROACH}
-    return SsmModel.from_config(dataclasses.replace(config, **iso), stop, command_latency)
+    return SsmModel.from_config(dataclasses.replace(config.truth(), **iso), stop, command_latency)
 
 
 def reference_protective(log: dict[str, np.ndarray], model: SsmModel) -> np.ndarray:

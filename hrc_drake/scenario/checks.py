@@ -30,6 +30,7 @@ from hrc_drake.human.survey import PERCENTILE_RANGE, SEXES
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.paths import add_model_package
 from hrc_drake.safety.config import V_H_RULES
+from hrc_drake.safety.sensors_checks import sensor_problems
 from hrc_drake.scenario.falsify import search_problems
 from hrc_drake.scenario.overrides import field_kind, field_type, overridden
 from hrc_drake.scenario.schema import RobotConfig, Scenario
@@ -136,6 +137,8 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     yield from _prefixed("cell", directive_problems(scenario.cell, _package_map(), RESERVED))
     yield from _station_problems(scenario)
     yield from _prefixed("workpieces", problems(scenario.workpieces))
+    latency = scenario.robot.motion.period
+    yield from _prefixed("safety", sensor_problems(scenario.safety, scenario.station, latency))
     if scenario.human is not None and len(scenario.human.start) != 3:
         yield ("human", "start"), "needs [x, y, yaw_deg]"
     if scenario.human is not None:

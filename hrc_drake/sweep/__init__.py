@@ -91,6 +91,8 @@ class SweepPlan:
     scenario_hash: str
     points: tuple[Overrides, ...]
     seeds: Seeds
+    name: str = ""
+    """the scenario's `name`: what the sweep's report and progress are called"""
 
     def __iter__(self):
         for point in self.points:
@@ -110,18 +112,28 @@ class SweepPlan:
         )
 
 
-def plan(scenario_path: Path, seeds: Seeds, sets: list[str]) -> SweepPlan:
-    """The sweep's runs; every grid point is checked like a scenario file before any run."""
+def plan(
+    scenario_path: Path,
+    seeds: Seeds,
+    sets: list[str],
+    fixed: Overrides = (),
+    options: dict[str, str] | None = None,
+) -> SweepPlan:
+    """The sweep's runs; every grid point is checked like a scenario file before any run.
+    `fixed` overrides hold for every run (`--duration`), `options` name the options that
+    gave them (as for `load_scenario`)."""
     from hrc_drake.scenario import Scenario, load_scenario
 
     axes = parse_sets(sets, Scenario)
-    if any(path == "seed" for path, _ in axes):
-        raise InputError("--set seed: use --seeds to choose seeds")
-    points = tuple(grid(axes))
-    for point in points:
-        load_scenario(scenario_path, point)
+    for path, _ in axes:
+        if path == "seed":
+            raise InputError("--set seed: use --seeds to choose seeds")
+        if path in dict(fixed):
+            raise InputError(f"--set {path}: {(options or {}).get(path)} sets it already")
+    points = tuple(tuple(fixed) + point for point in grid(axes))
+    names = [load_scenario(scenario_path, point, options).name for point in points]
     path = Path(scenario_path).resolve()
-    return SweepPlan(str(path), scenario_hash(path), points, seeds)
+    return SweepPlan(str(path), scenario_hash(path), points, seeds, names[0])
 
 
 def scenario_hash(path: Path) -> str:
@@ -141,7 +153,6 @@ def sweep(
     workers: int = 1,
     dask_address: str | None = None,
     progress: bool = False,
-    scenario_name: str = "",
     retry_failed: bool = False,
 ) -> SweepResult:
     """Runs the plan's runs not yet in `out_dir` (and with `retry_failed` those that
@@ -162,7 +173,7 @@ def sweep(
             total=len(specs),
             initial=len(done),
             unit="run",
-            desc=scenario_name or "sweep",
+            desc=specs.name,
             disable=None if progress else True,
         ) as bar:
 
@@ -183,5 +194,5 @@ def sweep(
     result.files = {"rows": store.jsonl, "csv": store.csv}
     if store.set_aside.is_file():
         result.files["damaged_rows"] = store.set_aside
-    result.files.update(write_sweep_report(out_dir, rows, specs.scenario_path, scenario_name))
+    result.files.update(write_sweep_report(out_dir, rows, specs.scenario_path, specs.name))
     return result

@@ -258,20 +258,26 @@ def test_a_tree_fault_during_a_run_ends_it_cleanly(name, tmp_path, hrc_drake):
         assert (out / kept).is_file(), kept
 
 
-def test_node_failures_are_summarised_after_a_run(tmp_path, hrc_drake):
-    """The robot is sent somewhere it cannot reach: the run succeeds, and the command line
-    says which node failed, how often and why."""
-    far = Case(
-        "scenario.yaml",
-        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
-        "pick_spot: {translation: [3.0, 3.0, 0.93]}",
+def test_node_failures_come_first_in_the_run_summary(tmp_path, hrc_drake):
+    """The robot grips where there is nothing to grip: the run succeeds, and the first thing
+    it prints says which node failed, how often and why, before any figure."""
+    gripper = Case(
+        "robot.xml",
+        '<SetRobotVelocity velocity="{speed}"/>',
+        '<SetRobotVelocity velocity="{speed}"/><RobotGrip name="grip_nothing"/>',
         (),
     )
-    scenario = write_workspace(tmp_path, far)
+    scenario = write_workspace(tmp_path, gripper)
+    text = scenario.read_text().replace(
+        "  configurations_deg:", "  tool: vacuum_gripper\n  configurations_deg:"
+    )
+    scenario.write_text(text)
     status, stdout, err = hrc_drake("run", scenario, "--out", tmp_path / "run", "--duration", "0.3")
     assert status == 0, err
-    assert "tree nodes that failed:" in stdout
-    summary = stdout.split("tree nodes that failed:")[1].splitlines()[1].strip()
-    assert summary.startswith("robot Reach::")
-    assert "/RobotMove::" in summary
-    assert "first: failed: target unreachable" in summary
+    first, reason = stdout.splitlines()[:2]
+    assert (
+        first == "corpus: 1 tree node failed (an actor refused or could not carry out a command):"
+    )
+    assert reason.startswith("  robot grip_nothing: failed ")
+    assert reason.endswith("first: failed: nothing graspable at the robot's grasp frame")
+    assert stdout.splitlines()[2].startswith("corpus: simulated 0.3 s")

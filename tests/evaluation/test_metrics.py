@@ -12,8 +12,14 @@ from hrc_drake.evaluation.metrics import (
     task_metrics,
     utilisation_metrics,
 )
+from hrc_drake.evaluation.record import Footprint
 from hrc_drake.evaluation.run_report import write_run_html
-from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline, timeline_figure
+from hrc_drake.evaluation.timeline import (
+    heatmap_figure,
+    plot_heatmap,
+    plot_timeline,
+    timeline_figure,
+)
 from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import (
     SIGNALS,
@@ -54,7 +60,7 @@ def test_person_walks_three_metres_and_waits_two_seconds():
     person = signals(
         person_x=[0.0, 1.0, 2.0, 2.0, 2.0],
         person_y=[0.0, 0.0, 0.0, 0.0, 1.0],
-        human_speed=[1.0, 1.0, 1.0, 0.0, 0.0],
+        walking_speed=[1.0, 1.0, 1.0, 0.0, 0.0],
     )
     assert person_metrics(TIMES, person) == {"walking_distance": 3.0, "waiting_time": 2.0}
 
@@ -145,7 +151,7 @@ def test_figures_and_report_html(tmp_path):
         protective=np.full_like(times, 0.8),
         scale=np.clip((x - 1.0) / 1.0, 0, 1),
         robot_speed=np.clip(x - 1.0, 0, 1),
-        human_speed=np.full_like(times, 0.6),
+        walking_speed=np.full_like(times, 0.6),
         violation=(x < 1.2).astype(float),
         person_x=x,
         person_y=np.zeros_like(times),
@@ -206,3 +212,36 @@ def test_report_html_summarises_the_trees_and_folds_their_nodes(tmp_path):
     assert "<td>Main/Activity297</td>" in shown and "<td>Main/Activity296</td>" not in shown
     assert folded.count("<tr>") == len(nodes) + 1
     assert "<td>stops</td><td>2</td>" in shown
+
+
+TABLE = Footprint("work_table", ((-0.6, 0.3), (0.6, 0.3), (0.6, 1.1), (-0.6, 1.1)))
+SHELF = Footprint("shelf", ((-2.8, 3.7), (-2.0, 3.7), (-2.0, 4.1), (-2.8, 4.1)))
+
+
+def test_the_heat_map_draws_the_furniture_a_walk_went_through():
+    """The person walks across the table from (0.05, 2) to (0.05, -0.5): both panels draw the
+    table's outline and name it, the walk's cells inside the outline are coloured, and the
+    map reaches out to the shelf the person never came near."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Polygon
+
+    times = np.linspace(0.0, 2.5, 251)
+    data = signals(
+        person_x=np.full_like(times, 0.05),
+        person_y=2.0 - times,
+        separation=np.full_like(times, 1.0),
+    )
+    fig = heatmap_figure(times, data, (TABLE, SHELF))
+    for ax in fig.axes[:2]:  # the two panels (then their colour bars)
+        outlines = [p.get_xy()[:4].tolist() for p in ax.patches if isinstance(p, Polygon)]
+        assert [list(c) for c in TABLE.outline] in outlines
+        assert [list(c) for c in SHELF.outline] in outlines
+        assert {t.get_text() for t in ax.texts} == {"work_table", "shelf"}
+        x0, x1, y0, y1 = ax.images[0].get_extent()
+        assert x0 <= -2.8 and y1 >= 4.1
+        heat = ax.images[0].get_array()
+        rows = (np.arange(heat.shape[0]) + 0.5) * (y1 - y0) / heat.shape[0] + y0
+        column = int((0.05 - x0) / (x1 - x0) * heat.shape[1])
+        inside = (rows > 0.3) & (rows < 1.1)
+        assert np.all(np.isfinite(heat[inside, column]))  # the walk shows in the table
+    plt.close(fig)

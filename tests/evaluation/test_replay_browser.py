@@ -1,24 +1,20 @@
-"""replay.html as a user sees it: opened in headless Chromium, the animation sought to a carry
-and to a hand-over (the times and holders come from the run's own timeline in the page), the
-held object must touch the holding hand(s) in the page's three.js scene, and the canvas must
-show the scene.
-
-Chromium is Debian's (`make chromium` installs it, as Graphviz is installed); playwright
-drives it through `executable_path`, so no browser is downloaded.
+"""replay.html as a user sees it: opened in headless Chromium (tests/browser.py), the
+animation sought to a carry and to a hand-over (the times and holders come from the run's own
+timeline in the page), the held object must touch the holding hand(s) in the page's three.js
+scene, and the canvas must show the scene.
 """
 
 import json
-import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import pytest
 from matplotlib.image import imread
-from playwright.sync_api import sync_playwright
 
+from hrc_drake.evaluation.realism import over_limits, realism_verdict
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
+from tests.browser import chromium_page, opened
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "collaboration.yaml"
 SEED = 15
@@ -29,16 +25,8 @@ HAND_GAP = 0.02
 """m: the held object's surface lies within this of the holding hand's surface (outside it
 or inside it)."""
 MB_PER_MINUTE = 5.0
-CHROMIUM_FLAGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+LOAD_TIMEOUT = 120_000
+"""ms the page may take to load its animation (a busy machine takes more than 30 s)"""
 
 GAPS_JS = """
 (span) => {
@@ -87,21 +75,17 @@ def replay(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def page(replay):
-    chromium = shutil.which("chromium")
-    assert chromium, "Chromium is missing: run `make chromium` (Debian's chromium package)"
-    with sync_playwright() as playwright:
-        context = playwright.chromium.launch_persistent_context(
-            tempfile.mkdtemp(prefix="chromium-"),
-            executable_path=chromium,
-            args=CHROMIUM_FLAGS,
-            headless=True,
-            viewport={"width": 1280, "height": 720},
-        )
-        page = context.new_page()
-        page.goto(replay.as_uri())
-        page.wait_for_function("() => window.viewer && viewer.animator.actions.length > 0")
+    yield from open_page(replay)
+
+
+def open_page(replay: Path):
+    """The replay opened in headless Chromium, its animation loaded (a generator: the
+    browser closes when it is resumed)."""
+    with chromium_page() as page:
+        opened(page, replay)
+        loaded = "() => window.viewer && viewer.animator.actions.length > 0"
+        page.wait_for_function(loaded, timeout=LOAD_TIMEOUT)
         yield page
-        context.close()
 
 
 def timeline(page) -> dict:
@@ -189,3 +173,19 @@ def test_the_caption_shows_the_robots_safety_state(page):
 def test_the_replay_is_small(replay):
     megabytes = replay.stat().st_size / 1e6
     assert megabytes <= MB_PER_MINUTE * DURATION / 60, f"{megabytes:.1f} MB"
+
+
+def test_the_runs_report_page_opens_with_its_realism_verdict(page, replay):
+    """The page of the same run (in a tab beside the replay): the audit's verdict first, as
+    report.json has it, marked red when a measure is beyond its limit."""
+    metrics = json.loads((replay.parent / "report.json").read_text())
+    over = over_limits(metrics["realism"])
+    report = opened(page.context.new_page(), replay.parent / "report.html")
+    verdict = report.locator("#realism-verdict")
+    assert verdict.is_visible()
+    assert verdict.inner_text() == "The person's realism audit: " + "; ".join(
+        realism_verdict(metrics["realism"])
+    )
+    assert (verdict.evaluate("(e) => e.className") == "flagged") == bool(over)
+    assert verdict.bounding_box()["y"] < report.locator("img").first.bounding_box()["y"]
+    report.close()

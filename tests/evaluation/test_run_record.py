@@ -2,10 +2,13 @@
 `evaluate` and `write_run_directory` one after the other, and the record holds what the
 run did."""
 
+from xml.etree import ElementTree
+
 import numpy as np
 import pytest
 
 from hrc_drake.evaluation.report import evaluate, write_run_directory
+from hrc_drake.paths import resource_dir
 from hrc_drake.runner import prepare_run_directory, run, run_setup, simulate
 from hrc_drake.scenario import load_scenario
 from hrc_drake.wiring import AGENTS
@@ -60,3 +63,22 @@ def test_a_record_evaluates_the_same_every_time(split):
     assert evaluate(record) == metrics
     start = record.robot_states[: len(record.setup.initial_positions), 0]
     np.testing.assert_allclose(start, record.setup.initial_positions, atol=1e-12)
+
+
+def test_the_record_holds_the_furniture_the_person_walks_round(split):
+    """walk_up welds the work table (its top 1.2 m by 0.8 m, models/cell/work_table.sdf) at
+    (0, 0.7): its footprint, robot pedestal and robot base are what the heat map draws."""
+    record, _, _ = split
+    top = ElementTree.parse(resource_dir("models") / "cell" / "work_table.sdf").find(
+        ".//collision[@name='top']/geometry/box/size"
+    )
+    width, depth, _ = map(float, top.text.split())
+    table = np.array(
+        [c for piece in record.furniture if piece.name == "work_table" for c in piece.outline]
+    )
+    np.testing.assert_allclose(
+        [*table.min(axis=0), *table.max(axis=0)],
+        [-width / 2, 0.7 - depth / 2, width / 2, 0.7 + depth / 2],
+        atol=1e-9,
+    )
+    assert {piece.name for piece in record.furniture} == {"work_table", "robot_pedestal", "iisy"}

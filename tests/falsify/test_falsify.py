@@ -14,6 +14,7 @@ import pytest
 
 from hrc_drake.cli import main
 from hrc_drake.falsify import falsify, prepare
+from hrc_drake.paths import resource_dir
 from hrc_drake.sweep import parse_seeds, plan, sweep
 
 SHORT = ("--duration", "7", "--set", "falsify.parameters.set_off.high=1000")
@@ -122,3 +123,21 @@ def test_scenario_length_search_against_as_many_seeds(tmp_path):
     correct = falsify(prepare("walk_up", 0, (("duration", 14.0),)), 12, tmp_path / "ok", workers=2)
     assert not correct.violations and not correct.failed
     assert correct.worst[0].margin["value"] > 0
+
+
+def test_a_search_is_named_by_its_scenarios_name_not_its_file(tmp_path, hrc_drake, monkeypatch):
+    """walk_up saved as cell.yaml and called `watching`: the search's directory, report
+    title, result line and progress are `watching`, never `cell`."""
+    text = (resource_dir("scenarios") / "walk_up.yaml").read_text()
+    text = text.replace("name: walk_up", "name: watching")
+    (tmp_path / "cell.yaml").write_text(text.replace("../trees/", f"{resource_dir('trees')}/"))
+    monkeypatch.chdir(tmp_path)
+    one = ("--budget", "1", "--set", "falsify.batch=1", "--set", "falsify.worst=1")
+    status, said, err = hrc_drake("falsify", "cell.yaml", "--duration", "1", *one, "--workers", "1")
+    assert status == 0, err
+    assert said.splitlines()[0].startswith("watching: 1 trials (0 failed)")
+    assert [p.name for p in (tmp_path / "searches").iterdir()] == ["watching"]
+    page = (tmp_path / "searches" / "watching" / "falsify.html").read_text()
+    assert "<title>falsify watching</title>" in page
+    assert "<h1>Worst cases of watching</h1>" in page
+    assert "cell" not in page.replace("cell.yaml", "")

@@ -135,13 +135,21 @@ def worst_stopping_times(variant: str) -> tuple[list, list, float]:
     return [0.0, *levels], [max(0.0, worst[0] - slope * levels[0]), *worst], kappa
 
 
+def sensing_time(config) -> float:
+    """How late the person is known: the slowest safety sensor's response time, or without
+    sensors the monitor's own sensing time."""
+    sensors = [*config.sensors.scanners.values(), *config.sensors.light_curtains.values()]
+    return max((sensor.response_time for sensor in sensors), default=config.sensing_time)
+
+
 def recompute(outcome, variant: str, command_latency: float = 0.01) -> Recomputed:
     """S_p = v_h (T_r + T_s) + v_r T_r + S_s + C + Z_d + Z_r at every logged update, v_h by
-    ISO 13855 (the walk-in cell's rule); the directed speeds of both witness points too."""
+    ISO 13855 (the walk-in cell's rule), of the real body (with sensors too, whose response
+    time T_r then holds); the directed speeds of both witness points too."""
     config = outcome.config
     scene = Scene(outcome.scenario)
     speeds, times, kappa = worst_stopping_times(variant)
-    t_r = config.sensing_time + config.period + command_latency
+    t_r = sensing_time(config) + config.period + command_latency
     margins = config.intrusion_distance + config.sensor_uncertainty + config.robot_uncertainty
     rates = outcome.signals_named("path_rate")
     result = Recomputed(*([] for _ in range(8)))

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 from pydrake.geometry import SceneGraph
 from pydrake.systems.framework import DiagramBuilder
+from pydrake.trajectories import PiecewisePolynomial
 
-from hrc_drake.human.body import parse_human
+from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.safety.geometry import body_parts, human_parts
 from hrc_drake.safety.proximity import ProximityMeter
 from hrc_drake.scenario import load_scenario
@@ -132,8 +133,44 @@ def test_person_speed_is_measured_between_their_pose_samples():
         )
         memory = reading.memory
         if time > 1.0:  # walking in a straight line since 0.92 s
-            readings.append(reading.human_speed)
+            readings.append(reading.walking_speed)
     np.testing.assert_allclose(readings, speed, rtol=1e-9)
+
+
+def swinging_arm(bearing: float, distance: float, period: float = 1.0):
+    """Person positions: standing `distance` metres from the robot's base facing it, the
+    right arm swinging ±60° at the shoulder once per `period` (the hand about 4 m/s)."""
+    body = human_body()
+    q = body.standing_pose()
+    q[body.index("base_yaw")] = bearing + math.pi
+    q[body.index("base_x")] = distance * math.cos(bearing)
+    q[body.index("base_y")] = distance * math.sin(bearing)
+    times = np.arange(0.0, 3.0, 0.01)
+    columns = []
+    for t in times:
+        q[body.index("right_shoulder_flexion")] = math.radians(60) * math.sin(2 * math.pi * t)
+        columns.append(body.plant_positions(q))
+    return PiecewisePolynomial.FirstOrderHold(times, np.array(columns).T)
+
+
+def test_walking_speed_is_the_pelvis_not_a_swinging_arm():
+    """A person who stands and swings an arm does not walk, however fast the hand moves; the
+    hand, closest to the robot, approaches it by its own motion."""
+    cell = Cell()
+    person = swinging_arm(math.radians(55), 1.0)
+    robot = cell.meter.active(np.arange(len(cell.robot)))
+    memory, walking, hand_approach = None, [], []
+    for time in np.arange(0.0, 2.0, PERIOD):
+        sample = math.floor(time * 60.0 + 1e-9) / 60.0
+        reading = cell.meter.measure(
+            cell.query_at(time, person, sample), memory, time, robot, sample
+        )
+        memory = reading.memory
+        walking.append(reading.walking_speed)
+        if reading.closest.region == "hand":
+            hand_approach.append(reading.closest.human_approach)
+    assert max(walking) < 1e-9
+    assert max(hand_approach) > 1.0
 
 
 def readings_over_the_walk(cell: Cell, person, duration: float):

@@ -6,6 +6,12 @@ plant does not see their geometry, only the monitor does.
 
 `simulate(case)` returns everything a test checks: the monitor's final status and logged
 signals, the robot's joint positions and the person's positions at every monitor update.
+
+A case may watch the person through a safety sensor instead (`Case.sensor`): a laser
+scanner 2 m to the side of the approach from +y (bearing 90°), 0.3 m above the floor
+(`SEEN`; `OCCLUDED` adds a wall of fence panels between it and the whole approach), or a
+light curtain across that approach (`CURTAIN`). Every reading it takes is kept
+(`Outcome.readings`).
 """
 
 import functools
@@ -26,13 +32,17 @@ from hrc_drake.messages import FINISHED
 from hrc_drake.motion.messages import MoveJoints
 from hrc_drake.ports import message_value
 from hrc_drake.safety.config import SafetyConfig
+from hrc_drake.safety.geometry import human_parts
 from hrc_drake.safety.messages import SIGNALS
+from hrc_drake.safety.sensors import LaserScanner, LightCurtain, SensorsConfig
+from hrc_drake.safety.sensors_reading import SensorReading
 from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station import add_station_models, model_parser
 from hrc_drake.systems.robot_controller import add_robot_controller
 from hrc_drake.systems.robot_motion import add_robot_motion
 from hrc_drake.systems.safety_monitor import add_safety_monitor
+from hrc_drake.systems.safety_sensors import add_safety_sensors
 from hrc_drake.wiring import ROBOT_MOTION
 from tests.safety.approach_cell import keep_person_out_of_contact, kinematic
 
@@ -69,6 +79,25 @@ cell:
   - add_model: {{name: robot_pedestal, file: package://hrc_drake_models/cell/robot_pedestal.sdf}}
   - add_weld: {{parent: world, child: robot_pedestal::body}}
 """
+WALL = """
+  - add_model: {{name: wall_{k}, file: package://hrc_drake_models/cell/fence.sdf}}
+  - add_weld:
+      parent: world
+      child: wall_{k}::body
+      X_PC: {{translation: [-1.0, {y}, 0.0], rotation: !Rpy {{deg: [0, 0, 90]}}}}
+"""
+SEEN, OCCLUDED, CURTAIN = "scanner", "occluded-scanner", "curtain"
+SCANNER = LaserScanner(pose=[-2.0, 1.0, 0.0], response_time=0.12)
+"""Beside the approach from +y, looking along +x; its response (three 40 ms scans) is
+slower than the monitor's default sensing time, so S_p shows which it uses."""
+LIGHT_CURTAIN = LightCurtain(ends=[[-1.0, 2.6], [1.0, 2.6]], heights=[0.3, 1.5])
+"""Across the approach from +y, 2.6 m out: ISO 13855's S for its 30 mm resolution and the
+R760's stop from full speed (1.55 m) beyond the reach"""
+WALL_PANELS = (1.4, 3.4)
+"""y of the fence panels (2 m long, along y at x = -1, beyond the robot's reach) that hide
+the approach from it"""
+START_SCANNED = 4.5
+"""m from the base axis where a scanned person starts (beyond the scanner's S_p)"""
 
 
 @dataclass(frozen=True)
@@ -84,6 +113,9 @@ class Case:
     ssm: bool = True
     stand: float = STAND
     hold: float = HOLD
+    sensor: str = ""
+    """"": the monitor knows the body; SEEN or OCCLUDED: it sees the person through
+    SCANNER, CURTAIN through LIGHT_CURTAIN"""
 
     @property
     def id(self) -> str:
@@ -91,7 +123,8 @@ class Case:
         ssm = "ssm" if self.ssm else "no-ssm"
         where = f"{self.start:.1f}-{self.stand:.2f}m"
         held = "" if self.hold == HOLD else f"-hold{self.hold:.1f}s"
-        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}"
+        scanned = f"-{self.sensor}" if self.sensor else ""
+        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}{scanned}"
 
     @property
     def person(self) -> PiecewisePolynomial:
@@ -113,14 +146,19 @@ class Outcome:
     config: SafetyConfig
     part_names: tuple
     scenario: Scenario
+    readings: list[SensorReading]
+    """every reading the sensor took (none without one)"""
 
     def signals_named(self, name: str) -> np.ndarray:
         return self.signals[SIGNALS.index(name)]
 
 
-def scenario(variant: str) -> Scenario:
+def scenario(variant: str, occluded: bool = False) -> Scenario:
     start = [-SWEEP_A1, *SWEEP_DEG[1:]]
-    return yaml_load_typed(schema=Scenario, data=CELL.format(variant=variant, start=start))
+    text = CELL.format(variant=variant, start=start)
+    if occluded:
+        text += "".join(WALL.format(k=k, y=y) for k, y in enumerate(WALL_PANELS))
+    return yaml_load_typed(schema=Scenario, data=text)
 
 
 class Shuttle(LeafSystem):
@@ -213,8 +251,9 @@ def duration(case: Case) -> float:
 
 
 def build(case: Case):
-    scene = scenario(case.variant)
-    config = SafetyConfig(ssm=case.ssm, robot_speed=ROBOT_SPEED)
+    scene = scenario(case.variant, case.sensor == OCCLUDED)
+    sensors = sensors_of(case.sensor)
+    config = SafetyConfig(ssm=case.ssm, robot_speed=ROBOT_SPEED, sensors=sensors)
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(scene.plant, builder)
     arm, _ = add_station_models(plant, model_parser(plant), scene.station)
@@ -237,7 +276,52 @@ def build(case: Case):
         "signals": LogVectorOutput(monitor.GetOutputPort("safety_signals"), builder, config.period),
         "robot": LogVectorOutput(plant.get_state_output_port(arm), builder, config.period),
     }
+    if case.sensor:
+        sensor, logs["readings"] = _add_sensor(
+            builder, scene_graph, plant, human_plant, human, sensors
+        )
+        builder.Connect(
+            sensor.GetOutputPort("sensor_readings"), monitor.GetInputPort("sensor_readings")
+        )
     return builder.Build(), monitor, logs, config, scene
+
+
+def sensors_of(sensor: str) -> SensorsConfig:
+    if sensor == CURTAIN:
+        return SensorsConfig(light_curtains={sensor: LIGHT_CURTAIN})
+    return SensorsConfig(scanners={sensor: SCANNER}) if sensor else SensorsConfig()
+
+
+def _add_sensor(builder, scene_graph, plant, human_plant, human, sensors: SensorsConfig):
+    """The sensor reading the scene, and a probe keeping every reading it takes."""
+    inspector = scene_graph.model_inspector()
+    person = [part.geometry for part in human_parts(human_plant, inspector, human)]
+    fixed = [
+        geometry
+        for body in plant.GetBodiesWeldedTo(plant.world_body())
+        for geometry in plant.GetCollisionGeometriesForBody(body)
+    ]
+    sensor = add_safety_sensors(builder, scene_graph, sensors, person, fixed, seed=0)
+    ((name, config),) = sensors.all().items()
+    probe = builder.AddSystem(ReadingsProbe(name, config.scan_time))
+    builder.Connect(sensor.GetOutputPort("sensor_readings"), probe.get_input_port())
+    return sensor, probe
+
+
+class ReadingsProbe(LeafSystem):
+    """Keeps the newest reading of the sensor `name` at every scan."""
+
+    def __init__(self, name: str, period: float):
+        super().__init__()
+        self._name = name
+        self.readings: list[SensorReading] = []
+        self.DeclareAbstractInputPort("sensor_readings", message_value())
+        self.DeclarePeriodicPublishEvent(period, period / 2, self._keep)
+
+    def _keep(self, context) -> None:
+        history = self.get_input_port().Eval(context).get(self._name, ())
+        if history and (not self.readings or history[-1].time > self.readings[-1].time):
+            self.readings.append(history[-1])
 
 
 def _kinematic_person(builder, scene_graph, case: Case):
@@ -280,4 +364,5 @@ def simulate(case: Case) -> Outcome:
         config=config,
         part_names=monitor.part_names,
         scenario=scene,
+        readings=logs["readings"].readings if "readings" in logs else [],
     )

@@ -1,0 +1,116 @@
+"""What a run and a sweep tell the reader first: the realism audit's verdict (within its
+limits, or the measure farthest beyond its limit with what, where and when), sweep
+aggregates that count a run without an event as 0 and say over how many runs a figure is,
+and how many runs of a sweep broke the standard or the realism limits."""
+
+import pytest
+
+from hrc_drake.cli.simulate import key_metrics
+from hrc_drake.evaluation.realism import LIMITS, realism_verdict
+from hrc_drake.evaluation.sweep_report import summarize
+
+
+def realism(**worst) -> dict:
+    """A report's `realism` section: every measure 0 but those given as (max, time, what)."""
+    section = {
+        name: {"max": 0.0, "time": 0.0, key: ""}
+        for name, key in (
+            ("penetration_static", "where"),
+            ("penetration_objects", "where"),
+            ("hand_object_gap", "object"),
+            ("carried_tilt_deg", "object"),
+            ("foot_slip", "point"),
+        )
+    }
+    for name, (value, time, what) in worst.items():
+        key = next(k for k in section[name] if k not in ("max", "time"))
+        section[name] = {"max": value, "time": time, key: what}
+    section["pelvis_speed"] = {
+        "strides": 12,
+        "mean_speed": 1.3,
+        "variation_median": 0.07,
+        "variation_max": 0.09,
+    }
+    return section
+
+
+OVER = realism(
+    penetration_static=(0.163, 36.2, "pelvis in work_table"),
+    foot_slip=(0.038, 12.0, "right_heel"),
+    carried_tilt_deg=(20.0, 50.5, "box 3"),
+)
+
+
+def test_the_verdict_leads_with_the_measure_farthest_beyond_its_limit():
+    """16 times its limit beats 3.8 times and 1.3 times, whatever the units."""
+    assert realism_verdict(OVER) == [
+        "3 of 6 measures over their limits; worst: body in the cell's geometry 16.3 cm "
+        "(limit 1 cm): pelvis in work_table at 36.2 s",
+        "also: standing foot slid 3.8 cm (limit 1 cm): right_heel at 12.0 s",
+        "also: carried object tilted 20.0° (limit 15°): box 3 at 50.5 s",
+    ]
+
+
+def test_within_the_limits_says_so_and_without_a_person_nothing():
+    at_limits = realism(**{name: (limit, 1.0, "x") for name, limit in LIMITS.items()})
+    assert realism_verdict(at_limits) == ["within its limits (6 measures)"]
+    assert realism_verdict({}) == []
+
+
+def test_the_run_summary_prints_the_verdict():
+    lines = key_metrics({"realism": OVER})
+    assert lines[-3].startswith("realism: 3 of 6 measures over their limits; worst: body in")
+    assert lines[-2:] == [
+        "  also: standing foot slid 3.8 cm (limit 1 cm): right_heel at 12.0 s",
+        "  also: carried object tilted 20.0° (limit 15°): box 3 at 50.5 s",
+    ]
+    assert key_metrics({"realism": realism()}) == ["realism: within its limits (6 measures)"]
+
+
+def row(seed: int, events: dict, margin: float | None, section: dict) -> dict:
+    """A sweep's row of a successful run: its task events, margin and realism audit."""
+    metrics = {
+        "tasks": {
+            "events": events,
+            "throughput_per_hour": {name: 60.0 * n for name, n in events.items()},
+        },
+        "realism": section,
+    }
+    if margin is not None:
+        metrics["margin"] = {"value": margin, "violation": margin < 0}
+    key = f"seed={seed}"
+    return {"key": key, "seed": seed, "set": {}, "status": "ok", "error": "", "metrics": metrics}
+
+
+ROWS = [
+    row(0, {"inspect_conveyor": 1, "part_finished": 3}, 0.3, OVER),
+    row(1, {"part_finished": 2}, -0.1, realism()),
+    row(2, {"part_finished": 4}, None, realism()),  # the robot never moved near the person
+    row(3, {"part_finished": 3}, 0.2, realism(foot_slip=(0.02, 3.0, "left_toe"))),
+]
+
+
+def test_a_run_without_an_event_counts_it_as_zero():
+    """inspect_conveyor happened once in four runs: 0.25 per run, median 0, not '1 [1, 1]'."""
+    group = summarize(ROWS, "cell", "cell.yaml")["groups"][""]
+    assert group["runs"] == 4
+    stats = group["metrics"]["tasks.events.inspect_conveyor"]
+    assert (stats["count"], stats["mean"], stats["p50"], stats["p100"]) == (4, 0.25, 0.0, 1.0)
+    rate = group["metrics"]["tasks.throughput_per_hour.inspect_conveyor"]
+    assert (rate["count"], rate["mean"]) == (4, 15.0)
+
+
+def test_a_figure_some_runs_lack_says_over_how_many_runs_it_is():
+    group = summarize(ROWS, "cell", "cell.yaml")["groups"][""]
+    margin = group["metrics"]["margin.value"]
+    assert margin["count"] == 3 and margin["p0"] == pytest.approx(-0.1)
+
+
+def test_the_sweep_counts_runs_that_break_the_standard_and_the_realism_limits():
+    group = summarize(ROWS, "cell", "cell.yaml")["groups"][""]
+    assert group["violating_runs"] == 1
+    assert group["realism"] == {
+        "audited": 4,
+        "over_limits": 2,
+        "measures": {"carried_tilt_deg": 1, "foot_slip": 2, "penetration_static": 1},
+    }
