@@ -24,7 +24,13 @@ from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import TARGETED, Unreachable, aim_clip
+from hrc_drake.human.targeting import (
+    TARGETED,
+    WITHDRAWAL,
+    Unreachable,
+    aim_clip,
+    withdrawal,
+)
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
@@ -109,16 +115,30 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
     aim, carry = None, _carry(performer, command.hold)
+    furniture = performer.furniture.with_boxes(command.nearby)
     if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
         hands, takes = _aimed_hands(performer, clip, command, pose)
+        lowest = None
         if takes:
             carry = _carry(performer, hold_of(command.grasp, pose[2]))
+            top = command.grasp.center[2] + command.grasp.size[2] / 2
+            lowest = dict.fromkeys(hands, top)
         placed = lambda q: place(performer, q, *pose)  # noqa: E731
-        aim = aim_clip(performer.body, clip, placed, hands, pose[2], carry, takes)
+        aim = aim_clip(
+            performer.body,
+            clip,
+            placed,
+            hands,
+            pose[2],
+            carry,
+            takes,
+            furniture,
+            lowest,
+        )
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
-    return Activity.plan(performer, (segment,), pose)
+    return Activity.plan(performer, (segment,), pose, furniture)
 
 
 def _aimed_hands(
@@ -156,11 +176,18 @@ def plan_stop(
 ) -> Activity:
     """Standing idle after a cancel: at once, or a walk under way first comes to a stop in
     a step or two and a turn on the spot finishes the step it is taking (stopping dead
-    would slide the feet). `base` is where the person stands, `hold` what the hands hold."""
+    would slide the feet); empty hands cut short on a surface (a reach) leave it first, the
+    way they came. `base` is where the person stands, `hold` what the hands hold."""
     stepping = _stepping_at(performer, activity, t)
     if stepping is None:
-        return plan_idle(performer, base, t, hold)
-    if isinstance(stepping, TurnSegment):
+        withdrawing = _withdrawing(performer, activity, base, hold, t)
+        if withdrawing is None:
+            return plan_idle(performer, base, t, hold)
+        rest = ClipSegment(IDLE_CLIP, withdrawing.end(performer), base, forever=True)
+        return Activity.plan(performer, (withdrawing, rest), base, activity.furniture)
+    if isinstance(stepping, ClipSegment):
+        stop, pose = stepping, stepping.anchor
+    elif isinstance(stepping, TurnSegment):
         stop = stepping.finishing(t)
         pose = (*stop.position, wrap_angle(stop.yaw_to))
     else:
@@ -180,15 +207,44 @@ def still_stepping(performer: Performer, activity: Activity | None, t: float):
 
 
 def _stepping_at(performer: Performer, activity: Activity | None, t: float):
-    """The walk or turn on the spot the activity is in at t (None: standing or playing a
-    clip): the feet are stepping, so it cannot stop dead."""
+    """The walk, turn on the spot or withdrawal of the hands the activity is in at t (None:
+    standing or playing a clip): the feet are stepping or the hands leaving a surface, so it
+    cannot stop dead."""
+    segment = _segment_at(activity, t)
+    under_way = isinstance(segment, WalkSegment | TurnSegment) or (
+        isinstance(segment, ClipSegment) and segment.length is not None
+    )
+    if under_way and t < segment.end(performer):
+        return segment
+    return None
+
+
+def _segment_at(activity: Activity | None, t: float):
     if activity is None:
         return None
     current = [s for s in activity.segments if s.start <= t]
-    segment = current[-1] if current else None
-    if isinstance(segment, WalkSegment | TurnSegment) and t < segment.end(performer):
-        return segment
-    return None
+    return current[-1] if current else None
+
+
+def _withdrawing(performer: Performer, activity, base, hold, t: float) -> ClipSegment | None:
+    """Empty hands cut short in an aimed clip over a surface, leaving it (None: there are
+    none)."""
+    segment = _segment_at(activity, t)
+    if hold is not None or not isinstance(segment, ClipSegment) or segment.aim is None:
+        return None
+    clip = performer.clips[IDLE_CLIP]
+    aim = withdrawal(
+        performer.body,
+        activity.furniture_of(performer),
+        clip,
+        lambda q: place(performer, q, *base),
+        activity.pose(performer, t),
+        segment.aim.hands,
+        base[2],
+    )
+    if aim is None:
+        return None
+    return ClipSegment(IDLE_CLIP, t, base, length=WITHDRAWAL, aim=aim)
 
 
 def _carry(performer: Performer, hold: Hold | None) -> CarryArms | None:

@@ -186,4 +186,27 @@ class DespawnObject(WorkpiecesCommandNode):
         return wp.Despawn(seq, self.get_input("object_id"))
 
 
-NODES = (CountObjects, NextObject, HeldObject, ObjectAttribute, SpawnObject, DespawnObject)
+class MoveObject(WorkpiecesCommandNode):
+    """Sets a free object down at `pose` (upright; it settles on what is below): squaring a
+    box up in its place, or a grip that slipped knocking it askew. FAILURE when it is
+    held."""
+
+    ports = (
+        InputPort("object_id", int),
+        InputPort("pose", Pose, description="where its centre goes, and which way it faces"),
+    )
+
+    def command(self, seq: int):
+        pose = self.agent.transform(self.get_input("pose"))
+        return wp.Move(seq, self.get_input("object_id"), pose)
+
+
+NODES = (
+    CountObjects,
+    NextObject,
+    HeldObject,
+    ObjectAttribute,
+    SpawnObject,
+    DespawnObject,
+    MoveObject,
+)

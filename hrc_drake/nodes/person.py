@@ -10,6 +10,8 @@ tells the person what the hands hold, so they carry it in the carry posture.
 
 from abc import abstractmethod
 
+import numpy as np
+
 from hrc_drake.bt import ConditionNode, InputPort, OneOf, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
@@ -22,6 +24,8 @@ from hrc_drake.workpieces.geometry import yaw_of
 
 TABLE_HEIGHT = 0.5
 """Targets below this height are picked or placed with the floor clips (a squat)."""
+NEARBY = 0.8
+"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
@@ -55,9 +59,13 @@ class PersonCommandNode(CommandNode):
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
     """How `hands` take `obj` (a cylinder is taken like the box around it)."""
+    return human.Grasp(hands, *_box(obj))
+
+
+def _box(obj: wp.ObjectStatus):
+    """An object's centre, heading and box extents (a cylinder: the box around it)."""
     size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
-    yaw = yaw_of(obj.pose.rotation())
-    return human.Grasp(hands, tuple(obj.pose.translation()), yaw, tuple(size))
+    return tuple(obj.pose.translation()), yaw_of(obj.pose.rotation()), tuple(size)
 
 
 class ActorAnimation(PersonCommandNode):
@@ -178,8 +186,29 @@ class TargetedAction(PersonCommandNode):
             return Status.FAILURE
 
     def command(self, seq: int):
+        target = self.target_point()
         return human.AnimateCommand(
-            seq, self.playing, target=self.target_point(), hold=self.hold(), grasp=self.grasp()
+            seq,
+            self.playing,
+            target=target,
+            hold=self.hold(),
+            grasp=self.grasp(),
+            nearby=self.nearby(target),
+        )
+
+    def nearby(self, target) -> tuple[human.Box, ...]:
+        """The free objects near `target` (not the one the action takes): the person's arms
+        keep out of them."""
+        status = self.agent.workpieces
+        if status is None:
+            return ()
+        taken = self.taken_id()
+        return tuple(
+            human.Box(*_box(obj))
+            for obj in status.objects
+            if obj.holder is None
+            and obj.id != taken
+            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(target[:2]))) <= NEARBY
         )
 
     def grasp(self) -> human.Grasp | None:
@@ -212,6 +241,11 @@ class TargetedAction(PersonCommandNode):
         if result is None or result.outcome == RUNNING:
             return Status.RUNNING
         return Status.SUCCESS if result.outcome == SUCCEEDED else self.failed(result)
+
+    def taken_id(self) -> int | None:
+        """The object the action is about (None: it is about none)."""
+        names = {port.name for port in self.ports}
+        return self.get_input("object_id") if "object_id" in names else None
 
     def taken(self) -> wp.ObjectStatus:
         obj = self.agent.workpieces.object(self.get_input("object_id"))
@@ -286,15 +320,32 @@ class ActorPlace(TargetedAction):
 
 
 class ActorReach(TargetedAction):
-    """Reaches one arm to a point in front (into a workspace, to straighten a part)."""
+    """Reaches one arm to a point in front (into a workspace, to straighten a part); with
+    `object_id` and `place`, the hand squares that object up there when it is on it."""
 
-    ports = (InputPort("target", Pose, description="point to reach"),)
+    ports = (
+        InputPort("target", Pose, description="point to reach"),
+        InputPort("object_id", int, default=None, description="an object to square up"),
+        InputPort("place", Pose, default=None, description="where that object is set down"),
+    )
+
+    @property
+    def contact_event(self) -> str:
+        return "reached" if self.get_input("object_id") is not None else ""
 
     def clip(self) -> str:
         return "reach"
 
     def target_point(self):
         return tuple(self.agent.transform(self.get_input("target")).translation())
+
+    def taken_id(self) -> int | None:
+        """None: the hand moves the object where it stands (it is not taken)."""
+        return None
+
+    def object_command(self, seq: int):
+        place = self.agent.transform(self.get_input("place"))
+        return wp.Move(seq, self.get_input("object_id"), place)
 
 
 class ActorHandOver(TargetedAction):
