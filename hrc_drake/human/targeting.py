@@ -15,6 +15,10 @@ it is carried (the hands turn about their palms' normal, IK at a few points of t
 clip that puts an object down starts from the carry posture, carries it above the target,
 sets it down, and opens the hands outwards before they go back. The corrections are joint
 offsets at key times of the clip, blended smoothly in between (`AimedMotion`).
+
+Longer than 400 lines: the ways in and out (from above, over a surface's edge, taking,
+putting down, withdrawing) write the same key times of one clip (`_Keys`); splitting them
+from it is the next step when this grows.
 """
 
 from dataclasses import dataclass
