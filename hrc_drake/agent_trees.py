@@ -10,8 +10,10 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from hrc_drake.bt import BTError, Tree, load_tree, validate
+from hrc_drake.bt.node import EntryRef
 from hrc_drake.bt.ports import convert_from_string
 from hrc_drake.bt.registry import NodeModel
+from hrc_drake.known_values import Known, known_inputs
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
 from hrc_drake.tree_types import AreaRef, Pose
@@ -98,7 +100,7 @@ def tree_errors(
     (unknown nodes, ports, values, scripts, includes, which tree is the main one), nodes
     that command what their agent may not, names of places that are not defined, and
     parameters and port values (as a scenario Problem: field names and message) that the
-    trees cannot read."""
+    trees cannot read or whose ports do not accept them."""
     errors: list[BTError | Problem] = []
     for agent, config in trees.items():
         found = validate(config.file, hrc_registry(), tree_id=config.tree_id or None)
@@ -112,6 +114,7 @@ def tree_errors(
                 continue
             tree = load_agent_tree(config, agent, places, parameters)[0]
             errors += _place_errors(config, places, tree)
+            errors += value_errors(tree, sections(places))
         except ParameterError as error:
             errors.append((("parameters", error.key), error.problem))
         except BTError as error:  # no main tree to run
@@ -151,10 +154,51 @@ def port_value_problem(named: dict, agent: str, name: str, port: str, text: str)
     if port not in inputs:
         return f"'{model.id}' has no input port '{port}' (it has: {', '.join(inputs) or 'none'})"
     try:
-        convert_from_string(text, inputs[port].type)
+        value = convert_from_string(text, inputs[port].type)
     except ValueError as error:
         return str(error)
-    return ""
+    accepts = inputs[port].accepts
+    return accepts.problem(value) if accepts is not None else ""
+
+
+def sections(places: Places) -> dict[str, str]:
+    """The scenario section of each root blackboard entry that is a place (key -> section);
+    the others are parameters."""
+    return {**dict.fromkeys(places.locations, "locations"), **dict.fromkeys(places.areas, "areas")}
+
+
+def value_errors(tree: Tree, sections: dict[str, str]) -> list[BTError | Problem]:
+    """Values known before the run that a port reading them from the blackboard does not
+    accept (literals were checked when the tree was built), each where it was written: a
+    parameter at its line in the scenario (naming the node that reads it), a SubTree's
+    literal at the SubTree, one a node made from them at the node that reads it."""
+    errors = []
+    for node, port, known in known_inputs(tree, sections):
+        if not isinstance(node.config.inputs[port], EntryRef):
+            continue
+        for value in known:
+            if problem := node.input_problem(port, value.value):
+                errors.append(_value_error(node, port, value, problem))
+    return _once(errors)
+
+
+def _value_error(node, port: str, known: Known, problem: str) -> BTError | Problem:
+    config = node.config
+    reader = (
+        f"{config.registration_id} '{node.path}' reads it as {port} ({config.file}:{config.line})"
+    )
+    origin = known.origin
+    if origin.section and not known.via:
+        return (origin.section, origin.key), f"{problem}: {reader}"
+    if origin.node is not None and not known.via:
+        return origin.node.error(f"{problem}: {reader}", port=origin.key)
+    return node.error(f"{problem} ({known})" if known.via else problem, port=port)
+
+
+def _once(errors: list) -> list:
+    """Each error once (a SubTree used twice reads the same parameter twice)."""
+    unique = {str(error) if isinstance(error, BTError) else repr(error): error for error in errors}
+    return list(unique.values())
 
 
 def _place_errors(config: AgentTree, places: Places, tree: Tree) -> list[BTError | Problem]:

@@ -41,7 +41,7 @@ from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 from hrc_drake.evaluation.replay import dress_scene
 from hrc_drake.evaluation.replay_sensors import draw_sensors
 from hrc_drake.human.clip_files import clip_catalog
-from hrc_drake.human.navigation import NavigationMap, cell_obstacles, robot_keep_out
+from hrc_drake.human.navigation import cell_navigation
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
@@ -220,9 +220,12 @@ def _add_person(builder, scene_graph, mirror, scenario):
         *scenario.human.size(),
         start_pose=(x, y, np.radians(yaw_deg)),
         period=scenario.human.period,
-        navigation=NavigationMap(
-            cell_obstacles(mirror, scene_graph.model_inspector()),
-            keep_out=[robot_keep_out(robot_xy, VARIANTS[scenario.robot.variant].reach)],
+        navigation=cell_navigation(
+            mirror,
+            scene_graph.model_inspector(),
+            robot_xy,
+            VARIANTS[scenario.robot.variant].reach,
+            scenario.human.size()[0],
         ),
         clips=clip_catalog(scenario.human.clips),
     )

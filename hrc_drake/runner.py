@@ -28,6 +28,7 @@ from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import Station, build_diagram
 from hrc_drake.evaluation.record import Fault, Footprint, PersonRecord, RunRecord, RunSetup
 from hrc_drake.evaluation.report import Report, evaluate, write_run_directory
+from hrc_drake.layout import layout_of, write_layout
 from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.state_changes import StateChanges, add_state_changes
@@ -66,11 +67,13 @@ def run(
     meshcat: Meshcat | None = None,
     progress: bool = False,
     serve=None,
+    scenario_file: Path | None = None,
 ) -> Report:
     """Simulates `scenario` once and evaluates the run; with `out_dir` (a new or empty
     directory, so files of two runs never mix), writes the run directory. A tree fault ends
     the run early: the run directory is still written, then RunStopped says where the fault
-    is. `serve` as for `simulate`."""
+    is. `serve` as for `simulate`; `scenario_file`, where the scenario was read from, lets
+    the layout mark what validate finds."""
     given = (("seed", seed), ("duration", duration))
     scenario = overridden(scenario, [(name, value) for name, value in given if value is not None])
     out_dir = Path(out_dir) if out_dir is not None else None
@@ -81,7 +84,10 @@ def run(
     record = simulate(scenario, meshcat, out_dir, progress, serve)
     report = Report(evaluate(record), out_dir, record.wall_time)
     if out_dir is not None:
-        report.files = write_run_directory(out_dir, record, report.metrics)
+        layout = {
+            "layout": write_layout(layout_of(scenario, scenario_file), out_dir / "layout.png")
+        }
+        report.files = write_run_directory(out_dir, record, report.metrics, layout)
     if record.fault is not None:
         raise RunStopped(record.fault, out_dir, report)
     return report

@@ -45,9 +45,16 @@ def read_text(filename: Path, what: str = "file") -> str:
         ) from None
 
 
+MAX_VALUES = 100_000
+"""The most values a YAML document may hold once its aliases are expanded: a scenario holds
+a few hundred; a "billion laughs" (aliases of aliases of lists) would make every reader of
+it (ours and Drake's) run out of time and memory."""
+
+
 def compose(filename: Path, text: str) -> yaml.Node | None:
-    """The YAML node tree of `text`; syntax errors and keys given twice in one mapping
-    (PyYAML and Drake would silently keep the last) become an InputError with the line."""
+    """The YAML node tree of `text`; syntax errors, aliases that expand beyond MAX_VALUES or
+    into themselves, and keys given twice in one mapping (PyYAML and Drake would silently
+    keep the last) become an InputError with the line."""
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError as e:
@@ -55,8 +62,56 @@ def compose(filename: Path, text: str) -> yaml.Node | None:
         line = f":{mark.line + 1}" if mark else ""
         problem = getattr(e, "problem", None) or str(e)
         raise InputError(f"{filename}{line}: malformed YAML: {problem}") from None
+    except RecursionError:
+        raise InputError(f"{filename}: malformed YAML: nested too deeply") from None
+    _ExpandedSize(filename).of(root, ())
     _check_unique_keys(filename, root, ())
     return root
+
+
+class _ExpandedSize:
+    """How many values each node stands for with its aliases expanded, counted once per
+    node (PyYAML shares an anchored node among its aliases), so a document that would
+    expand exponentially is refused at the node where it passes MAX_VALUES."""
+
+    def __init__(self, filename):
+        self.filename = filename
+        self.sizes: dict[int, int] = {}
+
+    def of(self, node, path: tuple) -> int:
+        known = self.sizes.get(id(node))
+        if known == 0:
+            raise located_error(
+                self.filename, node, field_path(path) or "<document>", "an alias refers to itself"
+            )
+        if known is not None:
+            return known
+        self.sizes[id(node)] = 0  # being counted
+        total = 1 + sum(self.of(child, (*path, name)) for name, child in _children(node))
+        if total > MAX_VALUES:
+            raise located_error(
+                self.filename,
+                node,
+                field_path(path) or "<document>",
+                f"its aliases expand it to more than {MAX_VALUES} values (an alias bomb?): "
+                "write the values out or use fewer aliases",
+            )
+        self.sizes[id(node)] = total
+        return total
+
+
+def _children(node) -> list[tuple]:
+    """(name, node) of a node's values: items by index, mapping values by key (the keys count
+    as values too)."""
+    if isinstance(node, yaml.SequenceNode):
+        return list(enumerate(node.value))
+    if isinstance(node, yaml.MappingNode):
+        return [(_key_name(key), n) for key, value in node.value for n in (key, value)]
+    return []
+
+
+def _key_name(key) -> str:
+    return key.value if isinstance(key, yaml.ScalarNode) else str(key.value)
 
 
 def _check_unique_keys(filename, node, path: tuple) -> None:
@@ -66,7 +121,7 @@ def _check_unique_keys(filename, node, path: tuple) -> None:
     elif isinstance(node, yaml.MappingNode):
         first_line: dict[str, int] = {}
         for key, value in node.value:
-            name = key.value if isinstance(key, yaml.ScalarNode) else str(key.value)
+            name = _key_name(key)
             if name in first_line:
                 raise located_error(
                     filename,

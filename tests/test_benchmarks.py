@@ -17,6 +17,7 @@ SMALLEST = {
     "ergonomics_cost.py": ["--duration", "0.5", "getting_started"],
     "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
+    "layout.py": ["--scenario", "getting_started", "--samples", "2"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],

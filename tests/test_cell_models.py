@@ -19,6 +19,7 @@ FRAMES = {
     "euro_pallet": ("top",),
     "bin": ("top", "rim"),
     "shelf": ("board_0", "board_1", "board_2", "board_3"),
+    "fence": (),
     "part_small": LOOSE,
     "part_medium": LOOSE,
     "box_small": LOOSE,

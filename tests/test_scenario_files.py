@@ -6,7 +6,8 @@ import sys
 import pytest
 
 from hrc_drake.paths import resource_dir
-from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario import bundled_scenarios, load_scenario, resolve_scenario_path
+from hrc_drake.scenario.findings import findings
 from hrc_drake.yaml_check import InputError
 
 BASE = resource_dir("scenarios") / "base.yaml"
@@ -26,6 +27,13 @@ def test_base_scenario_loads():
     assert scenario.name == "base"
     assert scenario.robot.variant == "lbr_iisy3_r760"
     assert scenario.duration > 0
+
+
+@pytest.mark.parametrize("name", bundled_scenarios())
+def test_a_bundled_scenario_has_no_finding(name):
+    """validate's checks raise no false alarm on the scenarios that ship (and they have no
+    mistake a run would find)."""
+    assert findings(load_scenario(name), resolve_scenario_path(name)) == []
 
 
 BAD_FILES = {

@@ -19,12 +19,15 @@ Loading and running::
 
 Writing nodes: subclass ``SyncActionNode``/``ConditionNode`` (``tick``),
 ``StatefulActionNode`` (``on_start``/``on_running``/``on_halted``), ``ControlNode`` or
-``DecoratorNode``; declare ``ports = (InputPort("target", type=Pose), OutputPort(...))``;
-inside, use ``get_input(name)``, ``set_output(name, value)``, ``self.now``, ``self.rng``
-(the tree's Generator) and ``self.agent`` (whatever the application set as
-``tree.agent``: the agent the tree drives, e.g. actor status and a command outbox). Register with
-``registry.register(MyNode)`` or ``registry.register_function("Id", fn, kind=...)``;
-enums for scripts with ``registry.register_enum(E)``; port types read from XML text with
+``DecoratorNode``; declare ``ports = (InputPort("target", type=Pose), OutputPort(...))``,
+with ``accepts=Range(0, 1)`` or ``OneOf(words)`` where a port takes only some values
+(checked on literals when the tree is built and on every blackboard read; a node adds rules
+of its own in ``input_problem``); inside, use ``get_input(name)``,
+``set_output(name, value)``, ``self.now``, ``self.rng`` (the tree's Generator) and
+``self.agent`` (whatever the application set as ``tree.agent``: the agent the tree drives,
+e.g. actor status and a command outbox). Register with ``registry.register(MyNode)`` or
+``registry.register_function("Id", fn, kind=...)``; enums for scripts with
+``registry.register_enum(E)``; port types read from XML text with
 ``register_type(Pose, Pose.from_string, "Pose")``.
 
 Observing: ``tree.add_observer(obs)`` with ``obs.on_transition(time, node, previous,
@@ -53,9 +56,11 @@ from .observers import BtlogWriter, JsonLinesWriter, NodeCount, NodeCounters
 from .ports import (
     BidirectionalPort,
     InputPort,
+    OneOf,
     OutputPort,
     PortDirection,
     PortInfo,
+    Range,
     convert_from_string,
     register_type,
 )
@@ -80,9 +85,11 @@ __all__ = [
     "InputPort",
     "NodeModel",
     "NodeRegistry",
+    "OneOf",
     "OutputPort",
     "PortDirection",
     "PortInfo",
+    "Range",
     "StatefulActionNode",
     "Status",
     "SyncActionNode",

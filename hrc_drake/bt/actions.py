@@ -9,7 +9,7 @@ from collections.abc import Callable
 from .decorators import ENTRY_PORT, EntryWatch
 from .node import EntryRef, NodeConfig
 from .node_kinds import ConditionNode, StatefulActionNode, SyncActionNode
-from .ports import BidirectionalPort, InputPort, PortInfo, literal_value
+from .ports import BidirectionalPort, InputPort, PortInfo, Range, literal_value
 from .script import ScriptCode, compile_script
 from .status import FAILURE, RUNNING, SUCCESS, Status
 from .timing import has_elapsed
@@ -92,7 +92,7 @@ class UnsetBlackboard(SyncActionNode):
 class Sleep(StatefulActionNode):
     """RUNNING for ``msec`` of simulation time, then SUCCESS."""
 
-    ports = (InputPort("msec", int, description="duration in milliseconds"),)
+    ports = (InputPort("msec", int, description="duration in milliseconds", accepts=Range(0)),)
 
     def on_start(self) -> Status:
         self.started_at = self.now

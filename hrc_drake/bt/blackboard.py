@@ -113,6 +113,10 @@ class Blackboard:
         found = self.entry(key)
         return found is not None and found.value is not UNSET
 
+    def local_entries(self) -> dict[str, Entry]:
+        """The entries stored in this blackboard itself (set or not), by key."""
+        return dict(self._entries)
+
     def keys(self) -> list[str]:
         """Keys stored in this blackboard itself (not in its parents)."""
         return [key for key, found in self._entries.items() if found.value is not UNSET]

@@ -6,7 +6,7 @@ from __future__ import annotations
 from .blackboard import Blackboard
 from .node import EntryRef, NodeConfig
 from .node_kinds import DecoratorNode
-from .ports import BidirectionalPort, InputPort, OutputPort, convert_from_string
+from .ports import BidirectionalPort, InputPort, OutputPort, Range, convert_from_string
 from .script import ScriptCode, compile_script
 from .status import COMPLETED, FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from .timing import has_elapsed
@@ -127,7 +127,11 @@ class TimedDecorator(DecoratorNode):
 class Timeout(TimedDecorator):
     """Halt the child and return FAILURE if it is still RUNNING ``msec`` after start."""
 
-    ports = (InputPort("msec", int, description="time limit in milliseconds (0: none)"),)
+    ports = (
+        InputPort(
+            "msec", int, description="time limit in milliseconds (0: none)", accepts=Range(0)
+        ),
+    )
 
     def tick(self) -> Status:
         msec = self.get_input("msec")
@@ -141,7 +145,7 @@ class Timeout(TimedDecorator):
 class Delay(TimedDecorator):
     """Return RUNNING for ``delay_msec`` of simulation time, then tick the child."""
 
-    ports = (InputPort("delay_msec", int, description="delay in milliseconds"),)
+    ports = (InputPort("delay_msec", int, description="delay in milliseconds", accepts=Range(0)),)
 
     def tick(self) -> Status:
         self.start_if_idle()

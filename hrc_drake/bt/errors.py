@@ -34,12 +34,17 @@ class BTError(Exception):
         super().__init__(self.message)
 
     @property
-    def message(self) -> str:
-        where = ", ".join(
+    def place(self) -> str:
+        """`tree 'ID', node 'path', port 'name'` (the parts that are known)."""
+        return ", ".join(
             f"{label} '{value}'"
             for label, value in (("tree", self.tree), ("node", self.node), ("port", self.port))
             if value is not None
         )
+
+    @property
+    def message(self) -> str:
+        where = self.place
         location = (self.file or "<unknown>") + (f":{self.line}" if self.line else "")
         text = f"{location}: {where + ': ' if where else ''}{self.problem}"
         if self.suggestion:

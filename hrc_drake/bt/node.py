@@ -17,7 +17,7 @@ import numpy as np
 
 from .blackboard import UNSET, Blackboard, Entry
 from .errors import BTError
-from .ports import PortInfo
+from .ports import Accepts, PortInfo
 from .script import Script, ScriptEnv
 from .status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
@@ -85,6 +85,8 @@ class NodeConfig:
     tree_id: str | None = None
     preconditions: list[tuple[str, Script]] = field(default_factory=list)
     postconditions: dict[str, Script] = field(default_factory=dict)
+    accepts: dict[str, Accepts] = field(default_factory=dict)
+    """The values each input port with a declared range or words accepts."""
 
 
 class TreeNode(ABC):
@@ -170,7 +172,19 @@ class TreeNode(ABC):
                 ),
                 port=name,
             )
+        if name in self.config.accepts and isinstance(binding, EntryRef):
+            problem = self.input_problem(name, value)  # literals were checked when built
+            if problem:
+                raise self.error(problem, port=name)
         return value
+
+    def input_problem(self, port: str, value: Any) -> str:
+        """What is wrong with `value` as input `port` ("" when nothing): outside the port's
+        declared range or words; a node type adds rules of its own (e.g. one weight per
+        child). The tree builder asks it of literals, `validate` of values known before a
+        run, `get_input` of every value read from the blackboard."""
+        accepts = self.config.accepts.get(port)
+        return accepts.problem(value) if accepts is not None else ""
 
     def set_output(self, name: str, value: Any) -> bool:
         """Write output port ``name``; False when the XML leaves the port unconnected."""

@@ -47,7 +47,8 @@ class BtlogWriter:
 
 
 class JsonLinesWriter:
-    """One JSON object per transition: time, uid, path, node name, from, to."""
+    """One JSON object per transition: time, uid, path, node name, from, to, and for a
+    FAILURE the reason the node gave, when it gave one."""
 
     def __init__(self, path: str | os.PathLike):
         self._file = open(path, "w")  # noqa: SIM115 - closed by close()
@@ -61,6 +62,8 @@ class JsonLinesWriter:
             "from": previous.name,
             "to": new.name,
         }
+        if new is Status.FAILURE and node.failure_reason:
+            record["reason"] = node.failure_reason
         self._file.write(json.dumps(record) + "\n")
 
     def close(self) -> None:

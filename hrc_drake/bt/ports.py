@@ -1,4 +1,5 @@
-"""Port declarations and the string-to-type conversions used for XML literals.
+"""Port declarations, the values a port accepts, the string-to-type conversions used for
+XML literals, and how a port's text names a blackboard entry (``{key}``, ``{=}``).
 
 Applications register their own port types (poses, areas, ...) with :func:`register_type`;
 conversions are global, as in BehaviorTree.CPP where they are template specialisations.
@@ -13,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from .errors import closest
 from .status import Status
 
 
@@ -26,14 +28,67 @@ _NO_DEFAULT = object()
 
 
 @dataclass(frozen=True)
+class Range:
+    """The numbers an input port accepts (each item of a list port): at least `low` (above it
+    with `above`), at most `high`; None leaves a side open. Checked on literals when a tree
+    is built, on known blackboard values when a scenario is validated, and on every read."""
+
+    low: float | None = None
+    high: float | None = None
+    above: bool = False
+
+    def problem(self, value: Any) -> str:
+        items = value if isinstance(value, list) else [value]
+        if all(self._holds(item) for item in items):
+            return ""
+        got = f"must be {self}, got {value_to_text(value)}"
+        if (self.low, self.high) == (0, 1) and not isinstance(value, list) and 5 <= value <= 100:
+            return f"{got} (a percentage? {value_to_text(value / 100)} is the fraction)"
+        return got
+
+    def _holds(self, item) -> bool:
+        low = self.low is None or (item > self.low if self.above else item >= self.low)
+        return low and (self.high is None or item <= self.high)
+
+    def __str__(self) -> str:
+        if self.low is not None and self.high is not None:
+            return f"within {value_to_text(self.low)}..{value_to_text(self.high)}"
+        if self.high is not None:
+            return f"at most {value_to_text(self.high)}"
+        return f"{'above' if self.above else 'at least'} {value_to_text(self.low)}"
+
+
+@dataclass(frozen=True)
+class OneOf:
+    """The words a text input port accepts."""
+
+    words: tuple[str, ...]
+
+    def problem(self, value: Any) -> str:
+        if value in self.words:
+            return ""
+        close = closest(str(value), self.words)
+        hint = f" (did you mean '{close}'?)" if close else ""
+        return f"unknown value '{value}'{hint}; known: {', '.join(self.words)}"
+
+    def __str__(self) -> str:
+        return f"one of {', '.join(self.words)}"
+
+
+Accepts = Range | OneOf
+
+
+@dataclass(frozen=True)
 class PortInfo:
-    """One port of a node type: its direction, value type (None = any), default, help."""
+    """One port of a node type: its direction, value type (None = any), default, help, and
+    the values it accepts (None: any its type reads)."""
 
     name: str
     direction: PortDirection
     type: Any = None
     default: Any = _NO_DEFAULT
     description: str = ""
+    accepts: Accepts | None = None
 
     @property
     def has_default(self) -> bool:
@@ -49,8 +104,14 @@ class PortInfo:
         return self.direction is not PortDirection.OUTPUT
 
 
-def InputPort(name: str, type: Any = None, default: Any = _NO_DEFAULT, description: str = ""):  # noqa: N802
-    return PortInfo(name, PortDirection.INPUT, type, default, description)
+def InputPort(  # noqa: N802
+    name: str,
+    type: Any = None,
+    default: Any = _NO_DEFAULT,
+    description: str = "",
+    accepts: Accepts | None = None,
+):
+    return PortInfo(name, PortDirection.INPUT, type, default, description, accepts)
 
 
 def OutputPort(name: str, type: Any = None, description: str = ""):  # noqa: N802
@@ -58,9 +119,13 @@ def OutputPort(name: str, type: Any = None, description: str = ""):  # noqa: N80
 
 
 def BidirectionalPort(  # noqa: N802
-    name: str, type: Any = None, default: Any = _NO_DEFAULT, description: str = ""
+    name: str,
+    type: Any = None,
+    default: Any = _NO_DEFAULT,
+    description: str = "",
+    accepts: Accepts | None = None,
 ):
-    return PortInfo(name, PortDirection.INOUT, type, default, description)
+    return PortInfo(name, PortDirection.INOUT, type, default, description, accepts)
 
 
 @dataclass(frozen=True)
@@ -151,6 +216,35 @@ def coerce(value: Any, py_type: Any) -> Any:
     if cls is str and isinstance(value, int | float | enum.Enum):
         return value_to_text(value)
     raise ValueError(f"a {type(value).__name__} value {value!r} is not a {type_name(py_type)}")
+
+
+SAME_NAME = "{=}"
+"""BehaviorTree.CPP's shorthand for the entry named like the port (``x="{=}"`` is
+``x="{x}"``), on a node's port and on a SubTree's; a node's port also takes a bare ``=``
+(BT.CPP's TreeNode::getRemappedKey and the SubTree branch of its XML parser)."""
+
+
+def blackboard_key(text: str) -> str | None:
+    """``key`` for ``{key}`` (``@key`` for ``{@key}``), None for a literal."""
+    text = text.strip()
+    if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
+        return text[1:-1].strip()
+    return None
+
+
+def port_key(port: str, text: str) -> str | None:
+    """The blackboard key a node's port ``port`` given ``text`` reads or writes, None for a
+    literal: ``{key}``, or the port's own name for ``{=}`` and ``=``."""
+    if text.strip() in (SAME_NAME, "="):
+        return port
+    return blackboard_key(text)
+
+
+def subtree_key(port: str, text: str) -> str | None:
+    """The parent's key a SubTree port given ``text`` is remapped to (None: a literal):
+    ``{key}``, or the port's own name for ``{=}`` (a bare ``=`` stays a literal there, as in
+    BT.CPP)."""
+    return port if text.strip() == SAME_NAME else blackboard_key(text)
 
 
 _INTEGER = re.compile(r"-?\d+")

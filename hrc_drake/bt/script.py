@@ -45,6 +45,9 @@ _TOKEN = re.compile(
 )
 
 
+ASSIGNMENTS = (":=", "=", "+=", "-=", "*=", "/=")
+
+
 @dataclass(frozen=True)
 class _Token:
     kind: str
@@ -224,7 +227,7 @@ class _Parser:
 
     def statement(self) -> Evaluator:
         token, following = self.current, self.tokens[self.index + 1]
-        if token.kind == "name" and following.text in (":=", "=", "+=", "-=", "*=", "/="):
+        if token.kind == "name" and following.text in ASSIGNMENTS:
             self.index += 2
             return _assignment(token.text, following.text, self.expression())
         return self.expression()
@@ -369,6 +372,16 @@ class Script:
 
     def is_true(self, env: ScriptEnv) -> bool:
         return _truthy(self(env))
+
+
+def assigned_keys(code: str) -> list[str]:
+    """The blackboard keys a script assigns (those it may write), without running it."""
+    tokens = _tokenize(code)
+    return [
+        token.text
+        for token, following in zip(tokens, tokens[1:], strict=False)
+        if token.kind == "name" and following.text in ASSIGNMENTS
+    ]
 
 
 @functools.lru_cache(maxsize=1024)

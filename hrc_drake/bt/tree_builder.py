@@ -14,7 +14,14 @@ from .blackboard import Blackboard
 from .decorators import SubTreeNode
 from .errors import BTError, closest
 from .node import POSTCONDITIONS, PRECONDITIONS, EntryRef, Literal, NodeConfig, TreeNode
-from .ports import PortDirection, PortInfo, convert_from_string, literal_value
+from .ports import (
+    PortDirection,
+    PortInfo,
+    convert_from_string,
+    literal_value,
+    port_key,
+    subtree_key,
+)
 from .registry import NodeModel, NodeRegistry
 from .script import ScriptCode, compile_script
 from .tree import SubtreeInstance, Tree
@@ -34,14 +41,6 @@ class TreeDefinition:
     @property
     def file(self) -> str:
         return self.element.file
-
-
-def blackboard_key(text: str) -> str | None:
-    """``key`` for ``{key}`` (``@key`` for ``{@key}``), None for a literal."""
-    text = text.strip()
-    if len(text) >= 3 and text[0] == "{" and text[-1] == "}":
-        return text[1:-1].strip()
-    return None
 
 
 @dataclass
@@ -125,7 +124,17 @@ class TreeBuilder:
         children = [self.build_node(child, scope) for child in element.children]
         if None not in children:
             self._attach(node, children)
+            self._check_literals(node, element, scope)
         return node
+
+    def _check_literals(self, node: TreeNode, element: XmlElement, scope: _Scope) -> None:
+        """Literal inputs the node does not accept (a velocity of 100 for a fraction, two
+        weights for three children), known once its children are attached."""
+        for port, binding in node.config.inputs.items():
+            if isinstance(binding, Literal) and (
+                problem := node.input_problem(port, binding.value)
+            ):
+                self.report(BTError(problem, node=node.path, port=port, **scope.where(element)))
 
     def _check_children(
         self, model: NodeModel, element: XmlElement, scope: _Scope, path: str
@@ -204,6 +213,7 @@ class TreeBuilder:
             tree_id=scope.definition.id,
         )
         ports = model.ports
+        config.accepts = {name: port.accepts for name, port in ports.items() if port.accepts}
         for attribute, text in attributes.items():
             if attribute in IGNORED_ATTRIBUTES:
                 continue
@@ -259,7 +269,7 @@ class TreeBuilder:
     def _bind(
         self, config: NodeConfig, port: PortInfo, text: str, element: XmlElement, scope: _Scope
     ) -> None:
-        key = blackboard_key(text)
+        key = port_key(port.name, text)
         if key is not None:
             self._bind_entry(config, port, key, element, scope)
             return
@@ -291,7 +301,7 @@ class TreeBuilder:
     def _bind_default(
         self, config: NodeConfig, port: PortInfo, element: XmlElement, scope: _Scope
     ) -> None:
-        key = blackboard_key(port.default) if isinstance(port.default, str) else None
+        key = port_key(port.name, port.default) if isinstance(port.default, str) else None
         if key is not None:
             self._bind_entry(config, port, key, element, scope)
         else:
@@ -370,7 +380,7 @@ class TreeBuilder:
                         BTError(str(error), port=attribute, **scope.where(element, node=path))
                     )
                 continue
-            key = blackboard_key(text)
+            key = subtree_key(attribute, text)
             if key is None:
                 literals[attribute] = text
             else:

@@ -2,19 +2,17 @@
 
 User errors (bad arguments, bad scenario files) print one line and exit with status 2;
 nothing the run already wrote is removed. The commands live in `simulate` (run, sweep,
-falsify) and `inspection` (diagram, validate, tree, list, clip); `arguments` holds what
-they share.
+falsify), `inspection` (diagram, validate, tree, list, clip) and `layout`; `arguments`
+holds what they share.
 """
 
 import argparse
 import sys
 
-from hrc_drake.cli import inspection, simulate
-from hrc_drake.cli.arguments import PROG
+from hrc_drake.cli import inspection, layout, simulate
+from hrc_drake.cli.arguments import EXIT_USAGE, PROG
 from hrc_drake.drake_logging import quiet_drake_logging
 from hrc_drake.yaml_check import InputError
-
-EXIT_USAGE = 2
 
 
 class _Parser(argparse.ArgumentParser):
@@ -44,4 +42,5 @@ def _make_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(required=True, metavar="COMMAND", parser_class=_Parser)
     simulate.add_commands(commands)
     inspection.add_commands(commands, _Parser)
+    layout.add_commands(commands)
     return parser

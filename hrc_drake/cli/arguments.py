@@ -9,6 +9,8 @@ from pathlib import Path
 from hrc_drake.yaml_check import InputError
 
 PROG = "hrc-drake"
+EXIT_USAGE = 2
+"""The exit status of a mistake in what the user gave (arguments, scenario, trees)."""
 MAX_WORKERS = 4 * (os.cpu_count() or 1)
 """More local workers than this only share the cores and exhaust the memory."""
 

@@ -1,9 +1,10 @@
 """`hrc-drake diagram`, `validate`, `tree`, `list` and `clip`: the commands that look at a
 scenario, its trees and clips without simulating."""
 
+import sys
 from pathlib import Path
 
-from hrc_drake.cli.arguments import check_output
+from hrc_drake.cli.arguments import EXIT_USAGE, PROG, check_output
 from hrc_drake.wiring import AGENTS
 from hrc_drake.yaml_check import InputError
 
@@ -79,42 +80,20 @@ def _diagram(args) -> int:
 
 
 def _validate(args) -> int:
-    from hrc_drake.builder import build_diagram
-    from hrc_drake.scenario import load_scenario
+    """The scenario loads (its first mistake is one line), then every finding that needs no
+    simulation, one line each; exit status 2 when there is any."""
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
+    from hrc_drake.scenario.findings import findings
 
     scenario = load_scenario(args.scenario)
-    built = []
-    build_diagram(scenario, attach=lambda _, station: built.append(station))
-    _check_stand_spots(args.scenario, scenario, built[0])
+    found = findings(scenario, resolve_scenario_path(args.scenario))
+    for finding in found:
+        print(f"{PROG}: error: {finding}", file=sys.stderr)
+    if found:
+        return EXIT_USAGE
     trees = ", ".join(f"{agent}: {Path(tree.file).name}" for agent, tree in scenario.trees.items())
     print(f"{args.scenario}: ok ({scenario.name}{'; trees ' + trees if trees else ''})")
     return 0
-
-
-def _check_stand_spots(name_or_path: str, scenario, station) -> None:
-    """Places to stand where the person would stand in the cell's geometry (file:line)."""
-    from hrc_drake.human.navigation import stand_problems
-    from hrc_drake.scenario import resolve_scenario_path
-    from hrc_drake.yaml_check import compose, located_error, node_at
-
-    if station.human is None:
-        return
-    navigation = station.human.navigation
-    locations = {name: scenario.location(name) for name in scenario.locations}
-    problems = stand_problems(navigation, locations)
-    if problems:
-        path = resolve_scenario_path(name_or_path)
-        root = compose(path, path.read_text())
-        raise InputError(
-            "\n".join(
-                str(
-                    located_error(
-                        path, node_at(root, ("locations", name)), f"locations.{name}", why
-                    )
-                )
-                for name, why in problems
-            )
-        )
 
 
 def _tree(args) -> int:

@@ -85,7 +85,7 @@ def _run(args) -> int:
     from pydrake.geometry import Meshcat
 
     from hrc_drake.runner import RunStopped, run
-    from hrc_drake.scenario import load_scenario
+    from hrc_drake.scenario import load_scenario, resolve_scenario_path
 
     overrides, options = single_sets(args, "run", "use sweep for grids")
     live = args.meshcat or args.groot is not None
@@ -108,6 +108,7 @@ def _run(args) -> int:
             meshcat=meshcat,
             progress=True,
             serve=serve,
+            scenario_file=resolve_scenario_path(args.scenario),
         )
     except RunStopped as stopped:
         _print_node_failures(scenario.name, stopped.report.metrics)

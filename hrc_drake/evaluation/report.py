@@ -3,7 +3,8 @@
 
 A run directory holds `report.json` (deterministic: same scenario and seed give the same
 bytes, so it holds no wall-clock figures), `diagram.svg`, with a replay recorder
-`replay.html` (a standalone Meshcat recording), with a safety monitor `safety.npz` (its
+`replay.html` (a standalone Meshcat recording), `layout.png` (the cell from above,
+hrc_drake.layout, drawn by the runner), with a safety monitor `safety.npz` (its
 signals at every update, `hrc_drake.safety.log`), `timeline.png` and `heatmap.png`, plus
 `report.html` tying them together. The runner writes the trees' transition logs
 (`bt_<agent>.btlog` for Groot2, `bt_<agent>.jsonl`) there as the trees run.
@@ -96,10 +97,12 @@ def _signal_metrics(record: RunRecord) -> dict:
     }
 
 
-def write_run_directory(out_dir: Path, record: RunRecord, metrics: dict) -> dict[str, Path]:
+def write_run_directory(
+    out_dir: Path, record: RunRecord, metrics: dict, figures: dict[str, Path] | None = None
+) -> dict[str, Path]:
     """Writes the run's files (see the module docstring) into `out_dir`, an existing
-    directory; returns them by role."""
-    files = {"report": out_dir / "report.json"}
+    directory; returns them by role, with `figures` the caller drew there (the layout)."""
+    files = {"report": out_dir / "report.json", **(figures or {})}
     files["report"].write_text(json.dumps(metrics, indent=2, sort_keys=True) + "\n")
     files["diagram"] = write_diagram(record.diagram, out_dir / "diagram.svg")
     if record.recording is not None:

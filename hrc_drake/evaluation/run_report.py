@@ -31,6 +31,7 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path], sections: 
     for role in ("timeline", "heatmap"):
         if role in files:
             parts.append(f'<img src="{files[role].name}" style="max-width:100%">')
+    parts.append(_layout_section(files))
     if realism:
         header = ["measure", "worst", "limit", "where", "within"]
         rows = realism_rows(realism)
@@ -45,6 +46,17 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path], sections: 
         parts += [_tree_summary(agent, nodes) for agent, nodes in trees.items()]
     path.write_text(page(title, "\n".join(parts)))
     return path
+
+
+def _layout_section(files: dict[str, Path]) -> str:
+    """The cell from above (hrc_drake.layout): the robot's reach, where the person walks,
+    the places and what validate would flag."""
+    if "layout" not in files:
+        return ""
+    return (
+        '<h2 id="layout">Layout</h2>'
+        f'<img src="{files["layout"].name}" alt="the cell from above" style="max-width:100%">'
+    )
 
 
 def _metric_sections(metrics: dict) -> str:

@@ -3,9 +3,12 @@ continuous where segments join and where one activity takes over from another.""
 
 from dataclasses import dataclass, replace
 from itertools import pairwise
+from math import inf
 
 import numpy as np
 
+from hrc_drake.human.clearance import ArmCorrection, arm_correction
+from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
@@ -39,33 +42,76 @@ class Activity:
     blend_offset: np.ndarray | None = None
     blend_start: float = 0.0
     blend_time: float = BLEND_TIME
+    furniture: Furniture | None = None
+    """What the arms keep out of (None: the cell's furniture; an aimed clip adds the objects
+    near its target)."""
+    clear: ArmCorrection | None = None
+    """Keeps the arms out of the furniture (hrc_drake.human.clearance), worked out once the
+    activity takes over (`blended_from`)."""
 
     @classmethod
     def plan(
-        cls, performer: Performer, segments, final_pose: tuple[float, float, float]
+        cls,
+        performer: Performer,
+        segments,
+        final_pose: tuple[float, float, float],
+        furniture: Furniture | None = None,
     ) -> "Activity":
         """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
         its joins are worked out here, once, rather than at every update that needs them."""
         segments = tuple(segments)
         joins = tuple(_join(performer, before, after) for before, after in pairwise(segments))
-        return cls(segments, joins, segments[-1].end(performer), final_pose)
+        end = segments[-1].end(performer)
+        return cls(segments, joins, end, final_pose, furniture=furniture)
+
+    def furniture_of(self, performer: Performer) -> Furniture:
+        """What the arms keep out of in this activity."""
+        return self.furniture if self.furniture is not None else performer.furniture
 
     def blended_from(self, performer: Performer, pose: np.ndarray, t: float) -> "Activity":
         """This activity taking over at t from `pose`: the difference fades out, over longer
-        than BLEND_TIME where the pose changes so much that the fade would be too fast."""
+        than BLEND_TIME where the pose changes so much that the fade would be too fast; the
+        arms are kept out of the furniture all the while, fades included."""
         offset = difference(performer, pose, self.planned_pose(performer, t))
         change = float(np.max(np.abs(offset[3:])))
         duration = max(BLEND_TIME, MINIMUM_JERK_PEAK * change / BLEND_SPEED)
-        return replace(self, blend_offset=offset, blend_start=t, blend_time=duration)
+        blended = replace(self, blend_offset=offset, blend_start=t, blend_time=duration)
+        return replace(blended, clear=blended._arms_clear(performer, t))
+
+    def _arms_clear(self, performer: Performer, t: float) -> ArmCorrection | None:
+        """The correction that keeps the arms out of the furniture from t to the end (of
+        one loop of a clip that loops for ever)."""
+        furniture = self.furniture_of(performer)
+        if not furniture.pieces:
+            return None
+        last = self.segments[-1]
+        end = self.end
+        if end == inf:
+            end = max(last.start, t) + performer.clips[last.clip].duration
+        return arm_correction(
+            performer.body,
+            furniture,
+            lambda u: self._blended_pose(performer, u),
+            t,
+            end,
+            lambda u: self._segment_at(u).holding(performer, u),
+        )
+
+    def _segment_at(self, t: float) -> Segment:
+        return self.segments[self._index_at(t)]
+
+    def _index_at(self, t: float) -> int:
+        k = 0
+        while k + 1 < len(self.segments) and t >= self.segments[k + 1].start:
+            k += 1
+        return k
 
     def start(self) -> float:
         return self.segments[0].start
 
     def planned_pose(self, performer: Performer, t: float) -> np.ndarray:
         """The plan's pose; the joins between its segments fade the same way."""
-        k = 0
-        while k + 1 < len(self.segments) and t >= self.segments[k + 1].start:
-            k += 1
+        k = self._index_at(t)
         q = self.segments[k].pose(performer, t)
         join = self.segments[k].start
         if k > 0 and t < join + SEGMENT_BLEND:
@@ -73,6 +119,10 @@ class Activity:
         return q
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
+        q = self._blended_pose(performer, t)
+        return q if self.clear is None else self.clear.over(q, t)
+
+    def _blended_pose(self, performer: Performer, t: float) -> np.ndarray:
         q = self.planned_pose(performer, t)
         if self.blend_offset is not None and t < self.blend_start + self.blend_time:
             q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset

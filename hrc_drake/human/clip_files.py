@@ -15,7 +15,7 @@ from pathlib import Path
 
 from hrc_drake.human.bvh import bvh_to_clip
 from hrc_drake.human.clip import Clip, clip_from_json, load_clips
-from hrc_drake.yaml_check import InputError
+from hrc_drake.yaml_check import InputError, did_you_mean
 
 CLIP_SUFFIXES = (".bvh", ".json")
 
@@ -49,6 +49,17 @@ def read_clip_file(path: Path, name: str | None = None, loop: bool = False) -> C
         raise InputError(f"{path}: not a usable clip: {error}") from None
     except (KeyError, IndexError):
         raise InputError(f"{path}: not a usable clip: the file is cut short or malformed") from None
+
+
+def no_animation(name: str, clips) -> str:
+    """That no clip is called `name`, with the nearest name and every one there is."""
+    known = ", ".join(sorted(clips))
+    return f"no animation named '{name}'{did_you_mean(name, clips)}; the person's clips: {known}"
+
+
+def walks(clip: Clip) -> bool:
+    """Whether the clip can carry the person along a walk: a loop that covers ground."""
+    return clip.loop and clip.animation_distance > 0
 
 
 def clip_catalog(files: list[str] | tuple[str, ...] = ()) -> dict[str, Clip]:

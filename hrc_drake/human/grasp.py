@@ -4,8 +4,8 @@ A part that fits in one hand and is light is taken with the right hand, the palm
 right-hand face and the fingers round it; anything else with both hands, the palms on the
 two faces that face the person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
 overrides the choice; a `fragile` object always gets both hands. While held, the arms keep
-a carry posture solved for the object's size: forearms forward, the object in front of the
-belly clear of the trunk and the swinging thighs (docs/realism.md).
+a carry posture solved for the object's size: as people carry a box, close to the body at
+the waist, the upper arms hanging and the elbows bent (docs/realism.md).
 
 Hand frames: the grasp frame lies just off the palm (skeleton `_frames`), so a grasp frame
 put on a face is a palm touching it, not sinking in. With the arms hanging every hand frame
@@ -29,10 +29,16 @@ ONE_HAND_WIDTH = 0.09
 ONE_HAND_MASS = 1.0
 """kg: heavier parts are taken with both hands."""
 GRASP_ATTRIBUTE = "grasp"
-CARRY_HEIGHT = 1.0
-"""m: height of the palms while carrying (forearms about level for the default adult)."""
-TRUNK_CLEARANCE = 0.2
-"""m: from the pelvis axis to the near face of a carried object (the chest reaches 0.16)."""
+BELOW_ELBOWS = 0.05
+"""m: both hands carry this far below elbow height (the shoulder's height less the upper
+arm's length): the load at the waist, the upper arms hanging at the sides and the elbows
+bent about 85 degrees (docs/realism.md: carrying as people carry)."""
+TRUNK_CLEARANCE = 0.125
+"""m: from the pelvis axis to the near face of an object carried in both hands: close to
+the body, 2 cm in front of the belly (0.105 m for the default adult, between the hips and
+the chest)."""
+LOWEST_CARRY = 0.8
+"""m: a tall object's bottom stays at least this high, clear of the swinging thighs."""
 ONE_HAND_CARRY = (0.3, -0.12, 0.98)
 """Where the right palm carries a part, in the standing body's frame (x forward, y left)."""
 ARM_JOINTS = ("shoulder", "elbow", "wrist")
@@ -76,7 +82,7 @@ HAND_AXES = {
 palms on an object's sides, reaching down to it or holding it in front."""
 
 
-def _facing(heading: float, hand: str) -> RotationMatrix:
+def facing(heading: float, hand: str) -> RotationMatrix:
     return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(HAND_AXES[hand])
 
 
@@ -95,37 +101,78 @@ def grip_style(height: float) -> str:
     return "sides_fingers_down" if height / 2 >= FINGERS_DOWN else "sides_fingers_forward"
 
 
+GRIP_BELOW_TOP = 0.07
+"""m: with the fingers down an object's sides the grasp frame is this far below its top: the
+wrist (8.5 cm above the frame) then stands 1.5 cm over the top edge and the forearm (a
+capsule of 3.6 cm radius, its axis 2 cm off the palm) goes at most a few millimetres past
+the face's plane there. With the palms at the middle of a 0.2 m carton's sides the wrists
+were beside the faces and the forearms went 1.2 cm into the carton taken (collaboration,
+seed 15); gripped higher still (6.5 cm below the top or less), IK left the hands 2 cm short
+of a carton on a crate on a pallet."""
+
+
 def grip_lift(height: float) -> float:
-    """How far above an object's centre its grasp frame is (a low object is gripped near
-    its top, the hand's edge clear of the surface below)."""
+    """How far above an object's centre its grasp frame is: a tall object is gripped high
+    enough that the forearms clear its top, a low one near its top with the hand's edge
+    clear of the surface below."""
     if grip_style(height) == "sides_fingers_down":
-        return 0.0
+        return height / 2 - GRIP_BELOW_TOP
     return max(GRIP_ABOVE_SUPPORT - height / 2, 0.0)
+
+
+PALM_GAP = 0.008
+"""m: palms close on an object's faces this far off them: the hands are aimed by IK to a
+centimetre or so, and a palm a little off the face holds it (the realism audit allows 2 cm)
+where one a little in would be in it; and the forearm (a capsule of 3.6 cm radius, its axis
+2 cm off the palm) then reaches less than a centimetre past the face's plane (5 mm off, it
+went 1.1 cm into collaboration's carton taken from the pallet's far side, seed 0)."""
+PALM_FROM_NEAR_FACE = 0.055
+"""m: palms on the side faces of a deep object hold it this far from its near face, no
+further forward: the wrist (8.5 cm behind the grasp frame) then stands 3 cm behind that
+face, where the forearm (thicker than the hand, its axis 2 cm off the palm) is clear of the
+object."""
+
+
+def palm_back(hands: str, depth: float) -> float:
+    """How far behind an object's centre palms on its side faces hold it (the object's
+    extent `depth` along the person's heading; one hand: not at all)."""
+    return max(depth / 2 - PALM_FROM_NEAR_FACE, 0.0) if hands == BOTH_HANDS else 0.0
 
 
 def palm_targets(grasp: Grasp, heading: float) -> dict:
     """Where each taking hand's grasp frame goes (position, orientation) to take `grasp`:
-    on the faces that face the person's sides (one hand: the right one only)."""
-    center = np.array(grasp.center, dtype=float) + [0.0, 0.0, grip_lift(grasp.size[2])]
-    axis, width, _ = _across(grasp, heading)
-    R = _facing(heading, grip_style(grasp.size[2]))
-    return _on_sides(grasp.hands, center, axis, width, R)
+    on the faces that face the person's sides (one hand: the right one only), towards the
+    person's end of them."""
+    axis, width, depth = _across(grasp, heading)
+    return _holding(grasp.hands, grasp.center, heading, axis, (depth, width, grasp.size[2]))
 
 
 def release_targets(hold: Hold, center, heading: float) -> dict:
     """Where each holding hand's grasp frame goes to put the held object's centre at
     `center` (facing `heading`)."""
     left = np.array([-math.sin(heading), math.cos(heading), 0.0])
-    R = _facing(heading, grip_style(hold.size[2]))
-    center = np.asarray(center, dtype=float) + [0.0, 0.0, grip_lift(hold.size[2])]
-    return _on_sides(hold.hands, center, left, hold.size[1], R)
+    return _holding(hold.hands, center, heading, left, hold.size)
+
+
+def _holding(hands: str, center, heading: float, left, size) -> dict:
+    """The palms on the side faces of an object of `size` (its extents along the faces,
+    across them, up) whose centre is at `center`, `left` the faces' normal towards the
+    person's left: the palms back along the faces, towards the person, as far as
+    `palm_back`."""
+    depth, width, height = size
+    toward = np.array([left[1], -left[0], 0.0])  # along the faces, ahead for `left` ahead
+    if toward @ [math.cos(heading), math.sin(heading), 0.0] < 0:
+        toward = -toward
+    held = np.asarray(center, dtype=float) - palm_back(hands, depth) * toward
+    held = held + [0.0, 0.0, grip_lift(height)]
+    return _on_sides(hands, held, left, width, facing(heading, grip_style(height)))
 
 
 def reach_target(body: HumanBody, point, heading: float) -> dict:
     """The right hand reaching to `point` on a surface: the hand level, fingers forward,
     its little-finger edge resting on the point rather than the fingers sinking in."""
     position = np.asarray(point, dtype=float) + [0.0, 0.0, hand_half_breadth(body)]
-    return {"right": (position, _facing(heading, "sides_fingers_forward"))}
+    return {"right": (position, facing(heading, "sides_fingers_forward"))}
 
 
 def outward(side: str, R: RotationMatrix) -> np.ndarray:
@@ -140,17 +187,48 @@ def hand_half_breadth(body: HumanBody) -> float:
     return hand.shape.size[0] / 2
 
 
+def hand_below(body: HumanBody, R: RotationMatrix | None) -> float:
+    """How far the hand reaches below its grasp frame when that has the world orientation
+    `R` (None: any; the farthest, fingers straight down)."""
+    return hand_extent(body, R, (0.0, 0.0, -1.0))
+
+
+def hand_extent(body: HumanBody, R: RotationMatrix | None, direction) -> float:
+    """How far the hand reaches from its grasp frame along the world `direction` (a unit
+    vector) when the frame has the world orientation `R` (None: any orientation)."""
+    corners = _hand_corners(body)
+    if R is None:
+        return float(np.max(np.linalg.norm(corners, axis=1)))
+    return float(np.max(np.asarray(direction) @ (R.matrix() @ corners.T)))
+
+
+@lru_cache(maxsize=16)
+def _hand_corners(body: HumanBody) -> np.ndarray:
+    """The corners of the right hand's collision box in its grasp frame."""
+    (hand,) = body.skeleton.body("right_hand").collisions
+    q = body.standing_pose()
+    X_GH = body.frame_pose("right_hand_grasp", q).inverse() @ body.frame_pose("right_hand", q)
+    half = np.asarray(hand.shape.size) / 2
+    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    return np.array([X_GH @ (np.asarray(hand.shape.xyz) + sign * half) for sign in signs])
+
+
 def _on_sides(hands: str, center, left, width: float, R) -> dict:
-    right = {"right": (center - left * width / 2, R)}
-    return right if hands == ONE_HAND else {"left": (center + left * width / 2, R), **right}
+    """The palms PALM_GAP off the faces `width` apart across `left` (one hand: the right)."""
+    half = width / 2 + PALM_GAP
+    right = {"right": (center - left * half, R)}
+    return right if hands == ONE_HAND else {"left": (center + left * half, R), **right}
 
 
 def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
     """Where the held object's centre sits in its holder's frame (hrc_drake.workpieces: the
     palms' midpoint for both hands, a level frame at the palm for one): beside the palm,
-    below it when the object is gripped near its top."""
+    below it when the object is gripped near its top, ahead of the palms when they hold a
+    deep object towards its near face."""
     below = -grip_lift(hold.size[2])
-    return (0.0, hold.size[1] / 2, below) if hold.hands == ONE_HAND else (0.0, 0.0, below)
+    if hold.hands == ONE_HAND:
+        return (0.0, hold.size[1] / 2, below)
+    return (palm_back(hold.hands, hold.size[0]), 0.0, below)
 
 
 def arm_indices(body: HumanBody, sides) -> np.ndarray:
@@ -186,17 +264,20 @@ def carry_arms(body: HumanBody, hold: Hold) -> CarryArms:
 
 @lru_cache(maxsize=64)
 def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
-    """Solved once per object size: palms on the object's faces in front of the belly."""
+    """Solved once per object size: palms on the object's faces, at the waist in front of
+    the belly."""
     depth, width, height = size
     if hands == ONE_HAND:
-        targets = {"right": (np.array(ONE_HAND_CARRY), _facing(0.0, "sides_fingers_forward"))}
+        targets = {"right": (np.array(ONE_HAND_CARRY), facing(0.0, "sides_fingers_forward"))}
     else:
-        forward = TRUNK_CLEARANCE + depth / 2
-        z = max(CARRY_HEIGHT, 0.8 + height / 2)
-        R = _facing(0.0, "sides_fingers_forward")
+        forward = TRUNK_CLEARANCE + depth / 2 - palm_back(hands, depth)
+        elbows = body.sizes["shoulder_height"] - body.sizes["upper_arm"]
+        z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2 + grip_lift(height))
+        R = facing(0.0, "sides_fingers_forward")
+        half = width / 2 + PALM_GAP
         targets = {
-            "left": (np.array([forward, width / 2, z]), R),
-            "right": (np.array([forward, -width / 2, z]), R),
+            "left": (np.array([forward, half, z]), R),
+            "right": (np.array([forward, -half, z]), R),
         }
     q = pose_vector(body, HOLD)
     free = arm_indices(body, tuple(targets))

@@ -35,14 +35,15 @@ RELAXED = {
 """Standing at ease: arms hang just clear of the thighs, elbows soft."""
 
 HOLD = {
-    "shoulder_flexion": 20,
-    "shoulder_abduction": 14,
-    "shoulder_rotation": 22,
-    "elbow_flexion": 72,
+    "shoulder_flexion": 0,
+    "shoulder_abduction": 6,
+    "shoulder_rotation": 8,
+    "elbow_flexion": 85,
     "wrist_flexion": -5,
     "neck_flexion": 10,
 }
-"""Both hands hold an object in front of the belly (carrying, between pick and place)."""
+"""Both hands hold an object in front of the belly (carrying, between pick and place): the
+upper arms hanging, the elbows bent (the carry posture, hrc_drake.human.grasp)."""
 
 
 @dataclass(frozen=True)

@@ -44,6 +44,16 @@ class Grasp:
 
 
 @dataclass(frozen=True)
+class Box:
+    """An object standing near what the hands are aimed at, which they keep clear of: its
+    centre and heading (rad) in the world and its extents along its own x, y and z."""
+
+    center: tuple[float, float, float]
+    yaw: float
+    size: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
 class MoveCommand:
     """Walk to `target_position` (x, y[, z ignored]) and turn to `target_quaternion` (w, x, y, z).
 
@@ -75,6 +85,8 @@ class AnimateCommand:
     target: tuple[float, float, float] | None = None
     hold: Hold | None = None
     grasp: Grasp | None = None
+    nearby: tuple[Box, ...] = ()
+    """Objects near the target: the arms keep out of them as out of the cell's furniture."""
 
 
 @dataclass(frozen=True)

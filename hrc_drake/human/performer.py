@@ -2,9 +2,9 @@
 
 Every pose the person takes (hrc_drake.human.protocol) comes from the same few unchanging
 things: the body's joint layout and legs, the motion clips it plays, and the cell's
-navigation map that walks go round. `Performer` holds them together, so that the segments,
-activities and protocol take one argument for them; `place` puts a clip's pose into the
-world, `carried` puts the arms into the carry posture.
+navigation map that walks go round and the hands keep out of. `Performer` holds them
+together, so that the segments, activities and protocol take one argument for them;
+`place` puts a clip's pose into the world, `carried` puts the arms into the carry posture.
 """
 
 from dataclasses import dataclass
@@ -15,6 +15,7 @@ import numpy as np
 
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.legs import Legs
 from hrc_drake.human.navigation import NavigationMap
@@ -56,6 +57,12 @@ class Performer:
 
     def gait(self, clip: Clip) -> GaitProfile:
         return gait_profile(self.legs, clip)
+
+    @cached_property
+    def furniture(self) -> Furniture:
+        """The cell's fixed geometry the hands work on and keep out of (the navigation
+        map's pieces)."""
+        return Furniture(tuple(self.navigation.obstacles) if self.navigation else ())
 
 
 def place(performer: Performer, q: np.ndarray, x: float, y: float, yaw: float) -> np.ndarray:

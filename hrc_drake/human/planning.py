@@ -3,12 +3,13 @@ movement (turn towards the path, walk it round sharp corners and the cell's geom
 to the target orientation), of an animation (a clip, aimed at a target or grasp with
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
-from math import atan2, hypot
+from math import atan2, hypot, radians
 
 import numpy as np
 
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -18,35 +19,48 @@ from hrc_drake.human.grasp import (
     release_targets,
 )
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
+from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import TARGETED, Unreachable, aim_clip
+from hrc_drake.human.targeting import (
+    TARGETED,
+    WITHDRAWAL,
+    Unreachable,
+    aim_clip,
+    withdrawal,
+)
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
+FINAL_TURN_WALKING = radians(45.0)
+"""A walk turns to face its place over its last steps by at most this; further, the person
+turns on the spot there: the closing steps of a walk at full pace that turns further slide
+a foot (measured: 50° 3.9 cm, 57° 7.7 cm, 70° 12 cm; at most 0.4 cm up to 45°)."""
 
 
 def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
     """Turn towards the path, walk it, then turn to the target orientation. Without given
-    waypoints the path goes round the cell's geometry (the navigation map); a place to
-    stand (a target with an orientation) that is not clear moves to the nearest that is."""
+    waypoints the path goes round the cell's geometry (the navigation map); a target where
+    the person would have no room to stand and turn moves to the nearest place that has.
+    Unreachable when there is no such place or no walk keeps clear of the cell."""
     clip = performer.clips.get(command.animation_name)
-    if clip is None or not clip.loop or clip.animation_distance <= 0:
+    if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
     goal = tuple(command.target_position[:2])
     waypoints = command.waypoints
     standing = _yaw_of(command.target_quaternion)
     oriented = tuple(command.target_quaternion) != NULL_QUATERNION
-    if performer.navigation is not None:
-        if oriented:
-            goal = performer.navigation.clear_spot(*goal, standing)
-        if not waypoints:
-            waypoints = performer.navigation.path((x, y), goal)
-    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal])
+    navigation = performer.navigation
+    if navigation is not None:
+        goal, waypoints = _walk_round(
+            navigation, (x, y), goal, standing if oriented else None, waypoints
+        )
+    walkable = navigation.walkable if navigation is not None else None
+    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal], walkable)
     segments: list[Segment] = []
     start = t
     heading = yaw
@@ -63,7 +77,8 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
             )
             start = segments[-1].end(performer)
         walk = WalkSegment(start, tuple(stretch), clip.name, distance, speed, carry)
-        if oriented and k == len(stretches) - 1:
+        last = oriented and k == len(stretches) - 1
+        if last and abs(wrap_angle(standing - walk.directions[-1])) <= FINAL_TURN_WALKING:
             walk = walk.facing_at_the_end(standing)
         walk = walk.stepped(performer)
         segments.append(walk)
@@ -81,25 +96,49 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
 
 
+def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):
+    """The place to stand nearest `goal` that has room, and the waypoints of the walk there
+    (the given ones, or round the cell's geometry)."""
+    try:
+        goal = navigation.clear_spot(*goal, yaw)
+        return goal, waypoints or tuple(navigation.path(start, goal))
+    except NoWay as error:
+        raise Unreachable(str(error)) from None
+
+
 def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float) -> Activity:
     """Play a clip where the person stands (`pose`); with a target or a grasp, aimed at it by
     inverse kinematics, taking hold of what it grasps."""
     clip = performer.clips.get(command.animation_name)
     if clip is None:
-        raise Unreachable(f"no animation named '{command.animation_name}'")
+        raise Unreachable(no_animation(command.animation_name, performer.clips))
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
     aim, carry = None, _carry(performer, command.hold)
+    furniture = performer.furniture.with_boxes(command.nearby)
     if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
         hands, takes = _aimed_hands(performer, clip, command, pose)
+        lowest = None
         if takes:
             carry = _carry(performer, hold_of(command.grasp, pose[2]))
+            top = command.grasp.center[2] + command.grasp.size[2] / 2
+            lowest = dict.fromkeys(hands, top)
         placed = lambda q: place(performer, q, *pose)  # noqa: E731
-        aim = aim_clip(performer.body, clip, placed, hands, pose[2], carry, takes)
+        aim = aim_clip(
+            performer.body,
+            clip,
+            placed,
+            hands,
+            pose[2],
+            carry,
+            takes,
+            furniture,
+            lowest,
+        )
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
-    return Activity.plan(performer, (segment,), pose)
+    return Activity.plan(performer, (segment,), pose, furniture)
 
 
 def _aimed_hands(
@@ -137,11 +176,18 @@ def plan_stop(
 ) -> Activity:
     """Standing idle after a cancel: at once, or a walk under way first comes to a stop in
     a step or two and a turn on the spot finishes the step it is taking (stopping dead
-    would slide the feet). `base` is where the person stands, `hold` what the hands hold."""
+    would slide the feet); empty hands cut short on a surface (a reach) leave it first, the
+    way they came. `base` is where the person stands, `hold` what the hands hold."""
     stepping = _stepping_at(performer, activity, t)
     if stepping is None:
-        return plan_idle(performer, base, t, hold)
-    if isinstance(stepping, TurnSegment):
+        withdrawing = _withdrawing(performer, activity, base, hold, t)
+        if withdrawing is None:
+            return plan_idle(performer, base, t, hold)
+        rest = ClipSegment(IDLE_CLIP, withdrawing.end(performer), base, forever=True)
+        return Activity.plan(performer, (withdrawing, rest), base, activity.furniture)
+    if isinstance(stepping, ClipSegment):
+        stop, pose = stepping, stepping.anchor
+    elif isinstance(stepping, TurnSegment):
         stop = stepping.finishing(t)
         pose = (*stop.position, wrap_angle(stop.yaw_to))
     else:
@@ -161,15 +207,44 @@ def still_stepping(performer: Performer, activity: Activity | None, t: float):
 
 
 def _stepping_at(performer: Performer, activity: Activity | None, t: float):
-    """The walk or turn on the spot the activity is in at t (None: standing or playing a
-    clip): the feet are stepping, so it cannot stop dead."""
+    """The walk, turn on the spot or withdrawal of the hands the activity is in at t (None:
+    standing or playing a clip): the feet are stepping or the hands leaving a surface, so it
+    cannot stop dead."""
+    segment = _segment_at(activity, t)
+    under_way = isinstance(segment, WalkSegment | TurnSegment) or (
+        isinstance(segment, ClipSegment) and segment.length is not None
+    )
+    if under_way and t < segment.end(performer):
+        return segment
+    return None
+
+
+def _segment_at(activity: Activity | None, t: float):
     if activity is None:
         return None
     current = [s for s in activity.segments if s.start <= t]
-    segment = current[-1] if current else None
-    if isinstance(segment, WalkSegment | TurnSegment) and t < segment.end(performer):
-        return segment
-    return None
+    return current[-1] if current else None
+
+
+def _withdrawing(performer: Performer, activity, base, hold, t: float) -> ClipSegment | None:
+    """Empty hands cut short in an aimed clip over a surface, leaving it (None: there are
+    none)."""
+    segment = _segment_at(activity, t)
+    if hold is not None or not isinstance(segment, ClipSegment) or segment.aim is None:
+        return None
+    clip = performer.clips[IDLE_CLIP]
+    aim = withdrawal(
+        performer.body,
+        activity.furniture_of(performer),
+        clip,
+        lambda q: place(performer, q, *base),
+        activity.pose(performer, t),
+        segment.aim.hands,
+        base[2],
+    )
+    if aim is None:
+        return None
+    return ClipSegment(IDLE_CLIP, t, base, length=WITHDRAWAL, aim=aim)
 
 
 def _carry(performer: Performer, hold: Hold | None) -> CarryArms | None:
@@ -181,12 +256,14 @@ def _yaw_of(quaternion) -> float:
     return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
 
 
-def _without_short_legs(path: list) -> list:
+def _without_short_legs(path: list, walkable=None) -> list:
     """The path without waypoints closer than MIN_LEG to the point before them (the goal
-    stays): a short leg would make the person swing round on the spot while walking."""
+    stays): a short leg would make the person swing round on the spot while walking. A
+    waypoint stays where the leg past it would not be `walkable` (a, b)."""
     kept = [path[0]]
-    for point in path[1:-1]:
-        if hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) >= MIN_LEG:
+    for point, after in zip(path[1:-1], path[2:], strict=True):
+        short = hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) < MIN_LEG
+        if not short or (walkable is not None and not walkable(kept[-1], after)):
             kept.append(point)
     goal = path[-1]
     if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:

@@ -13,6 +13,7 @@ from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
 from hrc_drake.human.performer import IDLE_CLIP, Performer, carried, place
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import AimedMotion
 from hrc_drake.human.walking import WalkSegment
 
@@ -33,6 +34,8 @@ class ClipSegment:
     anchor: tuple[float, float, float]
     speed: float = 1.0
     forever: bool = False
+    length: float | None = None
+    """Clip seconds played (None: all of it)."""
     aim: AimedMotion | None = None
     carry: CarryArms | None = None
     """Arms held in the carry posture (not with `aim`, which blends them itself)."""
@@ -40,13 +43,23 @@ class ClipSegment:
     def end(self, performer: Performer) -> float:
         if self.forever:
             return inf
-        return self.start + performer.clips[self.clip].duration / self.speed
+        return self.start + self._played(performer) / self.speed
+
+    def _played(self, performer: Performer) -> float:
+        return self.length if self.length is not None else performer.clips[self.clip].duration
 
     def clip_time(self, performer: Performer, t: float) -> float:
         clip_time = (t - self.start) * self.speed
         if self.forever:
             return clip_time
-        return min(max(clip_time, 0.0), performer.clips[self.clip].duration)
+        return min(max(clip_time, 0.0), self._played(performer))
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        """The sides whose hands must stay where they are at t: aimed at their targets or
+        holding what they took."""
+        if self.aim is not None:
+            return self.aim.hands if self.aim.holds(self.clip_time(performer, t)) else ()
+        return SIDES if self.carry is not None else ()
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         clip_time = self.clip_time(performer, t)
@@ -82,6 +95,9 @@ class TurnSegment:
 
     def end(self, performer: Performer) -> float:
         return self.start + self.cycles * self.clip.duration
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        return SIDES if self.carry is not None else ()
 
     def finishing(self, t: float) -> "TurnSegment":
         """This turn cut short after the cycle (two steps) under way at t, turned as far as

@@ -41,7 +41,10 @@ START_PHASE = 0.0
 stood while the right heel rises and the right foot leaves its standing place first."""
 CLOSING = 0.15
 """m: a step that would land less than this short of the goal (or past it) closes the feet
-at the goal instead."""
+at the goal instead, if the goal is no further ahead of the pelvis than the gait's own
+landing: a foot put down further ahead than that needs a longer leg than the person has,
+and the pelvis would drop for it (it lands as far ahead as it reaches, and the next step
+closes the feet)."""
 SETTLE = 0.1
 """Fraction of a gait cycle after the last heel strike until the foot stands flat."""
 LAST_OF_CYCLE = 1.0 - 1e-9
@@ -217,15 +220,19 @@ def plan_steps(profile, cycle, start, arrive, travel, pace, place, begin, end, k
             plan[-1] = replace(plan[-1], pelvis_out=travel(plan[-1].toe_off))
         strike = plan[-1].strike + (1.0 - plan[-1].entered) * cycle
         while not plan[-1].last:
-            along = travel(strike) + profile.offset[side] * pace(strike)
+            pelvis = travel(strike)
+            along = pelvis + profile.offset[side] * pace(strike)
             toe_off = strike + STANCE * cycle
-            if along >= total - CLOSING or strike >= arrive:
-                plan.append(Stance(end[side], strike, inf, travel(strike), total, last=True))
+            closing = along >= total - CLOSING or strike >= arrive
+            if closing and end[side].along - pelvis <= profile.offset[side]:
+                plan.append(Stance(end[side], strike, inf, pelvis, total, last=True))
             else:
+                if closing:  # the goal is out of the leg's reach: as far as it reaches
+                    along = pelvis + profile.offset[side]
                 spot = place(along, profile.track[side])
-                plan.append(Stance(spot, strike, toe_off, travel(strike), travel(toe_off)))
+                plan.append(Stance(spot, strike, toe_off, pelvis, travel(toe_off)))
             strike += cycle
-        stances[side] = _scaled(plan, profile.stride)
+        stances[side] = _scaled(plan, profile.stride, profile.offset[side])
     over = max(stances[side][-1].strike for side in SIDES) + SETTLE * cycle
     return stances, over
 
@@ -237,16 +244,21 @@ def _first_stance(side: str, start: float, cycle: float, travel, begin) -> Stanc
     return Stance(begin[side], start, toe_off, 0.0, travel(toe_off), entered, first=True)
 
 
-def _scaled(plan: list[Stance], stride: float) -> tuple[Stance, ...]:
-    """The stances with the scale of the steps between them."""
-    scales = [
-        min(max(a.spot.distance(b.spot) / stride, LOWEST_LIFT), 1.0) for a, b in pairwise(plan)
-    ]
-    arriving, leaving = [scales[0], *scales], [*scales, scales[-1]]
+def _scaled(plan: list[Stance], stride: float, ahead: float) -> tuple[Stance, ...]:
+    """The stances with the scale of the steps between them (`leaving`) and of their
+    landings (`arriving`: how far ahead of the pelvis the foot lands over the gait's own
+    `ahead`; a walk's first step is short, yet it lands as far ahead as any)."""
+    scales = [_scale(a.spot.distance(b.spot) / stride) for a, b in pairwise(plan)]
+    arriving = [_scale((s.spot.along - s.pelvis_in) / ahead) for s in plan]
+    leaving = [*scales, scales[-1]]
     return tuple(
         replace(stance, arriving=a, leaving=b)
         for stance, a, b in zip(plan, arriving, leaving, strict=True)
     )
+
+
+def _scale(fraction: float) -> float:
+    return min(max(fraction, LOWEST_LIFT), 1.0)
 
 
 def sole_target(
@@ -305,9 +317,10 @@ def sole_target(
     yaw = lift.yaw + p * wrap_angle(land.yaw - lift.yaw)
     rolled = stance.leaving if stance.first else 1.0  # how far it rolled leaving the floor
     unrolling = minimum_jerk((u - STANCE) / (UNROLLING - STANCE))
-    pitch = (scale + (rolled - scale) * (1.0 - unrolling)) * profile.at(profile.pitch, u)
-    height = scale * profile.at(profile.height, u)
     landing_in = minimum_jerk((u - LANDING[0]) / (LANDING[1] - LANDING[0]))
+    rolling = scale + (landing.arriving - scale) * landing_in  # to the pitch it lands with
+    pitch = (rolling + (rolled - rolling) * (1.0 - unrolling)) * profile.at(profile.pitch, u)
+    height = scale * profile.at(profile.height, u)
     remaining = sqrt((land.x - x) ** 2 + (land.y - y) ** 2)
     height = max(height, LANDING_SLOPE * remaining * landing_in)
     slack = SWING_SLACK * (1.0 - minimum_jerk((u - SETTLING[0]) / (SETTLING[1] - SETTLING[0])))

@@ -19,6 +19,7 @@ from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer, carried, place
 from hrc_drake.human.rotations import wrap_angle
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.stepping import (
     START_PHASE,
     SWING_SLACK,
@@ -160,6 +161,10 @@ class WalkSegment:
 
     def end(self, performer: Performer) -> float:
         return self.over
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        """The sides whose hands hold something (they stay where they are)."""
+        return SIDES if self.carry is not None else ()
 
     def distance(self, t: float) -> float:
         """How far along the path the pelvis is at t."""

@@ -143,14 +143,15 @@ KEYED_CLIPS = (
     ),
     KeyedSpec(
         "inspect",
-        "Hold an object in front of the chest, look at it, turn it, lower it again.",
+        "Raise the hands in front of the chest, look at what they hold, turn it, lower them "
+        "again (holding something, the arms keep the carry posture).",
         (
-            Key(0.0, HOLD),
+            Key(0.0),
             Key(0.8, INSPECT),
             Key(1.6, {**INSPECT, "wrist_deviation": 15, "shoulder_rotation": 28}),
             Key(2.4, {**INSPECT, "wrist_deviation": -15, "shoulder_rotation": 45}),
             Key(3.2, INSPECT),
-            Key(4.0, HOLD),
+            Key(4.0),
         ),
         events={"look": 0.8, "done": 3.2},
     ),

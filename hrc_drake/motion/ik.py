@@ -55,9 +55,8 @@ class ToolTargetSolver:
         postures: `attempts` starts in all (a count, not a time, so the outcome never
         depends on how busy the machine is)."""
         self._check_reach(pose, q_start)
-        seeds = ([q_start, self.q_nominal] + self._random_seeds(rng, attempts - 2))[:attempts]
         wrist_sign = self._wrist_side(q_start)
-        for seed in seeds:
+        for seed in self._seeds(q_start, rng, attempts):
             q = self._solve_from(pose, seed, q_start, free_rotation, wrist_sign)
             if q is not None:
                 return q
@@ -65,6 +64,63 @@ class ToolTargetSolver:
             f"target unreachable: no collision-free inverse kinematics solution for the tool at "
             f"{np.round(pose.translation(), 3).tolist()}"
         )
+
+    def reaches(
+        self,
+        pose: RigidTransform,
+        q_start: np.ndarray,
+        free_rotation: bool,
+        rng: np.random.Generator,
+        attempts: int,
+        clearance: bool = True,
+    ) -> bool:
+        """Whether `solve` with the same arguments finds a solution, found faster: every
+        start without the clearance constraint first (one whose solution is collision-free
+        settles it, none that solves settles it too), and only then, for the starts whose
+        solutions collide, the slow solves that keep the clearance, as `solve` tries them.
+        Without `clearance`, a solution need only not touch the cell (the end of a linear
+        move, which keeps no clearance)."""
+        try:
+            self._check_reach(pose, q_start)
+        except PlanningFailed:
+            return False
+        colliding = []
+        for seed, q in self._unconstrained(pose, q_start, free_rotation, rng, attempts):
+            if q is not None and (self.model.collision_free(q) if clearance else self._apart(q)):
+                return True
+            if q is not None and clearance:
+                colliding.append(seed)
+        wrist_sign = self._wrist_side(q_start)
+        q_reference = 0.5 * (q_start + self.q_nominal)
+        return any(
+            (q := self._solve(pose, seed, q_reference, free_rotation, wrist_sign, True)) is not None
+            and self.model.collision_free(q)
+            for seed in colliding
+        )
+
+    def _apart(self, q: np.ndarray) -> bool:
+        """The robot at q touches neither the cell nor itself (no clearance kept)."""
+        return self.model.clearance(q) > 0.0
+
+    def kinematic_solution(
+        self, pose: RigidTransform, q_start: np.ndarray, free_rotation: bool, rng, attempts: int
+    ) -> np.ndarray | None:
+        """A solution that ignores the cell (collisions and the clearance), from the same
+        starts as `solve`: whether the arm could be there at all."""
+        solutions = self._unconstrained(pose, q_start, free_rotation, rng, attempts)
+        return next((q for _, q in solutions if q is not None), None)
+
+    def _unconstrained(self, pose, q_start, free_rotation, rng, attempts):
+        """(start, its solution without the clearance constraint or None) for each start of
+        a solve, in turn."""
+        wrist_sign = self._wrist_side(q_start)
+        q_reference = 0.5 * (q_start + self.q_nominal)
+        for seed in self._seeds(q_start, rng, attempts):
+            yield seed, self._solve(pose, seed, q_reference, free_rotation, wrist_sign, False)
+
+    def _seeds(self, q_start: np.ndarray, rng: np.random.Generator, attempts: int) -> list:
+        """The starts of a solve: the current posture, home, then random postures."""
+        return ([q_start, self.q_nominal] + self._random_seeds(rng, attempts - 2))[:attempts]
 
     def _random_seeds(self, rng: np.random.Generator, count: int) -> list[np.ndarray]:
         """`count` seeds: near the nominal posture first, then anywhere (other elbow and arm

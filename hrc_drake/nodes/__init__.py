@@ -26,9 +26,10 @@ def palette_text(registry: NodeRegistry) -> str:
         lines.append(f"{model.id} ({origin}{model.kind}): {model.description}")
         for port in model.ports.values():
             default = f" = {port.default}" if port.has_default else ""
+            accepts = f" ({port.accepts})" if port.accepts else ""
             type_name = port_type_name(port.type)
             lines.append(
-                f"    {port.direction.name.lower():6s} {port.name}: {type_name}{default}"
+                f"    {port.direction.name.lower():6s} {port.name}: {type_name}{default}{accepts}"
                 + (f"  -- {port.description}" if port.description else "")
             )
     return "\n".join(lines)

@@ -9,7 +9,7 @@ from abc import abstractmethod
 from typing import ClassVar
 
 from hrc_drake.bt import StatefulActionNode, Status
-from hrc_drake.messages import RUNNING, SUCCEEDED, ResultLog
+from hrc_drake.messages import RUNNING, SUCCEEDED, CommandResult, ResultLog
 
 
 class CommandNode(StatefulActionNode):
@@ -54,8 +54,12 @@ class CommandNode(StatefulActionNode):
             return Status.RUNNING
         if outcome == SUCCEEDED:
             return self.succeeded()
-        result = self.result()
-        self.failure_reason = f"{outcome}: {result.reason}" if result and result.reason else outcome
+        return self.failed(self.result())
+
+    def failed(self, result: CommandResult) -> Status:
+        """FAILURE, keeping why (the actor's outcome and reason) for the run's logs."""
+        reason = f": {result.reason}" if result.reason else ""
+        self.failure_reason = f"{result.outcome}{reason}"
         return Status.FAILURE
 
     def on_halted(self) -> None:

@@ -13,6 +13,7 @@ from hrc_drake.bt import (
     ControlNode,
     InputPort,
     OutputPort,
+    Range,
     Status,
     SyncActionNode,
 )
@@ -63,15 +64,24 @@ class OffsetPose(SyncActionNode):
     )
 
     def tick(self) -> Status:
-        pose = self.agent.resolve_pose(self.get_input("input"))
-        offset = np.array(self.get_input("offset").position)
-        text = self.get_input("orientation").strip()
+        inputs = {port: self.get_input(port) for port in ("input", "offset", "orientation")}
+        try:
+            self.set_output("output", self.static_outputs(self.agent, inputs)["output"])
+        except ValueError as error:
+            raise self.error(str(error), port="orientation") from None
+        return Status.SUCCESS
+
+    @staticmethod
+    def static_outputs(agent, inputs: dict) -> dict:
+        """The output from the inputs alone: what `validate` computes for inputs known
+        before a run (hrc_drake.known_values)."""
+        pose = agent.resolve_pose(inputs["input"])
+        text = inputs["orientation"].strip()
         quaternion = tuple(float(v) for v in text.split(";")) if text else pose.quaternion
         if quaternion is not None and len(quaternion) != 4:
-            raise self.error("orientation needs 4 numbers qw;qx;qy;qz", port="orientation")
-        position = tuple(float(v) for v in np.array(pose.position) + offset)
-        self.set_output("output", Pose(position, quaternion))
-        return Status.SUCCESS
+            raise ValueError("orientation needs 4 numbers qw;qx;qy;qz")
+        position = tuple(float(v) for v in np.array(pose.position) + inputs["offset"].position)
+        return {"output": Pose(position, quaternion)}
 
 
 class InterruptableSequence(SequentialControl):
@@ -90,7 +100,11 @@ class WeightedRandom(ControlNode):
     """Picks one child at random by weight and ticks only it until it returns SUCCESS;
     the tick after that picks anew. Returns the picked child's status."""
 
-    ports = (InputPort("weights", list[float], description="one weight per child, w1;w2;..."),)
+    ports = (
+        InputPort(
+            "weights", list[float], description="one weight per child, w1;w2;...", accepts=Range(0)
+        ),
+    )
 
     def __init__(self, config):
         super().__init__(config)
@@ -107,13 +121,20 @@ class WeightedRandom(ControlNode):
             self.picked = None
         return status
 
+    def input_problem(self, port: str, value) -> str:
+        """One weight per child, none negative, not all zero (as written: `1;2`)."""
+        problem = super().input_problem(port, value)
+        if port != "weights" or problem:
+            return problem
+        if len(value) != len(self.children):
+            count = len(self.children)
+            return f"needs {count} weights, one per child, got {len(value)}: {value_to_text(value)}"
+        if sum(value) <= 0:
+            return f"needs a weight above 0, got {value_to_text(value)}"
+        return ""
+
     def _pick(self) -> int:
         weights = np.asarray(self.get_input("weights"), dtype=float)
-        if len(weights) != len(self.children) or weights.min() < 0 or weights.sum() <= 0:
-            raise self.error(
-                f"needs {len(self.children)} non-negative weights, got {list(weights)}",
-                port="weights",
-            )
         return int(self.rng.choice(len(weights), p=weights / weights.sum()))
 
     def on_tree_reset(self) -> None:
@@ -123,7 +144,11 @@ class WeightedRandom(ControlNode):
 class RandomFailure(SyncActionNode):
     """FAILURE with probability `failure_chance`, else SUCCESS (an unreliable step)."""
 
-    ports = (InputPort("failure_chance", float, description="probability in [0, 1]"),)
+    ports = (
+        InputPort(
+            "failure_chance", float, description="probability in [0, 1]", accepts=Range(0, 1)
+        ),
+    )
 
     def tick(self) -> Status:
         return _status(self.rng.random() >= self.get_input("failure_chance"))

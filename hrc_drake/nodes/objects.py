@@ -7,7 +7,7 @@ key `type` is the object type and other keys are attributes (`defective=true`).
 """
 
 from hrc_drake.areas import Area
-from hrc_drake.bt import InputPort, OutputPort, Status, SyncActionNode
+from hrc_drake.bt import InputPort, OneOf, OutputPort, Status, SyncActionNode
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.messages import ResultLog
 from hrc_drake.nodes.command import CommandNode
@@ -118,15 +118,19 @@ class HeldObject(ObjectsNode):
     hand-over, which NextObject (free objects only) cannot see."""
 
     ports = (
-        InputPort("holder", str, default=wp.ROBOT_HOLDER, description=", ".join(wp.HOLDERS)),
+        InputPort(
+            "holder",
+            str,
+            default=wp.ROBOT_HOLDER,
+            description=", ".join(wp.HOLDERS),
+            accepts=OneOf(wp.HOLDERS),
+        ),
         OutputPort("object_id", int),
         OutputPort("pose", Pose, description="the object's centre (position only)"),
     )
 
     def tick(self) -> Status:
         holder = self.get_input("holder")
-        if holder not in wp.HOLDERS:
-            raise self.error(f"unknown holder '{holder}'; known: {', '.join(wp.HOLDERS)}", "holder")
         status = self.agent.workpieces
         held = status.held_by(holder) if status is not None else None
         if held is None:
@@ -182,4 +186,27 @@ class DespawnObject(WorkpiecesCommandNode):
         return wp.Despawn(seq, self.get_input("object_id"))
 
 
-NODES = (CountObjects, NextObject, HeldObject, ObjectAttribute, SpawnObject, DespawnObject)
+class MoveObject(WorkpiecesCommandNode):
+    """Sets a free object down at `pose` (upright; it settles on what is below): squaring a
+    box up in its place, or a grip that slipped knocking it askew. FAILURE when it is
+    held."""
+
+    ports = (
+        InputPort("object_id", int),
+        InputPort("pose", Pose, description="where its centre goes, and which way it faces"),
+    )
+
+    def command(self, seq: int):
+        pose = self.agent.transform(self.get_input("pose"))
+        return wp.Move(seq, self.get_input("object_id"), pose)
+
+
+NODES = (
+    CountObjects,
+    NextObject,
+    HeldObject,
+    ObjectAttribute,
+    SpawnObject,
+    DespawnObject,
+    MoveObject,
+)

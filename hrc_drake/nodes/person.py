@@ -10,7 +10,9 @@ tells the person what the hands hold, so they carry it in the carry posture.
 
 from abc import abstractmethod
 
-from hrc_drake.bt import ConditionNode, InputPort, Status, SyncActionNode
+import numpy as np
+
+from hrc_drake.bt import ConditionNode, InputPort, OneOf, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
@@ -22,6 +24,8 @@ from hrc_drake.workpieces.geometry import yaw_of
 
 TABLE_HEIGHT = 0.5
 """Targets below this height are picked or placed with the floor clips (a squat)."""
+NEARBY = 0.8
+"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
@@ -55,9 +59,13 @@ class PersonCommandNode(CommandNode):
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
     """How `hands` take `obj` (a cylinder is taken like the box around it)."""
+    return human.Grasp(hands, *_box(obj))
+
+
+def _box(obj: wp.ObjectStatus):
+    """An object's centre, heading and box extents (a cylinder: the box around it)."""
     size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
-    yaw = yaw_of(obj.pose.rotation())
-    return human.Grasp(hands, tuple(obj.pose.translation()), yaw, tuple(size))
+    return tuple(obj.pose.translation()), yaw_of(obj.pose.rotation()), tuple(size)
 
 
 class ActorAnimation(PersonCommandNode):
@@ -66,7 +74,13 @@ class ActorAnimation(PersonCommandNode):
 
     ports = (
         InputPort("animation_name", str),
-        InputPort("animation_speed", float, default=1.0, description="2 = twice as fast"),
+        InputPort(
+            "animation_speed",
+            float,
+            default=1.0,
+            description="2 = twice as fast",
+            accepts=Range(0, above=True),
+        ),
     )
 
     def command(self, seq: int):
@@ -89,6 +103,7 @@ class ActorMovement(PersonCommandNode):
             float,
             default=0.0,
             description="ground covered by one walk cycle; 0 = the clip's own",
+            accepts=Range(0),
         ),
         InputPort("target", Pose, description="x;y;z[;qw;qx;qy;qz] or location name"),
     )
@@ -135,6 +150,10 @@ class SetCalledTo(SyncActionNode):
         return Status.SUCCESS
 
 
+class ObjectGone(Exception):
+    """The object an action is to take is not in the world (any more)."""
+
+
 class TargetedAction(PersonCommandNode):
     """Plays `clip()` aimed at `target_point()`; at the clip event `contact_event` it sends
     `object_command(seq)` to the Workpieces system. SUCCESS when both succeeded."""
@@ -155,10 +174,41 @@ class TargetedAction(PersonCommandNode):
         """The Workpieces command at the contact event (actions that have one)."""
         raise TypeError(f"{type(self).__name__} moves no object")
 
-    def command(self, seq: int):
+    def on_start(self) -> Status:
+        """Sends the command; FAILURE at once, saying so, when the object is gone (a belt
+        took it away, or someone else did)."""
         self.contact_seq = None
+        try:
+            self.playing = self.clip()
+            return super().on_start()
+        except ObjectGone as gone:
+            self.failure_reason = str(gone)
+            return Status.FAILURE
+
+    def command(self, seq: int):
+        target = self.target_point()
         return human.AnimateCommand(
-            seq, self.clip(), target=self.target_point(), hold=self.hold(), grasp=self.grasp()
+            seq,
+            self.playing,
+            target=target,
+            hold=self.hold(),
+            grasp=self.grasp(),
+            nearby=self.nearby(target),
+        )
+
+    def nearby(self, target) -> tuple[human.Box, ...]:
+        """The free objects near `target` (not the one the action takes): the person's arms
+        keep out of them."""
+        status = self.agent.workpieces
+        if status is None:
+            return ()
+        taken = self.taken_id()
+        return tuple(
+            human.Box(*_box(obj))
+            for obj in status.objects
+            if obj.holder is None
+            and obj.id != taken
+            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(target[:2]))) <= NEARBY
         )
 
     def grasp(self) -> human.Grasp | None:
@@ -172,7 +222,8 @@ class TargetedAction(PersonCommandNode):
         if status is not Status.SUCCESS or not self.contact_event:
             return status
         if self.contact_seq is None:
-            return Status.FAILURE  # the clip ended without reaching its contact moment
+            self.failure_reason = f"the {self.playing} clip ended before its '{self.contact_event}'"
+            return Status.FAILURE
         return self._contact_result()
 
     def _contact_event_fired(self) -> bool:
@@ -184,16 +235,22 @@ class TargetedAction(PersonCommandNode):
         )
 
     def _contact_result(self) -> Status:
+        """The objects' answer to the command at the contact moment (why, when it failed)."""
         status = self.agent.workpieces
-        outcome = status.results_of(self.agent.issuer).outcome_of(self.contact_seq)
-        if outcome is None:
+        result = status.results_of(self.agent.issuer).result_of(self.contact_seq)
+        if result is None or result.outcome == RUNNING:
             return Status.RUNNING
-        return Status.SUCCESS if outcome == SUCCEEDED else Status.FAILURE
+        return Status.SUCCESS if result.outcome == SUCCEEDED else self.failed(result)
+
+    def taken_id(self) -> int | None:
+        """The object the action is about (None: it is about none)."""
+        names = {port.name for port in self.ports}
+        return self.get_input("object_id") if "object_id" in names else None
 
     def taken(self) -> wp.ObjectStatus:
         obj = self.agent.workpieces.object(self.get_input("object_id"))
         if obj is None:
-            raise self.error(f"no object {self.get_input('object_id')}", port="object_id")
+            raise ObjectGone(f"no object {self.get_input('object_id')} (gone or never made)")
         return obj
 
     def object_point(self) -> tuple[float, float, float]:
@@ -205,9 +262,6 @@ class TargetedAction(PersonCommandNode):
         hands = self.get_input("hand")
         if hands == "auto":
             hands = grasp_hands(obj.size, obj.mass, obj.attributes)
-        elif hands not in HOLDERS:
-            known = ", ".join(("auto", *HOLDERS))
-            raise self.error(f"unknown hand '{hands}'; known: {known}", port="hand")
         return grasp_of(obj, hands)
 
     def holder_and_center(self):
@@ -217,8 +271,13 @@ class TargetedAction(PersonCommandNode):
         return HOLDERS[grasp.hands], object_center_in_holder(hold)
 
 
+TAKE_OR_GIVE = OneOf(("take", "give"))
 HAND_PORT = InputPort(
-    "hand", str, default="auto", description="auto (from the object), right or both"
+    "hand",
+    str,
+    default="auto",
+    description="auto (from the object), right or both",
+    accepts=OneOf(("auto", *HOLDERS)),
 )
 
 
@@ -261,15 +320,32 @@ class ActorPlace(TargetedAction):
 
 
 class ActorReach(TargetedAction):
-    """Reaches one arm to a point in front (into a workspace, to straighten a part)."""
+    """Reaches one arm to a point in front (into a workspace, to straighten a part); with
+    `object_id` and `place`, the hand squares that object up there when it is on it."""
 
-    ports = (InputPort("target", Pose, description="point to reach"),)
+    ports = (
+        InputPort("target", Pose, description="point to reach"),
+        InputPort("object_id", int, default=None, description="an object to square up"),
+        InputPort("place", Pose, default=None, description="where that object is set down"),
+    )
+
+    @property
+    def contact_event(self) -> str:
+        return "reached" if self.get_input("object_id") is not None else ""
 
     def clip(self) -> str:
         return "reach"
 
     def target_point(self):
         return tuple(self.agent.transform(self.get_input("target")).translation())
+
+    def taken_id(self) -> int | None:
+        """None: the hand moves the object where it stands (it is not taken)."""
+        return None
+
+    def object_command(self, seq: int):
+        place = self.agent.transform(self.get_input("place"))
+        return wp.Move(seq, self.get_input("object_id"), place)
 
 
 class ActorHandOver(TargetedAction):
@@ -279,7 +355,9 @@ class ActorHandOver(TargetedAction):
 
     ports = (
         InputPort("object_id", int),
-        InputPort("direction", str, default="take", description="take or give"),
+        InputPort(
+            "direction", str, default="take", description="take or give", accepts=TAKE_OR_GIVE
+        ),
         HAND_PORT,
     )
     contact_event = "extended"

@@ -7,7 +7,7 @@ import math
 
 from pydrake.math import RigidTransform, RotationMatrix
 
-from hrc_drake.bt import InputPort, Status, SyncActionNode
+from hrc_drake.bt import InputPort, Range, Status, SyncActionNode
 from hrc_drake.motion import messages as robot
 from hrc_drake.nodes.command import CommandNode
 from hrc_drake.tree_types import Pose
@@ -25,12 +25,16 @@ class RobotCommandNode(CommandNode):
     cancel_command = robot.Stop
 
     def tool_target(self, port: str) -> tuple[RigidTransform, bool]:
-        """The target pose; a pose without orientation points the tool down and leaves
-        the rotation about the tool axis free."""
-        pose: Pose = self.agent.resolve_pose(self.get_input(port))
-        if pose.quaternion is not None:
-            return pose.to_transform(), False
-        return RigidTransform(TOOL_DOWN, pose.position), True
+        """The target pose, and whether the rotation about the tool axis is free."""
+        return tool_pose(self.agent.resolve_pose(self.get_input(port)))
+
+
+def tool_pose(pose: Pose) -> tuple[RigidTransform, bool]:
+    """The tool's target for a (resolved) pose, and whether the rotation about the tool axis
+    is left free: a pose without orientation points the tool down."""
+    if pose.quaternion is not None:
+        return pose.to_transform(), False
+    return RigidTransform(TOOL_DOWN, pose.position), True
 
 
 class RobotMove(RobotCommandNode):
@@ -98,13 +102,15 @@ class SetRobotVelocity(SyncActionNode):
     """Sets the robot's speed as a fraction of its planned speed; a running move slows or
     speeds up on the same path without failing. Always SUCCESS."""
 
-    ports = (InputPort("velocity", float, description="fraction of full speed, 0..1"),)
+    ports = (
+        InputPort(
+            "velocity", float, description="fraction of full speed, 0..1", accepts=Range(0, 1)
+        ),
+    )
     commands = (ROBOT,)
 
     def tick(self) -> Status:
         fraction = self.get_input("velocity")
-        if not 0.0 <= fraction <= 1.0:
-            raise self.error(f"must be within 0..1, got {fraction}", port="velocity")
         self.agent.send(ROBOT, lambda seq: robot.SetSpeed(seq, fraction))
         return Status.SUCCESS
 

@@ -3,7 +3,7 @@ adapt the robot's behaviour (the thesis system's speed rule, docs/thesis-system.
 someone is near), and on what the robot does, for a person who must not reach in while it moves."""
 
 from hrc_drake.areas import Area
-from hrc_drake.bt import ConditionNode, InputPort, Status
+from hrc_drake.bt import ConditionNode, InputPort, Range, Status
 from hrc_drake.motion.messages import IDLE
 
 
@@ -47,7 +47,7 @@ class RobotAtRest(ConditionNode):
 class SeparationBelow(ConditionNode):
     """SUCCESS while the smallest person-robot distance is below `distance` (metres)."""
 
-    ports = (InputPort("distance", float, description="threshold in metres"),)
+    ports = (InputPort("distance", float, description="threshold in metres", accepts=Range(0)),)
 
     def tick(self) -> Status:
         status = self.agent.safety

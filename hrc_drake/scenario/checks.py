@@ -65,6 +65,18 @@ def within(low: float, high: float, unit: str = "", why: str = "") -> Rule:
     return rule
 
 
+def in_metres(rule: Rule) -> Rule:
+    """`rule`, saying so when the value looks like centimetres (a person 175 tall)."""
+
+    def checked(value) -> str:
+        problem = rule(value)
+        if problem and 100 <= value <= 250:
+            return f"{problem} (lengths are in metres: {value / 100:g} for centimetres?)"
+        return problem
+
+    return checked
+
+
 def one_of(known: Iterable[str]) -> Rule:
     return lambda value: "" if value in known else unknown("value", value, known)
 
@@ -91,7 +103,7 @@ FIELD_RULES: dict[str, Rule] = {
     "simulator.accuracy": positive,
     "simulator.target_realtime_rate": not_negative,
     "simulator.integration_scheme": one_of(GetIntegrationSchemes()),
-    "human.height": within(*HEIGHT_RANGE, " m"),
+    "human.height": in_metres(within(*HEIGHT_RANGE, " m")),
     "human.mass": positive,
     "human.sex": one_of(SEXES),
     "human.percentile": within(*PERCENTILE_RANGE),

@@ -1,6 +1,7 @@
 """How the workpieces carry out their commands: Spawn (at a pose, or dropped at random in an
-area), Despawn, Attach (the vacuum cup on a top face, hands at the surface), Detach and
-Transfer (a hand-over between the robot and the person). Each changes the Step of the update
+area), Despawn, Attach (the vacuum cup on a top face, hands at the surface), Detach,
+Transfer (a hand-over between the robot and the person) and Move (a free object set down
+elsewhere). Each changes the Step of the update
 it arrives in and leaves a CommandResult in its issuer's ResultLog; a problem (an unknown
 holder or object, a busy holder, a piece out of reach or too heavy) is its reason."""
 
@@ -24,6 +25,7 @@ from hrc_drake.workpieces.messages import (
     Attach,
     Despawn,
     Detach,
+    Move,
     Spawn,
     Transfer,
     WorkpiecesCommand,
@@ -41,6 +43,7 @@ def execute(step: Step, issuer: str, issuer_index: int, command: WorkpiecesComma
         Attach: lambda c: _attach(step, c),
         Detach: lambda c: _detach(step, c),
         Transfer: lambda c: _transfer(step, c),
+        Move: lambda c: _move(step, c),
     }
     handler = handlers.get(type(command))
     if handler is None:
@@ -119,6 +122,19 @@ def _detach(step: Step, command: Detach) -> CommandResult:
             return _result(command, FAILED, reason, piece.id)
     step.pieces[piece.id] = dataclasses.replace(
         piece, pose=upright(piece.pose), velocity=SpatialVelocity.Zero(), holder=None, grip=None
+    )
+    return _result(command, SUCCEEDED, object_id=piece.id)
+
+
+def _move(step: Step, command: Move) -> CommandResult:
+    piece = step.pieces.get(command.object_id)
+    if piece is None:
+        return _result(command, FAILED, f"no object {command.object_id}")
+    if piece.holder is not None:
+        reason = f"object {piece.id} is held by {piece.holder}"
+        return _result(command, FAILED, reason, piece.id)
+    step.pieces[piece.id] = dataclasses.replace(
+        piece, pose=upright(command.pose), velocity=SpatialVelocity.Zero(), support=None
     )
     return _result(command, SUCCEEDED, object_id=piece.id)
 

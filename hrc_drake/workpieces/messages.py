@@ -117,7 +117,17 @@ class Transfer:
     """Where the object's centre goes in the receiver's frame (None: where it is now)."""
 
 
-WorkpiecesCommand = Spawn | Despawn | Attach | Detach | Transfer
+@dataclass(frozen=True)
+class Move:
+    """Sets free object `object_id` down at `pose` (upright; it settles on what is below): a
+    box squared up in its place, or knocked askew by a grip that slipped."""
+
+    seq: int
+    object_id: int
+    pose: RigidTransform
+
+
+WorkpiecesCommand = Spawn | Despawn | Attach | Detach | Transfer | Move
 
 
 @dataclass(frozen=True)

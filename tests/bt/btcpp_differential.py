@@ -4,11 +4,14 @@ reply) and the root blackboard.
 
 Leaves behave identically in both engines: ``Run<S|F><n>`` is an asynchronous action that
 runs n ticks then succeeds or fails, ``Cond<pattern>`` a condition whose results cycle
-through its pattern (per node), scripts and SetBlackboard work on integer counters.
+through its pattern (per node), scripts and SetBlackboard work on integer counters. With
+``subtrees``, the main tree also calls a second tree through SubTree nodes whose ports
+remap the counters (``{=}``, ``{other}``) or autoremap them.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import random
 import struct
 from dataclasses import dataclass, field
@@ -110,10 +113,12 @@ def btcpp_factory():
 class Vocabulary:
     """What the generator may use; ``full`` adds decorators with ports, Parallel,
     scripts with operators, SetBlackboard and pre/post-conditions; ``precedence`` leaves out
-    the parentheses that make scripts read alike whatever the operators' precedence."""
+    the parentheses that make scripts read alike whatever the operators' precedence;
+    ``subtrees`` adds SubTree calls of a second tree, ``Sub``, remapping the counters."""
 
     full: bool = True
     precedence: bool = False
+    subtrees: bool = False
     controls: list[str] = field(default_factory=list)
     decorators: list[str] = field(default_factory=list)
 
@@ -174,11 +179,27 @@ def _escape(code: str) -> str:
     return code.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
+def _subtree_call(rng: random.Random) -> str:
+    """A SubTree of ``Sub`` whose ports reach the caller's counters: each port the entry of
+    its own name (``{=}``) or another counter, or every one by ``_autoremap``."""
+    if rng.random() < 0.2:
+        return '<SubTree ID="Sub" _autoremap="true"/>'
+    ports = "".join(
+        f' {counter}="{rng.choice(["{=}", "{=}", *(f"{{{c}}}" for c in COUNTERS)])}"'
+        for counter in COUNTERS
+    )
+    return f'<SubTree ID="Sub"{ports}/>'
+
+
 def _leaf(rng: random.Random, vocabulary: Vocabulary) -> str:
     choices = ["run", "run", "cond", "cond", "const"]
     if vocabulary.full:
         choices += ["script", "script_condition", "set"]
+    if vocabulary.subtrees:
+        choices += ["subtree", "subtree"]
     kind = rng.choice(choices)
+    if kind == "subtree":
+        return _subtree_call(rng)
     extra = _attributes(rng, vocabulary)
     if kind == "run":
         return f"<{rng.choice(RUN_LEAVES)}{extra}/>"
@@ -224,9 +245,13 @@ def _node(rng: random.Random, vocabulary: Vocabulary, depth: int) -> str:
 def random_tree(seed: int, vocabulary: Vocabulary, depth: int = 3) -> str:
     rng = random.Random(seed)
     body = _node(rng, vocabulary, depth)
+    sub = ""
+    if vocabulary.subtrees:
+        called = _node(rng, dataclasses.replace(vocabulary, subtrees=False), depth - 1)
+        sub = f'<BehaviorTree ID="Sub">{called}</BehaviorTree>'
     return (
         f'<root BTCPP_format="4" main_tree_to_execute="Main">'
-        f'<BehaviorTree ID="Main">{body}</BehaviorTree></root>'
+        f'<BehaviorTree ID="Main">{body}</BehaviorTree>{sub}</root>'
     )
 
 

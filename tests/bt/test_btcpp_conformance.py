@@ -148,14 +148,21 @@ def unexplained(found: dict[int, str | None]) -> list[int]:
     return [seed for seed, reason in found.items() if reason is None]
 
 
-@pytest.mark.parametrize("full", [False, True], ids=["basic", "full"])
-def test_random_trees_tick_as_in_btcpp(full):
-    assert unexplained(differences(range(25), Vocabulary(full=full))) == []
+VOCABULARIES = {
+    "basic": Vocabulary(full=False),
+    "full": Vocabulary(full=True),
+    "subtrees": Vocabulary(full=True, subtrees=True),
+}
+
+
+@pytest.mark.parametrize("vocabulary", VOCABULARIES)
+def test_random_trees_tick_as_in_btcpp(vocabulary):
+    assert unexplained(differences(range(25), VOCABULARIES[vocabulary])) == []
 
 
 @pytest.mark.long
-@pytest.mark.parametrize("full", [False, True], ids=["basic", "full"])
-def test_many_random_trees_tick_as_in_btcpp(full):
-    found = differences(range(2000), Vocabulary(full=full))
+@pytest.mark.parametrize("vocabulary", VOCABULARIES)
+def test_many_random_trees_tick_as_in_btcpp(vocabulary):
+    found = differences(range(2000), VOCABULARIES[vocabulary])
     assert unexplained(found) == []
     assert len(found) <= 20, "explained differences stay rare"

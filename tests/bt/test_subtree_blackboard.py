@@ -31,6 +31,28 @@ def test_literal_port_sets_subtree_entry():
     assert tree.subtrees[1].blackboard.get("out") == "41!"
 
 
+def test_same_name_shorthand_remaps_a_subtree_port_to_the_parents_entry():
+    """BT.CPP's `port="{=}"`: the parent's entry named like the port."""
+    tree = tree_of(
+        '<Sequence><Script code="x := 3"/><SubTree ID="Negate" x="{=}"/></Sequence>',
+        extra='<BehaviorTree ID="Negate"><Script code="x = -x"/></BehaviorTree>',
+    )
+    assert tree.tick(0) is S
+    assert tree.root_blackboard.get("x") == -3
+    assert tree.subtrees[1].blackboard.keys() == []
+
+
+def test_same_name_shorthand_on_a_nodes_port():
+    """On a node's port `{=}` and a bare `=` both mean the entry named like the port."""
+    tree = tree_of(
+        '<Sequence><Script code="value := 4"/><Consumer value="="/><Producer out="{=}"/>'
+        "</Sequence>",
+        typed_registry(),
+    )
+    assert tree.tick(0) is S
+    assert tree.root_blackboard.as_dict() == {"value": 4, "seen": 4.0, "out": 12}
+
+
 def test_autoremap_shares_every_key_but_private_ones():
     tree = tree_of(
         '<Sequence><Script code="inner := 10"/><SubTree ID="Sub" _autoremap="true"/></Sequence>',

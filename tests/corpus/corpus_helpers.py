@@ -77,8 +77,9 @@ GOOD_TREE = """\
 @dataclass
 class Case:
     """One bad input: in `file` ("scenario.yaml" or "robot.xml") replace `old` by `new`;
-    the error names the line holding `at` (a text of the changed file; None: no line) and
-    contains every string of `says`. `files` are written beside (name -> text or bytes)."""
+    the error names the line holding `at` (a text of the changed file, or of `found_in`;
+    None: no line) and contains every string of `says`. `files` are written beside (name ->
+    text or bytes)."""
 
     file: str
     old: str
@@ -86,6 +87,7 @@ class Case:
     says: tuple[str, ...]
     at: str | None = None
     files: dict = field(default_factory=dict)
+    found_in: str | None = None
 
 
 def write_workspace(directory: Path, case: Case | None = None) -> Path:
@@ -104,7 +106,7 @@ def write_workspace(directory: Path, case: Case | None = None) -> Path:
 
 def expected_place(directory: Path, case: Case) -> str:
     """`file:line:` of the case's `at` text, or `file` alone without one."""
-    path = directory / case.file
+    path = directory / (case.found_in or case.file)
     if case.at is None:
         return str(path)
     lines = path.read_text().splitlines()

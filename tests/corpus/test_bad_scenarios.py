@@ -4,6 +4,7 @@ the line and the field, and exit status 2 (none of these cases simulates)."""
 import pytest
 
 from tests.corpus.corpus_helpers import (
+    GOOD_TREE,
     Case,
     assert_one_line_error,
     expected_place,
@@ -19,6 +20,17 @@ directives:
   - add_model: {name: bin, file: package://hrc_drake_models/cell/bin.sdf}
   - add_weld: {parent: world, child: bni::body}
 """
+
+ALIAS_BOMB = "".join(
+    f"  lol{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else 'lol'] * 9)}]\n" for i in range(9)
+)
+"""A "billion laughs": nine lists of nine aliases of the list before, 9**9 values expanded."""
+
+GOOD_TREE_WITH_WEIGHTS = GOOD_TREE.replace(
+    '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>',
+    '<WeightedRandom weights="{w}"><AlwaysSuccess/><AlwaysFailure/></WeightedRandom>\n'
+    "    </Sequence>",
+)
 
 S = "scenario.yaml"
 CASES = {
@@ -72,6 +84,23 @@ CASES = {
         "  table: [[0, 0], [1, 0], [0, 1]]\n  table: [[-0.6",
         ("areas.table: given twice",),
         "table: [[-0.6",
+    ),
+    "alias bomb": Case(
+        S,
+        "parameters:\n",
+        f"parameters:\n{ALIAS_BOMB}",
+        ("parameters.lol5: its aliases expand it to more than 100000 values (an alias bomb?)",),
+        "lol5:",
+    ),
+    "alias of itself": Case(
+        S,
+        "parameters:\n",
+        "parameters:\n  loop: &loop [1, *loop]\n",
+        ("parameters.loop[1]: an alias refers to itself",),
+        "loop:",
+    ),
+    "nested too deeply": Case(
+        S, "duration: 0.2", f"duration: {'[' * 3000}{']' * 3000}", ("nested too deeply",)
     ),
     # --- numbers: finite, in range ---
     "time_step inf": Case(
@@ -310,6 +339,32 @@ CASES = {
         'speed: "fast"',
         ("parameters.speed: a tree cannot read it: cannot convert 'fast'",),
         "fast",
+    ),
+    "parameter out of the range of the port that reads it": Case(
+        S,
+        'speed: "0.5"',
+        'speed: "50"',
+        (
+            "parameters.speed: must be within 0..1, got 50 (a percentage? 0.5 is the fraction): "
+            "SetRobotVelocity 'SetRobotVelocity::2' reads it as velocity (",
+            "robot.xml:4)",
+        ),
+        'speed: "50"',
+    ),
+    "weights parameter that does not fit the children": Case(
+        S,
+        'speed: "0.5"',
+        'speed: "0.5"\n  w: "6;1;1"',
+        ("parameters.w: needs 2 weights, one per child, got 3: 6;1;1: WeightedRandom",),
+        'w: "6;1;1"',
+        {"robot.xml": GOOD_TREE_WITH_WEIGHTS},
+    ),
+    "tree port value out of its range": Case(
+        S,
+        "  robot: {file: robot.xml, period: 0.05}",
+        "  robot: {file: robot.xml, period: 0.05, ports: {SetRobotVelocity: {velocity: '2'}}}",
+        ("trees.robot.ports.SetRobotVelocity.velocity: must be within 0..1, got 2",),
+        "ports:",
     ),
     "parameter not quoted": Case(
         S,

@@ -1,6 +1,7 @@
 """Bad behavior trees: `hrc-drake validate` names the tree file, the line, the node and the
-port in one line; a fault only the run can find (a blackboard entry nobody wrote, weights
-that do not fit) ends the run cleanly with that line, keeping what the run wrote."""
+port in one line (a blackboard entry no one ever sets too); a fault only the run can find
+(weights a script made that do not fit) ends the run cleanly with that line, keeping what
+the run wrote."""
 
 import json
 
@@ -15,6 +16,14 @@ from tests.corpus.corpus_helpers import (
     expected_place,
     write_workspace,
 )
+
+XML_BOMB = (
+    '<?xml version="1.0"?>\n<!DOCTYPE root [\n<!ENTITY lol0 "lol">\n'
+    + "".join(f'<!ENTITY lol{i} "{f"&lol{i - 1};" * 10}">\n' for i in range(1, 10))
+    + ']>\n<root BTCPP_format="4"><BehaviorTree ID="Robot">\n'
+    + '<Emit event="&lol9;"/></BehaviorTree></root>\n'
+)
+"""XML's "billion laughs": entities of ten entities each, 10**9 times "lol" expanded."""
 
 T = "robot.xml"
 S = "scenario.yaml"
@@ -67,6 +76,84 @@ CASES = {
         f"<Inverter>{MOVE}<AlwaysSuccess/></Inverter>",
         ("'Inverter' needs exactly 1 children, has 2",),
         "<Inverter>",
+    ),
+    "weights that do not fit": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="6;2;3">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': needs 2 weights, one per child, got 3: 6;2;3",),
+        "WeightedRandom",
+    ),
+    "Parallel needing more successes than it has children": Case(
+        T,
+        MOVE,
+        f'<Parallel success_count="3">{MOVE}<AlwaysSuccess/></Parallel>',
+        ("port 'success_count': 2 children are fewer than 3: it can never succeed",),
+        "Parallel",
+    ),
+    "weight out of range": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="1;-1">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': must be at least 0, got 1;-1",),
+        "WeightedRandom",
+    ),
+    "weights all zero": Case(
+        T,
+        MOVE,
+        f'<WeightedRandom weights="0;0">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        ("port 'weights': needs a weight above 0, got 0;0",),
+        "WeightedRandom",
+    ),
+    "velocity out of range": Case(
+        T,
+        'velocity="{speed}"',
+        'velocity="100"',
+        ("port 'velocity': must be within 0..1, got 100 (a percentage? 1 is the fraction)",),
+        'velocity="100"',
+    ),
+    "a SubTree literal out of the range of the port it reaches": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>\n  </BehaviorTree>\n'
+        '  <BehaviorTree ID="Reach">\n    <Sequence>',
+        '<SubTree ID="Reach" at="pick_spot" slow="-1"/>\n    </Sequence>\n  </BehaviorTree>\n'
+        '  <BehaviorTree ID="Reach">\n    <Sequence><SetRobotVelocity velocity="{slow}"/>',
+        (
+            "tree 'Robot', node 'Reach::",
+            "port 'slow': must be within 0..1, got -1: SetRobotVelocity 'Reach::",
+            "reads it as velocity",
+        ),
+        'slow="-1"',
+    ),
+    "blackboard key typo": Case(
+        T,
+        'velocity="{speed}"',
+        'velocity="{sped}"',
+        (
+            "port 'velocity': blackboard entry 'sped' is never set: no scenario parameter, "
+            "location or area, SubTree port, node output, SetBlackboard or script writes it "
+            "(did you mean 'speed'?)",
+        ),
+        "sped",
+    ),
+    "SubTree port name typo": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n',
+        '<SubTree ID="Reach" att="pick_spot"/>\n',
+        (
+            "tree 'Reach', node 'Reach::",
+            "/OffsetPose::",
+            "port 'input': blackboard entry 'at' is never set",
+            "(did you mean 'att'?)",
+        ),
+        'input="{at}"',
+    ),
+    "unknown holder": Case(
+        T,
+        MOVE,
+        f'{MOVE}<HeldObject holder="gripper"/>',
+        ("port 'holder': unknown value 'gripper'; known: robot, ",),
+        "gripper",
     ),
     "bad script": Case(T, MOVE, f'<Script code="x := ("/>{MOVE}', ("port 'code'",), "Script"),
     "bad precondition": Case(
@@ -165,6 +252,13 @@ CASES = {
         "maybe",
     ),
     "empty tree file": Case(T, GOOD_TREE, "", ("malformed XML",), None),
+    "entity bomb": Case(
+        T,
+        GOOD_TREE,
+        XML_BOMB,
+        ("malformed XML: limit on input amplification factor (from DTD and entities) breached",),
+        "&lol9;",
+    ),
     "binary tree file": Case(
         S,
         "{file: robot.xml,",
@@ -229,17 +323,18 @@ RUN_FAULTS = {
         "port 'velocity'",
         "blackboard entry 'sped' is not set",
     ),
-    "weights that do not fit": (
+    "weights a script made that do not fit": (
         MOVE,
-        f'<WeightedRandom weights="1;2;3">{MOVE}<AlwaysSuccess/></WeightedRandom>',
+        f"<Script code=\"w := '1;2;3'\"/>"
+        f'<WeightedRandom weights="{{w}}">{MOVE}<AlwaysSuccess/></WeightedRandom>',
         "port 'weights'",
-        "needs 2 non-negative weights",
+        "needs 2 weights, one per child, got 3: 1;2;3",
     ),
-    "weight out of range": (
-        MOVE,
-        f'<WeightedRandom weights="1;-1">{MOVE}<AlwaysSuccess/></WeightedRandom>',
-        "port 'weights'",
-        "needs 2 non-negative weights",
+    "a velocity a script made out of range": (
+        '<SetRobotVelocity velocity="{speed}"/>',
+        '<Script code="v := 50"/><SetRobotVelocity velocity="{v}"/>',
+        "port 'velocity'",
+        "must be within 0..1, got 50",
     ),
 }
 

@@ -82,10 +82,15 @@ def open_page(replay: Path):
     """The replay opened in headless Chromium, its animation loaded (a generator: the
     browser closes when it is resumed)."""
     with chromium_page() as page:
-        opened(page, replay)
-        loaded = "() => window.viewer && viewer.animator.actions.length > 0"
-        page.wait_for_function(loaded, timeout=LOAD_TIMEOUT)
-        yield page
+        yield loaded(page, replay)
+
+
+def loaded(page, replay: Path):
+    """`page` showing the replay, its animation loaded."""
+    opened(page, replay)
+    ready = "() => window.viewer && viewer.animator.actions.length > 0"
+    page.wait_for_function(ready, timeout=LOAD_TIMEOUT)
+    return page
 
 
 def timeline(page) -> dict:

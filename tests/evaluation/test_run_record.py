@@ -8,13 +8,22 @@ import numpy as np
 import pytest
 
 from hrc_drake.evaluation.report import evaluate, write_run_directory
+from hrc_drake.layout import layout_of, write_layout
 from hrc_drake.paths import resource_dir
 from hrc_drake.runner import prepare_run_directory, run, run_setup, simulate
 from hrc_drake.scenario import load_scenario
 from hrc_drake.wiring import AGENTS
 
-SAME_BYTES = ("report.json", "safety.npz", "bt_robot.jsonl", "bt_robot.btlog", "bt_human.btlog")
-"""What a run decides (its replay, figures and diagram are drawn from the same record)."""
+SAME_BYTES = (
+    "report.json",
+    "safety.npz",
+    "bt_robot.jsonl",
+    "bt_robot.btlog",
+    "bt_human.btlog",
+    "layout.png",
+)
+"""What a run decides, and its layout (its replay, figures and diagram are drawn from the
+same record)."""
 
 
 @pytest.fixture(scope="module")
@@ -24,12 +33,14 @@ def scenario():
 
 @pytest.fixture(scope="module")
 def split(scenario, tmp_path_factory):
-    """The run done in steps: simulate into a record, evaluate it, write its directory."""
+    """The run done in steps: simulate into a record, evaluate it, draw the cell's layout,
+    write its directory."""
     out = tmp_path_factory.mktemp("split")
     prepare_run_directory(out)
     record = simulate(scenario, log_dir=out)
     metrics = evaluate(record)
-    return record, metrics, write_run_directory(out, record, metrics)
+    layout = {"layout": write_layout(layout_of(scenario, None), out / "layout.png")}
+    return record, metrics, write_run_directory(out, record, metrics, layout)
 
 
 def test_run_gives_the_metrics_and_files_of_its_steps(scenario, split, tmp_path):

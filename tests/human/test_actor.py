@@ -4,9 +4,6 @@ import itertools
 
 import numpy as np
 import pytest
-from pydrake.geometry import SceneGraph
-from pydrake.systems.analysis import Simulator
-from pydrake.systems.framework import DiagramBuilder, LeafSystem
 
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip import load_clips
@@ -20,67 +17,9 @@ from hrc_drake.human.performer import Performer
 from hrc_drake.human.protocol import ActorState, advance, pose_at
 from hrc_drake.human.segments import TurnSegment
 from hrc_drake.human.skeleton import REGIONS
-from hrc_drake.messages import NO_COMMANDS
-from hrc_drake.ports import message_value
 from hrc_drake.safety.geometry import human_parts
-from hrc_drake.systems.human_actor import add_human
 from hrc_drake.wiring import HUMAN_MODEL
-
-SAMPLE = 1.0 / 60.0
-
-
-class ScriptedCommands(LeafSystem):
-    """Emits the latest command whose time has come (like a behavior tree's command port)."""
-
-    def __init__(self, schedule):
-        LeafSystem.__init__(self)
-        self._schedule = sorted(schedule, key=lambda item: item[0])
-        self.DeclareAbstractOutputPort("command", message_value, self._calc)
-
-    def _calc(self, context, output):
-        latest = NO_COMMANDS
-        for time, command in self._schedule:
-            if context.get_time() >= time:
-                latest = command
-        output.set_value(latest)
-
-
-class Run:
-    """A small diagram: SceneGraph, the person, a scripted command source."""
-
-    def __init__(self, schedule, start_pose=(0.0, 0.0, 0.0)):
-        builder = DiagramBuilder()
-        scene_graph = builder.AddSystem(SceneGraph())
-        self.actor, self.plant = add_human(builder, scene_graph, start_pose=start_pose)
-        script = builder.AddSystem(ScriptedCommands(schedule))
-        builder.Connect(script.get_output_port(), self.actor.GetInputPort("human_tree_command"))
-        self.scene_graph = scene_graph
-        self.simulator = Simulator(builder.Build())
-        self.context = self.actor.GetMyContextFromRoot(self.simulator.get_mutable_context())
-        self.body = self.actor.body
-
-    def status(self):
-        return self.actor.GetOutputPort("human_status").Eval(self.context)
-
-    def positions(self):
-        return self.actor.GetOutputPort("human_positions").Eval(self.context).copy()
-
-    def advance(self, t):
-        self.simulator.AdvanceTo(t)
-        return self.status()
-
-    def record(self, until):
-        """Statuses and canonical joint positions after every update until `until` (read
-        halfway between updates: read at an update's own time, rounding decides whether it
-        has run yet, and a pose held over one reading doubles the next step)."""
-        start = self.simulator.get_context().get_time()
-        times = np.arange(start, until, SAMPLE) + 1.5 * SAMPLE
-        statuses, poses = [], []
-        for t in times:
-            self.simulator.AdvanceTo(t)
-            statuses.append(self.status())
-            poses.append(self.positions()[self.body.plant_index])
-        return statuses, np.array(poses)
+from tests.human.scene import FLOOR, SAMPLE, Run
 
 
 def test_setup_then_idle_at_the_start_pose():
@@ -204,6 +143,33 @@ def test_a_walk_turns_to_face_its_place_over_its_last_steps():
     assert not any(isinstance(s, TurnSegment) and s.cycles for s in segments)
     assert statuses[-1].results.outcome_of(1) == "succeeded"
     assert abs(statuses[-1].base_pose[2] - np.radians(40)) < np.radians(3)
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
+
+
+PELVIS_EXCURSION = 0.05
+"""m: the pelvis (the body's centre of mass) rises and falls about 5 cm peak to peak in a
+step of normal walking (Saunders, Inman and Eberhart 1953; docs/human-body.md): it never
+comes lower than that below its standing height."""
+INTO_FLOOR = 0.01
+"""m: how far the body may go into the floor (the realism audit's penetration limit)."""
+
+
+@pytest.mark.parametrize(
+    ("goal", "start_yaw"),
+    [((0.77, 0.0), 0.0), ((1.5, 0.0), 0.0), ((0.75, -0.15), 1.77)],
+    ids=["short walk", "a stride and a half", "after a turn on the spot"],
+)
+def test_the_first_steps_keep_the_pelvis_up_and_the_feet_above_the_floor(goal, start_yaw):
+    """Walks from a standstill whose first steps close the feet at the goal: the body does
+    not sag to put a foot down far ahead of it, nor does a foot sink into the floor."""
+    run = Run([(0.1, MoveCommand(1, (*goal, 0.0)))], start_pose=(0.0, 0.0, start_yaw), cell=[FLOOR])
+    run.advance(0.05)
+    standing = run.body.frame_pose("pelvis", run.positions()[run.body.plant_index]).translation()
+    statuses, poses = run.record(4.0)
+    assert statuses[-1].results.outcome_of(1) == "succeeded"
+    lowest = min(run.body.frame_pose("pelvis", q).translation()[2] for q in poses)
+    assert lowest >= standing[2] - PELVIS_EXCURSION, f"pelvis down to {lowest:.3f} m"
+    assert run.overlap[0] <= INTO_FLOOR, run.overlap
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
 

@@ -4,14 +4,23 @@ import math
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform
 
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.grasp import carry_arms, grasp_hands, hold_of, palm_targets
+from hrc_drake.human.grasp import (
+    PALM_GAP,
+    carry_arms,
+    grasp_hands,
+    hold_of,
+    object_center_in_holder,
+    palm_targets,
+)
 from hrc_drake.human.messages import AnimateCommand, Grasp, Hold, MoveCommand
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.protocol import ActorState, advance
 from hrc_drake.workpieces.geometry import Solid
+from tests.human.scene import Posed
 
 CARTON = (0.3, 0.3, 0.2)
 
@@ -41,20 +50,45 @@ def test_palms_go_on_the_two_faces_that_face_the_persons_sides(yaw):
     for side, sign in (("left", 1), ("right", -1)):
         position, _ = targets[side]
         local = np.array([*X_inverse @ (position[:2] - grasp.center[:2]), 0.0])
-        assert box.signed_distance_to(local) == pytest.approx(0.0, abs=1e-9)
+        assert box.signed_distance_to(local) == pytest.approx(PALM_GAP, abs=1e-9)  # just off
         assert sign * (position[1] - grasp.center[1]) > 0  # on the person's own side
 
 
-def test_the_carry_posture_holds_the_object_in_front_between_the_palms():
+ELBOW_HEIGHT = 0.630
+"""Elbow height over body height (Drillis and Contini, in Winter; docs/human-body.md)."""
+HIP_HEIGHT = 0.530
+CLOSE_TO_THE_BODY = 0.04
+"""m: the gap between a box carried close to the body and the belly (HSE INDG143: the
+load close to the waist, hugged as close as possible to the body; docs/realism.md)."""
+TRUNK = ("pelvis", "abdomen", "chest", "thigh")
+
+
+def _elbow_flexion(body, q, side: str) -> float:
+    """Degrees the elbow bends, from where shoulder, elbow and wrist are."""
+    shoulder, elbow, wrist = (
+        body.frame_pose(f"{side}_{frame}", q).translation()
+        for frame in ("upper_arm", "forearm", "hand")
+    )
+    upper, lower = elbow - shoulder, wrist - elbow
+    cosine = upper @ lower / np.linalg.norm(upper) / np.linalg.norm(lower)
+    return math.degrees(math.acos(cosine))
+
+
+@pytest.mark.parametrize("size", [CARTON, (0.34, 0.34, 0.24)], ids=["carton", "crate"])
+def test_a_box_is_carried_as_people_carry_it(size):
+    """Between the palms, close to the body at about waist height, the elbows bent."""
     body = human_body()
-    for hold in (Hold("both", (0.3, 0.3, 0.2)), Hold("both", (0.34, 0.34, 0.24))):
-        q = carry_arms(body, hold).over(body.standing_pose())
-        left, right = (
-            body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right")
-        )
-        assert np.linalg.norm(left - right) == pytest.approx(hold.size[1], abs=0.01)
-        near_face = (left[0] + right[0]) / 2 - hold.size[0] / 2
-        assert near_face > 0.16  # in front of the chest
+    hold = Hold("both", size)
+    q = carry_arms(body, hold).over(body.standing_pose())
+    left, right = (body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right"))
+    assert np.linalg.norm(left - right) == pytest.approx(hold.size[1] + 2 * PALM_GAP, abs=0.01)
+    center = (left + right) / 2 + object_center_in_holder(hold)  # the person faces +x
+    height = body.skeleton.height
+    assert HIP_HEIGHT * height <= center[2] <= ELBOW_HEIGHT * height
+    gap = Posed(q, [(size, RigidTransform(center))]).distance(0, TRUNK)
+    assert 0.0 < gap <= CLOSE_TO_THE_BODY, f"{gap:.3f} m from the body"
+    for side in ("left", "right"):
+        assert 70.0 <= _elbow_flexion(body, q, side) <= 110.0
 
 
 def _palm_spacing(performer, state, t):

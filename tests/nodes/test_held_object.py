@@ -53,5 +53,5 @@ def test_held_object_fails_when_the_holder_holds_nothing():
 
 
 def test_held_object_rejects_an_unknown_holder():
-    with pytest.raises(BTError, match="unknown holder 'gripper'"):
+    with pytest.raises(BTError, match="port 'holder': unknown value 'gripper'; known: robot, "):
         tick_held_object(objects_status((1, wp.ROBOT_HOLDER)), holder="gripper")

@@ -18,7 +18,12 @@ from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT_HOLDER, ObjectStatus
-from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
+from tests.scenarios.realism_checks import (
+    assert_holds_what_it_carries,
+    assert_keeps_out_of_things,
+    assert_walks_like_a_person,
+    assert_within_the_audit_limits,
+)
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "coexistence.yaml"
 SAMPLE_PERIOD = 0.1
@@ -202,6 +207,10 @@ def test_short_run_person_walks_without_sliding(short_run):
     assert_walks_like_a_person(short_run.realism)
 
 
+def test_short_run_person_keeps_out_of_the_cell_and_the_objects(short_run):
+    assert_keeps_out_of_things(short_run.realism)
+
+
 def test_short_run_is_safe(short_run):
     assert_safe(short_run)
     assert not short_run.named("cycle_failed")
@@ -220,3 +229,4 @@ def test_production_and_the_persons_work_coexist(seed):
     assert_parts_keep_coming(outcome, at_least=5, longest_gap=LONGEST_GAP)
     assert_consistent(outcome)
     assert len({e.name for e in outcome.named(*ACTIVITIES)}) >= 4
+    assert_within_the_audit_limits(outcome.realism)

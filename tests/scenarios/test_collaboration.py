@@ -19,7 +19,12 @@ from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ObjectStatus, WorkpiecesStatus
-from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
+from tests.scenarios.realism_checks import (
+    assert_holds_what_it_carries,
+    assert_keeps_out_of_things,
+    assert_walks_like_a_person,
+    assert_within_the_audit_limits,
+)
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "collaboration.yaml"
 CONVEYOR = "outfeed"
@@ -206,6 +211,10 @@ def test_short_run_person_walks_without_sliding(short_run):
     assert_walks_like_a_person(short_run.realism)
 
 
+def test_short_run_person_keeps_out_of_the_cell_and_the_objects(short_run):
+    assert_keeps_out_of_things(short_run.realism)
+
+
 def test_short_run_is_consistent_and_safe(short_run):
     assert_consistent(short_run)
 
@@ -221,3 +230,4 @@ def test_pallet_is_cleared_together(seed):
     assert not outcome.called
     helped = {int(e.value) for e in outcome.named("box_by_person", "handover")}
     assert helped == {b.id for b in outcome.boxes.values() if needs_person(b) or is_fragile(b)}
+    assert_within_the_audit_limits(outcome.realism)

@@ -20,7 +20,12 @@ from hrc_drake.messages import TaskEvent
 from hrc_drake.safety.messages import SafetyTotals
 from hrc_drake.scenario import Scenario, load_scenario
 from hrc_drake.workpieces.messages import PERSON_HOLDERS, ROBOT_HOLDER, ObjectStatus
-from tests.scenarios.realism_checks import assert_holds_what_it_carries, assert_walks_like_a_person
+from tests.scenarios.realism_checks import (
+    assert_holds_what_it_carries,
+    assert_keeps_out_of_things,
+    assert_walks_like_a_person,
+    assert_within_the_audit_limits,
+)
 
 SCENARIO = Path(__file__).resolve().parents[2] / "scenarios" / "cooperation.yaml"
 SAMPLE_PERIOD = 0.25
@@ -160,6 +165,7 @@ def test_short_run_sorts_parts_and_fills_the_reject_zone():
     assert outcome.count("sort_failed") == 0
     assert_holds_what_it_carries(outcome.realism)
     assert_walks_like_a_person(outcome.realism)
+    assert_keeps_out_of_things(outcome.realism)
 
 
 @pytest.mark.long
@@ -176,6 +182,7 @@ def test_ten_seeds_sort_every_part_and_clear_the_reject_zone():
         assert_safe(outcome)
         assert outcome.count("sort_failed") == 0
         assert outcome.count("part_good") >= 1
+        assert_within_the_audit_limits(outcome.realism)
         shown.update(name for name in BEHAVIOURS if outcome.count(name) > 0)
     for name, seeds in BEHAVIOURS.items():
         assert shown[name] >= seeds, f"{name} shown by {shown[name]} seeds of 10"

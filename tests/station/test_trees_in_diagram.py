@@ -5,11 +5,16 @@ simulates, and checks what happened in the world: poses, object holders and supp
 task events, the statuses the actors report.
 """
 
+import json
+
 import numpy as np
 import pytest
+from pydrake.common.schema import Transform
+from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.messages import CANCELLED
 from hrc_drake.runner import run
+from hrc_drake.workpieces.config import ConveyorConfig
 from hrc_drake.workpieces.messages import BOTH_HANDS, RIGHT_HAND, ROBOT_HOLDER
 from tests.station.station_cell import Simulation, cell
 
@@ -102,3 +107,22 @@ def test_same_scenario_and_seed_give_identical_transition_logs(tmp_path):
         first, second = (tmp_path / name / log for name in ("first", "second"))
         assert first.read_bytes() == second.read_bytes(), log
     assert (tmp_path / "first" / "bt_human.jsonl").read_text().count("\n") > 5
+
+
+def test_a_persons_failed_pick_says_why_in_the_run_logs(tmp_path):
+    """The person takes a part a belt carries past them: the hands close where the part
+    was, the objects refuse the grasp, and the reason reaches the node's failure, the
+    tree's log and report.json, as a robot's failed move does."""
+    scenario = cell(human="pick_from_belt.xml")
+    belt = ConveyorConfig(start=[0.45, 1.0, 0.9], end=[0.45, -0.2, 0.9], speed=0.3)
+    scenario.workpieces.conveyors["belt"] = belt
+    facing_the_belt = RigidTransform(RollPitchYaw(0, 0, np.pi), [1.0, 0.6, 0.0])
+    scenario.locations["belt_side"] = Transform(facing_the_belt)
+    report = run(scenario, duration=7.0, out_dir=tmp_path)
+    why = "failed: object 1 is not within 0.05 m of the right_hand's grasp frame"
+    assert report.metrics["bt"]["human"]["pick_moving_part"]["first_failure"] == why
+    log = [json.loads(line) for line in (tmp_path / "bt_human.jsonl").read_text().splitlines()]
+    failures = [record for record in log if record["to"] == "FAILURE"]
+    assert [(record["path"], record["reason"]) for record in failures] == [
+        ("pick_moving_part", why)
+    ]

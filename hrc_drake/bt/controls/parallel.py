@@ -13,6 +13,10 @@ def _threshold(value: int, count: int) -> int:
     return max(count + value + 1, 0) if value < 0 else value
 
 
+THRESHOLDS = {"success_count": "succeed", "failure_count": "fail"}
+"""Parallel's thresholds, and what the node could never do when one exceeds its children."""
+
+
 class Parallel(ControlNode):
     """Tick every child not yet completed; SUCCESS once ``success_count`` succeeded,
     FAILURE once ``failure_count`` failed or success became impossible."""
@@ -31,12 +35,11 @@ class Parallel(ControlNode):
         count = len(self.children)
         success_value = self.get_input("success_count")
         required_successes = _threshold(success_value, count)
-        failure_threshold = _threshold(self.get_input("failure_count"), count)
-        if count < required_successes or count < failure_threshold:
-            raise self.error(
-                f"{count} children are fewer than a threshold: can never "
-                f"{'succeed' if count < required_successes else 'fail'}"
-            )
+        failure_value = self.get_input("failure_count")
+        failure_threshold = _threshold(failure_value, count)
+        for port, value in (("success_count", success_value), ("failure_count", failure_value)):
+            if problem := self.input_problem(port, value):
+                raise self.error(problem, port=port)
         self.set_status(RUNNING)
         skipped = 0
         for index, child in enumerate(self.children):
@@ -57,6 +60,15 @@ class Parallel(ControlNode):
             if count - self.failures < required_successes or self.failures == failure_threshold:
                 return self._decide(FAILURE)
         return SKIPPED if skipped == count else RUNNING
+
+    def input_problem(self, port: str, value) -> str:
+        """A threshold beyond the number of children: the node could never succeed (or
+        fail) by it (the tree builder finds a literal, `validate` a parameter)."""
+        problem = super().input_problem(port, value)
+        count = len(self.children)
+        if problem or port not in THRESHOLDS or _threshold(value, count) <= count:
+            return problem
+        return f"{count} children are fewer than {value}: it can never {THRESHOLDS[port]}"
 
     def _decide(self, status: Status) -> Status:
         self._clear()

@@ -1,0 +1,87 @@
+"""What the hands work on and must keep out of: the cell's fixed geometry as the person's
+arms see it.
+
+Every piece of the cell's static collision geometry within the body's height is a prism (its
+floor outline between its lowest and highest point; hrc_drake.human.navigation.Obstacle):
+exact for the boxes our cells are made of, a little larger than a cylinder. A hand put on a
+surface or on what stands on it comes from above it and from outside its outline; these are
+the questions that takes: what a point rests on (`support`), and where a hand coming from the
+body is still outside the surface's edge (`behind_edge`).
+"""
+
+from dataclasses import dataclass
+from math import cos, sin
+
+import numpy as np
+from shapely.geometry import LineString, Point, Polygon
+
+from hrc_drake.human.navigation import Obstacle
+
+RESTING = 0.02
+"""m: a point this far above a surface, or less, rests on it."""
+FAR = 5.0
+"""m: further than any piece of furniture is across."""
+
+
+@dataclass(frozen=True)
+class Furniture:
+    """The cell's fixed geometry in the body's height (none: an empty hall)."""
+
+    pieces: tuple[Obstacle, ...] = ()
+
+    def with_boxes(self, boxes) -> "Furniture":
+        """The furniture and, as pieces of it, boxes (hrc_drake.human.messages.Box): objects
+        standing near what the hands work on."""
+        if not boxes:
+            return self
+        return Furniture((*self.pieces, *(_piece(box) for box in boxes)))
+
+    def support(self, point) -> Obstacle | None:
+        """The piece a point (x, y, z) is over, with the highest top at or below it (a hand
+        or an object on a table: the table's top); None when only the floor is below."""
+        x, y, z = point
+        below = [
+            piece
+            for piece in self.pieces
+            if piece.high <= z + RESTING and piece.outline.covers(Point(x, y))
+        ]
+        return max(below, key=lambda piece: piece.high, default=None)
+
+    def room(self, point, direction, low: float, high: float) -> float:
+        """How far (m) a hand spanning the heights `low` to `high` can move from `point`
+        along the floor direction `direction` before it meets a piece (FAR: no piece)."""
+        start = Point(point[0], point[1])
+        far = np.asarray(point[:2], dtype=float) + FAR * np.asarray(direction[:2], dtype=float)
+        way = LineString([tuple(point[:2]), tuple(far)])
+        return min(
+            (
+                start.distance(piece.outline)
+                for piece in self.pieces
+                if piece.low < high and piece.high > low and piece.outline.intersects(way)
+            ),
+            default=FAR,
+        )
+
+    def behind_edge(self, piece: Obstacle, point, back, margin: float):
+        """`point` (x, y) moved along the floor direction `back` until it is `margin` outside
+        the piece's outline (None: it is outside already)."""
+        start = Point(point[0], point[1])
+        grown = piece.outline.buffer(margin, join_style="mitre")
+        if not grown.covers(start):
+            return None
+        far = np.asarray(point[:2], dtype=float) + FAR * np.asarray(back[:2], dtype=float)
+        crossing = LineString([tuple(point[:2]), tuple(far)]).intersection(grown.exterior)
+        nearest = min(getattr(crossing, "geoms", [crossing]), key=start.distance)
+        return np.array([nearest.x, nearest.y])
+
+
+def _piece(box) -> Obstacle:
+    """A box (centre, heading, extents) as a prism."""
+    c, s = cos(box.yaw), sin(box.yaw)
+    half_x, half_y, half_z = (extent / 2 for extent in box.size)
+    x, y, z = box.center
+    corners = [
+        (x + c * u - s * v, y + s * u + c * v)
+        for u, v in ((-half_x, -half_y), (half_x, -half_y), (half_x, half_y), (-half_x, half_y))
+    ]
+    return Obstacle("object", Polygon(corners), z - half_z, z + half_z)

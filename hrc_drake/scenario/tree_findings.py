@@ -1,0 +1,216 @@
+"""What the scenario's trees will do with the values known before a run
+(hrc_drake.known_values), checked the way the running nodes use them: every robot target
+for reach (the planner's own inverse kinematics, the tool held as the node holds it), every
+animation against the person's clips, every place the person walks to for room to stand,
+every named configuration, object type and area against the scenario.
+"""
+
+import math
+from collections.abc import Iterator
+from functools import cached_property
+
+from hrc_drake.agent_trees import sections
+from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
+from hrc_drake.human.navigation import FLOOR_LEVEL
+from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
+from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.motion.reach import configuration_problem, reach_problem
+from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
+from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
+from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
+from hrc_drake.scenario.located import Finding, Locator
+from hrc_drake.scenario.schema import Scenario
+from hrc_drake.seeding import stream
+from hrc_drake.tree_types import Pose
+from hrc_drake.wiring import ROBOT_MOTION
+from hrc_drake.yaml_check import unknown
+
+
+def tree_findings(
+    scenario: Scenario, scene: CellScene, at: Locator, skip_configurations=(), robot_placed=True
+) -> list[Finding]:
+    """Blackboard entries read and never set, named configurations the planner refuses
+    (but `skip_configurations`, whose magnitudes were found wrong), and the checks of every
+    known value a node reads; the robot's configurations and targets only when it is
+    `robot_placed` (its base not inside the cell: every one would fail from that)."""
+    places = scenario.places()
+    found: list[Finding] = []
+    reads = []
+    for agent in scenario.trees:
+        tree, handle = scenario.agent_tree(agent)
+        reads += [(handle, *read) for read in known_inputs(tree, sections(places))]
+        found += [
+            at.node(node, port, _never_set(key, near))
+            for node, port, key, near in unwritten_inputs(tree)
+        ]
+    checks = _Checks(scenario, scene, at, robot_placed)
+    if robot_placed:
+        found += checks.configurations(skip_configurations)
+    for handle, node, port, known in reads:
+        for value in known:
+            found += checks.of(handle, node, port, value)
+    once: dict[tuple, Finding] = {}  # a SubTree used twice makes the same mistake twice
+    for finding in found:
+        once.setdefault((finding.file, finding.line, finding.message), finding)
+    return list(once.values())
+
+
+class _Checks:
+    """The checks of one known value read by one node's port."""
+
+    def __init__(self, scenario: Scenario, scene: CellScene, at: Locator, robot_placed=True):
+        self.scenario = scenario
+        self.robot_placed = robot_placed
+        self.scene = scene
+        self.at = at
+        human = scenario.human
+        self.clips = clip_catalog(human.clips if human is not None else ())
+        self.reach_problems: dict[tuple, str] = {}
+        """What reach_problem said of each target (one pose may be read by many nodes)."""
+        self.walk_problems: dict[tuple, str] = {}
+
+    @cached_property
+    def planner(self) -> MotionPlanner:
+        """The run's planner (made only when the robot's tree has a known target)."""
+        scenario = self.scenario
+        seed = stream(scenario.seed, ROBOT_MOTION)
+        return MotionPlanner(scenario.station, scenario.robot.motion, seed)
+
+    def configurations(self, skip=()) -> Iterator[Finding]:
+        """Every named configuration that the planner would refuse to move the arm to
+        (outside the joint limits, touching the cell), at its line."""
+        station = self.scenario.station
+        for name in (n for n in station.configurations_deg if n not in skip):
+            problem = configuration_problem(self.planner, station.configuration(name))
+            if problem:
+                yield self.at.field(("robot", "configurations_deg", name), problem)
+
+    def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
+        value = known.value
+        if isinstance(node, RobotMove | RobotMoveLinear) and port == "target":
+            if self.robot_placed:
+                yield from self._reach(agent, node, known)
+        elif isinstance(node, ActorMovement) and port == "target":
+            yield from self._standing(agent, node, known)
+        elif isinstance(node, ActorMovement) and port == "animation_name":
+            yield from self._walk_clip(node, known)
+        elif isinstance(node, ActorAnimation) and port == "animation_name":
+            if value not in self.clips:
+                yield self._at(node, port, known, no_animation(value, self.clips))
+        elif isinstance(node, RobotMoveJoints) and port == "configuration":
+            names = self.scenario.station.configuration_names
+            if value not in names:
+                yield self._at(node, port, known, unknown("configuration", value, names))
+        elif isinstance(node, SpawnObject) and port == "type":
+            yield from self._object_type(node, port, known, value)
+            kind = self.scenario.workpieces.types.get(value)
+            if kind is not None and kind.capacity == 0:
+                message = f"object type '{value}' has capacity 0: none can ever be made"
+                yield self._at(node, port, known, message)
+        elif isinstance(node, SpawnObject | ActorPlace | ActorReach) and isinstance(value, Pose):
+            yield from self._inside(agent, node, port, known)
+        elif isinstance(node, SpawnObject) and port == "area" and value:
+            if value not in self.scenario.areas:
+                yield self._at(node, port, known, unknown("area", value, self.scenario.areas))
+        elif isinstance(node, NextObject | CountObjects) and port == "filter":
+            wanted = parse_filter(value).get("type")
+            if wanted is not None:
+                yield from self._object_type(node, port, known, wanted)
+
+    def _at(self, node, port: str, known: Known, message: str, point=None) -> Finding:
+        """At the scenario's field when the value is its (a parameter), else at the node."""
+        origin = known.origin
+        if origin.section and not known.via:
+            config = node.config
+            reader = f"{config.registration_id} '{node.path}' ({config.file}:{config.line})"
+            return self.at.field((origin.section, origin.key), f"{message}: {reader}", point)
+        return self.at.node(node, port, message, point)
+
+    def _object_type(self, node, port: str, known: Known, name: str) -> Iterator[Finding]:
+        types = self.scenario.workpieces.types
+        if name not in types:
+            yield self._at(node, port, known, unknown("object type", name, types))
+
+    def _inside(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
+        """A point an object is made at, or a hand puts one down or reaches to, inside the
+        cell's geometry."""
+        pose = _resolved(agent, known.value)
+        inside = self.scene.inside_cell(pose.position) if pose is not None else None
+        if inside is not None:
+            what, depth = inside
+            where = _xyz(pose.position)
+            message = f"{known} at {where} lies {depth:.3f} m inside {what}"
+            yield self.at.node(node, port, message, pose.position)
+
+    def _walk_clip(self, node, known: Known) -> Iterator[Finding]:
+        name = known.value
+        if name not in self.clips:
+            yield self._at(node, "animation_name", known, no_animation(name, self.clips))
+        elif not walks(self.clips[name]):
+            walking = ", ".join(sorted(n for n, clip in self.clips.items() if walks(clip)))
+            message = f"'{name}' is not a walking animation (the person walks with: {walking})"
+            yield self._at(node, "animation_name", known, message)
+
+    def _reach(self, agent, node, known: Known) -> Iterator[Finding]:
+        pose = _resolved(agent, known.value)
+        if pose is None:
+            return
+        target, free = tool_pose(pose)
+        linear = isinstance(node, RobotMoveLinear)
+        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear)
+        if key not in self.reach_problems:
+            self.reach_problems[key] = reach_problem(self.planner, target, free, linear)
+        problem = self.reach_problems[key]
+        if problem:
+            message = f"{known} at {_xyz(target.translation())}: {problem}"
+            yield self.at.node(node, "target", message, target.translation())
+
+    def _standing(self, agent, node, known: Known) -> Iterator[Finding]:
+        """A place to walk to: room to stand and turn there (floor-level locations are
+        checked as locations, in cell_findings), and a walk from the person's start."""
+        pose = _resolved(agent, known.value)
+        if pose is None:
+            return
+        x, y, z = pose.position
+        yaw = None
+        if pose.quaternion is not None:
+            R = pose.to_transform().rotation().matrix()
+            yaw = math.atan2(R[1, 0], R[0, 0])
+        location = known.value.name and abs(z) <= FLOOR_LEVEL
+        problem = "" if location else stand_problem(self.scene.navigation, x, y, yaw)
+        if not problem:
+            problem = self._no_walk(x, y, yaw)
+        if problem:
+            yield self.at.node(node, "target", f"{known}: {problem}", (x, y, 0.0))
+
+    def _no_walk(self, x: float, y: float, yaw: float | None) -> str:
+        """Why no walk from the person's start reaches the place a walk to (x, y) ends at
+        (what walk_problem says, asked once per place)."""
+        key = (round(x, 9), round(y, 9), yaw)
+        if key not in self.walk_problems:
+            start = self.scenario.human.start[:2]
+            self.walk_problems[key] = walk_problem(self.scene.navigation, start, x, y, yaw)
+        return self.walk_problems[key]
+
+
+def _never_set(key: str, near: str | None) -> str:
+    """What a run would end with ("blackboard entry 'key' is not set"), said before it."""
+    hint = f" (did you mean '{near}'?)" if near else ""
+    return (
+        f"blackboard entry '{key}' is never set: no scenario parameter, location or area, "
+        f"SubTree port, node output, SetBlackboard or script writes it{hint}"
+    )
+
+
+def _resolved(agent, value) -> Pose | None:
+    """A Pose with its location name resolved (None: a name the scenario lacks, which
+    loading reports)."""
+    try:
+        return agent.resolve_pose(value)
+    except KeyError:
+        return None
+
+
+def _xyz(p) -> str:
+    return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"

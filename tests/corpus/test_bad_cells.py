@@ -1,0 +1,430 @@
+"""Mistakes only a run used to show (a node failing over and over, a person inside a table,
+a 60 m box), which `hrc-drake validate` now finds before anything is simulated: each is one
+line naming the file, the line and the field (or the tree's node and port), saying what was
+probably meant, and exit status 2. On the code before these checks, validate passed every
+one of them."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from tests.corpus.corpus_helpers import (
+    GOOD_SCENARIO,
+    GOOD_TREE,
+    Case,
+    assert_one_line_error,
+    expected_place,
+    write_workspace,
+)
+
+S, T, H = "scenario.yaml", "robot.xml", "human.xml"
+MODELS = Path(__file__).resolve().parents[2] / "models"
+MOVE = '<RobotMove target="{above}"/>'
+PERSON = """\
+<root BTCPP_format="4" main_tree_to_execute="Human">
+  <BehaviorTree ID="Human">
+    <Sequence>
+      <ActorMovement target="door"/>
+      <ActorAnimation animation_name="wave"/>
+    </Sequence>
+  </BehaviorTree>
+</root>
+"""
+ROBOT_TREE = "  robot: {file: robot.xml, period: 0.05}\n"
+OBJECTS = "  objects:\n"
+PART_ON_TABLE = "    - {type: part, pose: {translation: [0.0, 0.6, 0.93]}}\n"
+
+
+ISLAND = "".join(
+    f"  - add_model: {{name: {name}, file: package://hrc_drake_models/cell/work_table.sdf}}\n"
+    f"  - add_weld: {{parent: world, child: {name}::body, X_PC: {{translation: {xyz}{turn}}}}}\n"
+    for name, xyz, turn in (
+        ("left_table", [-1.0, 1.7, 0.0], ", rotation: !Rpy {deg: [0, 0, 90]}"),
+        ("right_table", [1.0, 1.7, 0.0], ", rotation: !Rpy {deg: [0, 0, 90]}"),
+        ("back_table", [0.0, 2.7, 0.0], ""),
+    )
+)
+"""Three more work tables that close a square with the corpus's work table round (0, 1.7)."""
+
+
+def person(old: str, new: str, says: tuple[str, ...], at: str, changes=(), files=None) -> Case:
+    """The corpus scenario (with its texts `changes`d, old -> new, and `files` beside it)
+    with a person whose tree (PERSON) has `old` replaced by `new`."""
+    tree = PERSON.replace(old, new)
+    assert tree != PERSON
+    trees = f"{ROBOT_TREE}  human: {{file: {H}}}\n"
+    written = {H: tree, **(files or {})}
+    if changes:
+        scenario = GOOD_SCENARIO
+        for before, after in changes:
+            assert before in scenario
+            scenario = scenario.replace(before, after, 1)
+        written[S] = scenario.replace(ROBOT_TREE, trees)
+    return Case(S, ROBOT_TREE, trees, says, at, written, H)
+
+
+def own_clip(name: str) -> str:
+    """A clip of the scenario's own: the built-in wave under another name."""
+    clip = json.loads((MODELS / "human" / "animations" / "wave.json").read_text())
+    return json.dumps({**clip, "name": name})
+
+
+CASES = {
+    # --- the robot's targets, as its tree resolves them ---
+    "location out of reach, through a SubTree and OffsetPose": Case(
+        S,
+        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
+        "pick_spot: {translation: [-0.2, 0.95, 0.93]}",
+        (
+            "tree 'Reach', node 'Reach::",
+            "/RobotMove::",
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.95, 1.03): out of reach with the tool pointing down: 0.97 m from its "
+            "base axis at z = 1.03 m, where the lbr_iisy3_r760 reaches 0.",
+            "m closer)",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "literal target out of reach": Case(
+        T,
+        MOVE,
+        f'{MOVE}<RobotMoveLinear target="0.9;-0.3;1.0"/>',
+        (
+            "port 'target': '0.9;-0.3;1.0' at (0.90, -0.30, 1.00): out of reach with the tool "
+            "pointing down: 0.95 m from its base axis at z = 1.00 m, where",
+        ),
+        "0.9;-0.3;1.0",
+    ),
+    "target under the table": Case(
+        T,
+        MOVE,
+        f'{MOVE}<RobotMoveLinear target="0.3;0.5;0.6"/>',
+        (
+            "port 'target': '0.3;0.5;0.6' at (0.30, 0.50, 0.60): unreachable with the tool "
+            "pointing down: the link_2, link_3, link_4, link_5 and link_6 would touch work_table",
+        ),
+        "0.3;0.5;0.6",
+    ),
+    "target inside the table": Case(
+        S,
+        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
+        "pick_spot: {translation: [-0.2, 0.42, 0.78]}",
+        (
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.42, 0.88): unreachable with the tool pointing down: the "
+            "vacuum_gripper would touch work_table there",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "a rotation that turns the tool up": Case(
+        S,
+        "pick_spot: {translation: [-0.2, 0.42, 0.93]}",
+        "pick_spot: {translation: [-0.2, 0.42, 0.93], rotation: !Rpy {deg: [0, 0, 90]}}",
+        (
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.42, 1.03): ",
+            "with the tool turned as given",
+            "(this rotation points the tool up: for the tool pointing down give "
+            "!Rpy {deg: [180, 0, 0]}, or no rotation)",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "an object made inside the table": Case(
+        T,
+        MOVE,
+        f'{MOVE}<SpawnObject type="part" pose="0.3;0.6;0.88"/>',
+        ("port 'pose': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
+        "0.3;0.6;0.88",
+    ),
+    "an object type none of which can be made": Case(
+        S,
+        "capacity: 4}",
+        "capacity: 0}",
+        ("port 'type': object type 'part' has capacity 0: none can ever be made",),
+        '<SpawnObject type="part"',
+        {T: GOOD_TREE.replace(MOVE, f'{MOVE}<SpawnObject type="part" area="table"/>')},
+        T,
+    ),
+    "unknown configuration": Case(
+        T,
+        MOVE,
+        f'{MOVE}<RobotMoveJoints configuration="raedy"/>',
+        ("port 'configuration': unknown configuration 'raedy' (did you mean 'ready'?)",),
+        "raedy",
+    ),
+    "unknown object type": Case(
+        T,
+        MOVE,
+        f'{MOVE}<SpawnObject type="prat" pose="pick_spot"/>',
+        ("port 'type': unknown object type 'prat' (did you mean 'part'?); known: part",),
+        "prat",
+    ),
+    "unknown object type in a filter": Case(
+        T,
+        MOVE,
+        f'{MOVE}<NextObject area="table" filter="type=prat" object_id="{{id}}"/>',
+        ("port 'filter': unknown object type 'prat' (did you mean 'part'?)",),
+        "prat",
+    ),
+    "unknown area to spawn in": Case(
+        T,
+        MOVE,
+        f'{MOVE}<SpawnObject type="part" area="tabel"/>',
+        ("port 'area': unknown area 'tabel' (did you mean 'table'?)",),
+        "tabel",
+    ),
+    # --- the person's tree ---
+    "unknown animation": person(
+        'animation_name="wave"',
+        'animation_name="assemble"',
+        (
+            "port 'animation_name': no animation named 'assemble'; the person's clips: carry, "
+            "hand_over, idle, inspect,",
+        ),
+        "assemble",
+    ),
+    "animation near a known one": person(
+        'animation_name="wave"',
+        'animation_name="wav"',
+        ("no animation named 'wav' (did you mean 'wave'?)",),
+        "wav",
+    ),
+    "animation near one of the scenario's own clips": person(
+        'animation_name="wave"',
+        'animation_name="strech"',
+        ("no animation named 'strech' (did you mean 'stretch'?)", "stretch, turn_left"),
+        "strech",
+        changes=[("human:\n", "human:\n  clips: [stretch.json]\n")],
+        files={"stretch.json": own_clip("stretch")},
+    ),
+    "walking with a clip that does not walk": person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="door" animation_name="inspect"/>',
+        ("'inspect' is not a walking animation (the person walks with: carry, walk)",),
+        "inspect",
+    ),
+    "a place to walk to inside the table": person(
+        '<ActorMovement target="door"/>',
+        '<OffsetPose input="door" offset="-2;-2.3;0" output="{spot}"/>\n'
+        '      <ActorMovement target="{spot}"/>',
+        (
+            "port 'target': the value OffsetPose (human.xml:4) made from location 'door': "
+            "(0.00, 0.70) lies within the floor outline of "
+            "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
+        ),
+        '<ActorMovement target="{spot}"',
+    ),
+    "a place to walk to without room to turn": person(
+        '<ActorMovement target="door"/>',
+        '<OffsetPose input="door" offset="-2;-1.75;0" output="{spot}"/>\n'
+        '      <ActorMovement target="{spot}"/>',
+        (
+            "port 'target': the value OffsetPose (human.xml:4) made from location 'door': "
+            "a person at (0.00, 1.25) facing -90°, turning on the spot, reaches 0.18 m into "
+            "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
+        ),
+        '<ActorMovement target="{spot}"',
+    ),
+    "a place to walk to closed in by tables": person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="0;1.7;0"/>',
+        (
+            "port 'target': '0;1.7;0': no walk from the person's start [2.00, 2.00] to "
+            "[0.00, 1.70] keeps clear of the cell (the gaps on the way are narrower than a "
+            "walking person, or the robot's inner working space closes them)",
+        ),
+        "0;1.7;0",
+        changes=[("human:\n", f"{ISLAND}human:\n")],
+    ),
+    "a place to stand without room to turn": Case(
+        S,
+        "door: {translation: [2.0, 3.0, 0.0]",
+        "door: {translation: [0.0, 1.3, 0.0]",
+        (
+            "locations.door: a person at (0.00, 1.30) facing -90°, turning on the spot, "
+            "reaches 0.13 m into work_table: the nearest place with room to stand and turn is "
+            "[0.00, 1.43]",
+        ),
+        "door:",
+    ),
+    # --- the robot's start and configurations ---
+    "the robot's base moved away from its target": Case(
+        S,
+        "base_pose: {translation: [0.0, 0.0, 0.8]}",
+        "base_pose: {translation: [0.0, -0.5, 0.8]}",
+        (
+            "port 'target': the value OffsetPose (robot.xml:11) made from location 'pick_spot' "
+            "at (-0.20, 0.42, 1.03): out of reach with the tool pointing down: 0.94 m from its "
+            "base axis at z = 1.03 m, where the lbr_iisy3_r760 reaches 0.52 m (move it 0.42 m "
+            "closer)",
+        ),
+        MOVE,
+        found_in=T,
+    ),
+    "a robot on the table, its base in the table top": Case(
+        S,
+        "base_pose: {translation: [0.0, 0.0, 0.8]}",
+        "base_pose: {translation: [0.0, 0.7, 0.88]}",
+        (
+            "robot.base_pose: the robot's base at (0.00, 0.70, 0.88) lies 0.020 m below the top "
+            "of work_table (to stand on it: z = 0.900)",
+        ),
+        "base_pose:",
+    ),
+    "configuration beyond a joint limit": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [0, -45, 200, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: outside the joint limits: joint 3 at 200° "
+            "(limits -150 to 150°)",
+        ),
+        "ready:",
+    ),
+    "configuration in the table": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [-90, -45, 90, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: the link_6 and vacuum_gripper would touch "
+            "work_table there",
+        ),
+        "ready:",
+    ),
+    # --- the cell at the start ---
+    "person starts inside the table": Case(
+        S,
+        "start: [2.0, 2.0, 180.0]",
+        "start: [0.0, 0.8, 180.0]",
+        (
+            "human.start: (0.00, 0.80) lies within the floor outline of work_table: the "
+            "nearest place with room to stand and turn is [0.00, 1.43]",
+        ),
+        "start:",
+    ),
+    "object inside the table": Case(
+        S,
+        "safety:\n",
+        f"{OBJECTS}    - {{type: part, pose: {{translation: [0.0, 0.6, 0.88]}}}}\nsafety:\n",
+        (
+            "workpieces.objects[0].pose: the part at (0.00, 0.60, 0.88) starts 0.050 m inside "
+            "work_table (to rest on it, raise its centre 0.050 m to z = 0.930)",
+        ),
+        "translation: [0.0, 0.6, 0.88]",
+    ),
+    "objects inside each other": Case(
+        S,
+        "safety:\n",
+        f"{OBJECTS}{PART_ON_TABLE * 2}safety:\n",
+        (
+            "workpieces.objects[0].pose: the part at (0.00, 0.60, 0.93) starts 0.060 m inside "
+            "the part at (0.00, 0.60, 0.93)",
+        ),
+        "translation: [0.0, 0.6, 0.93]",
+    ),
+    # --- magnitudes ---
+    "sizes in millimetres": Case(
+        S,
+        "size: [0.08, 0.08, 0.06]",
+        "size: [80, 80, 60]",
+        (
+            "workpieces.types.part.size: [80, 80, 60] m is larger than a workcell (sizes are in "
+            "metres: [0.08, 0.08, 0.06] for millimetres?)",
+        ),
+        "size: [80",
+    ),
+    "mass in grams": Case(
+        S,
+        "mass: 0.3",
+        "mass: 300",
+        (
+            "workpieces.types.part.mass: 300 kg is more than a person may lift (23 kg, the "
+            "NIOSH load constant)",
+            "0.3 for grams?",
+        ),
+        "mass: 300",
+    ),
+    "belt speed in mm/s": Case(
+        S,
+        "safety:\n",
+        "  conveyors:\n    belt: {start: [1, -1, 0.9], end: [2, -1, 0.9], speed: 250}\nsafety:\n",
+        ("workpieces.conveyors.belt.speed: 250 m/s is faster than any belt", "0.25 for mm/s?"),
+        "speed: 250",
+    ),
+    "location in millimetres": Case(
+        S,
+        "translation: [2.0, 3.0, 0.0]",
+        "translation: [2000, 3000, 0]",
+        (
+            "locations.door.translation: [2000, 3000, 0] lies 3000 m from the origin",
+            "[2, 3, 0] for millimetres?",
+        ),
+        "2000",
+    ),
+    "an object put down inside the table": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorPlace target="0.3;0.6;0.88"/>',
+        ("port 'target': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
+        "ActorPlace",
+    ),
+    "area in millimetres": Case(
+        S,
+        "table: [[-0.6, 0.3], [0.6, 0.3], [0.6, 1.1], [-0.6, 1.1]]",
+        "table: [[-600, 300], [600, 300], [600, 1100], [-600, 1100]]",
+        ("areas.table: its corners lie up to 1100 m from the origin", "in millimetres?"),
+        "table: [[-600",
+    ),
+    "belt end in millimetres": Case(
+        S,
+        "safety:\n",
+        "  conveyors:\n    belt: {start: [1, -1, 0.9], end: [2000, -1, 0.9]}\nsafety:\n",
+        ("workpieces.conveyors.belt.end: [2000, -1, 0.9] lies 2000 m from the origin",),
+        "2000",
+    ),
+    "angle in radians": Case(
+        S,
+        "deg: [0, 0, -90]",
+        "deg: [0, 0, -1.5708]",
+        (
+            "locations.door.rotation.deg[2]: -1.5708 looks like radians; the angle is in degrees: "
+            "-90 for -1.5708 rad?",
+        ),
+        "-1.5708",
+    ),
+    "person facing in radians": Case(
+        S,
+        "start: [2.0, 2.0, 180.0]",
+        "start: [2.0, 2.0, 3.1416]",
+        ("human.start[2]: 3.1416 looks like radians", "180 for 3.1416 rad?"),
+        "start:",
+    ),
+    "configuration in radians": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [0, -0.785, 1.571, 0, 0.785, 0]",
+        (
+            "robot.configurations_deg.ready: [0, -0.785, 1.571, 0, 0.785, 0] looks like radians; "
+            "the angles are degrees: [0, -45, 90, 0, 45, 0]?",
+        ),
+        "ready:",
+    ),
+    "person height in centimetres": Case(
+        S,
+        "height: 1.75",
+        "height: 175",
+        ("human.height: must lie within", "(lengths are in metres: 1.75 for centimetres?)"),
+        "height: 175",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_a_mistake_a_run_would_find_is_one_located_line(name, tmp_path, hrc_drake):
+    case = CASES[name]
+    scenario = write_workspace(tmp_path, case)
+    status, _, err = hrc_drake("validate", scenario)
+    assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)

@@ -1,0 +1,150 @@
+"""Hands on surfaces, not in them: the person working at a table (our work table model) keeps
+the arms out of it, measured in SceneGraph as the realism audit measures it (the legs and
+trunk turning at a table are the places to stand's business)."""
+
+import numpy as np
+import pytest
+from pydrake.math import RigidTransform, RotationMatrix
+
+from hrc_drake.human.clip import load_clips
+from hrc_drake.human.grasp import hold_of
+from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
+from hrc_drake.workpieces.geometry import Solid
+from tests.human.scene import FLOOR, Run, furniture
+
+INTO_FURNITURE = 0.01
+"""m: how far a body segment may go into the cell's geometry (the audit's limit)."""
+STANDING = (0.0, 0.0, np.pi / 2)
+"""At a work table like the bundled scenarios' work places: facing it, the pelvis 0.15 m
+from its edge (the belly 4.5 cm from it)."""
+TABLE = furniture("work_table", 0.0, 0.55)
+"""Top 0.86-0.90 m high, from y = 0.15 to 0.95 and x = -0.6 to 0.6."""
+TOP = 0.9
+HAND_ON_OBJECT = 0.02
+"""m: how far a palm closing on an object may be from its face (the audit's hand–object
+gap)."""
+MATERIAL = (0.16, 0.12, 0.08)
+CARTON = (0.3, 0.3, 0.2)
+
+
+ARMS = ("hand", "lower_arm", "upper_arm")
+"""The collision geometry of the arms (the hands, forearms and upper arms)."""
+
+
+def _at_the_table(schedule, until: float) -> Run:
+    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, TABLE], segments=ARMS)
+    run.record(until)
+    return run
+
+
+def _duration(clip: str) -> float:
+    return load_clips()[clip].duration
+
+
+@pytest.mark.parametrize(
+    "target",
+    [(0.1, 0.35, TOP), (-0.2, 0.45, TOP), (0.15, 0.25, TOP)],
+    ids=["in front", "to the left", "near the edge"],
+)
+def test_a_reach_onto_the_table_comes_from_above(target):
+    run = _at_the_table([(0.1, AnimateCommand(1, "reach", target=target))], 3.0)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+PALLET = furniture("euro_pallet", 0.0, 0.55, 90.0)
+"""A EUR pallet across the person's way, its near side 0.15 m in front of the pelvis."""
+ON_A_CRATE = 0.144 + 0.24 + 0.1
+"""The centre of a carton standing on a crate on the pallet."""
+
+
+@pytest.mark.parametrize(
+    ("cell", "center", "size", "clips"),
+    [
+        (TABLE, (-0.1, 0.4, TOP + 0.04), MATERIAL, ("pick_table", "place_table")),
+        (TABLE, (0.0, 0.45, TOP + 0.1), CARTON, ("pick_table", "place_table")),
+        (PALLET, (0.15, 0.35, ON_A_CRATE), CARTON, ("pick_floor", "place_floor")),
+    ],
+    ids=["material on the table", "carton on the table", "carton on a crate on a pallet"],
+)
+def test_picking_up_and_putting_down_keeps_the_hands_out_of_the_furniture(
+    cell, center, size, clips
+):
+    """The palms close on the object's faces, and the arms stay out of what it stands on."""
+    pick, place = clips
+    grasp = Grasp("both", center, np.pi / 2, size)
+    hold = hold_of(grasp, STANDING[2])
+    put_down = _duration(pick) + 0.3
+    schedule = [
+        (0.1, AnimateCommand(1, pick, grasp=grasp)),
+        (put_down, AnimateCommand(2, place, target=center, hold=hold)),
+    ]
+    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, cell], segments=ARMS)
+    run.record(0.1 + load_clips()[pick].events["grasp"])
+    q = run.positions()[run.body.plant_index]
+    box = Solid("box", size)
+    X_OW = RigidTransform(RotationMatrix.MakeZRotation(grasp.yaw), center).inverse()
+    for side in ("left", "right"):
+        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
+        assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
+    run.record(put_down + _duration(place) + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_the_hands_keep_out_of_the_box_next_to_the_one_they_take():
+    """A box of material stands 6 cm beside the one the person takes and puts back: the
+    palms open only as far as there is room, and no part of the arms goes into it."""
+    center, beside = (-0.1, 0.4, TOP + 0.04), (0.08, 0.4, TOP + 0.04)
+    grasp = Grasp("both", center, np.pi / 2, MATERIAL)
+    nearby = (Box(beside, np.pi / 2, MATERIAL),)
+    put_down = _duration("pick_table") + 0.3
+    schedule = [
+        (0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby)),
+        (
+            put_down,
+            AnimateCommand(
+                2, "place_table", target=center, hold=hold_of(grasp, STANDING[2]), nearby=nearby
+            ),
+        ),
+    ]
+    neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(np.pi / 2), beside))
+    run = Run(schedule, STANDING, [FLOOR, TABLE], ARMS, objects=[neighbour])
+    run.record(put_down + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_inspecting_at_the_table_keeps_the_forearms_above_it():
+    run = _at_the_table([(0.1, AnimateCommand(1, "inspect"))], _duration("inspect") + 0.3)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_reach_cancelled_on_the_table_withdraws_the_hand_before_the_person_turns_away():
+    schedule = [
+        (0.1, AnimateCommand(1, "reach", target=(0.1, 0.4, TOP))),
+        (1.0, CancelCommand(2)),
+        (1.1, MoveCommand(3, (0.0, -1.5, 0.0))),
+    ]
+    run = _at_the_table(schedule, 8.0)
+    assert run.status().results.outcome_of(3) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+ROOM_TO_TURN = (0.0, -0.18)
+"""The nearest place at the table where the person has room to turn on the spot (the
+pelvis 0.33 m from its edge: hrc_drake.human.navigation's places to stand), where a walk
+to the table ends."""
+
+
+def test_a_step_up_to_the_table_swings_the_arms_clear_of_it():
+    """The bundled scenarios' person starts 10 cm short of their work place: the arms swing
+    as in any walk, next to the table's edge."""
+    schedule = [(0.1, MoveCommand(1, (*ROOM_TO_TURN, 0.0), (0.7071068, 0.0, 0.0, 0.7071068)))]
+    start = (ROOM_TO_TURN[0], ROOM_TO_TURN[1] - 0.1, np.pi / 2)
+    run = Run(schedule, start_pose=start, cell=[FLOOR, TABLE], segments=ARMS)
+    run.record(4.1)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.status().base_pose[:2] == pytest.approx(ROOM_TO_TURN, abs=0.03)  # idle sway
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
