@@ -367,9 +367,28 @@ CASES = {
     ),
     "an object put down inside the table": person(
         '<ActorAnimation animation_name="wave"/>',
-        '<ActorPlace target="0.3;0.6;0.88"/>',
+        '<ActorMovement target="0.3;1.6;0"/><ActorPlace target="0.3;0.6;0.88"/>',
         ("port 'target': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
         "ActorPlace",
+    ),
+    "a place out of reach from where the walk ends": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorPlace target="0.3;0.9;0.95"/>',
+        (
+            "port 'target': '0.3;0.9;0.95' at (0.30, 0.90, 0.95) is 2.70 m from where the "
+            "person stands (location 'door', ActorMovement at ",
+            "walk closer first",
+        ),
+        "ActorPlace",
+    ),
+    "a reach out of reach from the person's start": person(
+        '<ActorMovement target="door"/>',
+        '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',
+        (
+            "port 'target': '0.0;0.6;1.0' at (0.00, 0.60, 1.00) is 2.44 m from where the "
+            "person stands (the person's start)",
+        ),
+        "ActorReach",
     ),
     "area in millimetres": Case(
         S,
@@ -428,3 +447,17 @@ def test_a_mistake_a_run_would_find_is_one_located_line(name, tmp_path, hrc_drak
     scenario = write_workspace(tmp_path, case)
     status, _, err = hrc_drake("validate", scenario)
     assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)
+
+
+def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
+    """Where a Fallback's first try walks (and may have failed half-way), where the person
+    stands is not known before the run: validate says nothing rather than guess."""
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<Fallback><Sequence><ActorMovement target="0.3;1.6;0"/><AlwaysFailure/></Sequence>'
+        '<ActorPlace target="0.3;0.9;0.95"/></Fallback>',
+        (),
+        "ActorPlace",
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
