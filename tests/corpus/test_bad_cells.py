@@ -35,6 +35,14 @@ ROBOT_TREE = "  robot: {file: robot.xml, period: 0.05}\n"
 OBJECTS = "  objects:\n"
 PART_ON_TABLE = "    - {type: part, pose: {translation: [0.0, 0.6, 0.93]}}\n"
 
+ON_A_PEDESTAL = GOOD_SCENARIO.replace(
+    "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
+).replace(
+    "cell:\n",
+    "cell:\n  - add_model: {name: pedestal, file: package://hrc_drake_models/cell/robot_pedestal.sdf}\n"
+    "  - add_weld: {parent: world, child: pedestal::body}\n",
+)
+"""The corpus's cell with an iisy 15 on its pedestal (its first link turns 9 mm above it)."""
 
 ISLAND = "".join(
     f"  - add_model: {{name: {name}, file: package://hrc_drake_models/cell/work_table.sdf}}\n"
@@ -294,6 +302,20 @@ CASES = {
             "work_table there",
         ),
         "ready:",
+    ),
+    "configuration in the table, the arm on its pedestal": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [-90, -45, 90, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: the vacuum_gripper would touch work_table there",
+        ),  # not the first link, which always turns just above the pedestal
+        "ready:",
+        files={
+            S: ON_A_PEDESTAL.replace(
+                "ready: [0, -45, 90, 0, 45, 0]", "ready: [-90, -45, 90, 0, 45, 0]"
+            )
+        },
     ),
     # --- the cell at the start ---
     "person starts inside the table": Case(
