@@ -248,6 +248,8 @@ class CarryArms:
 
     indices: np.ndarray
     values: np.ndarray
+    hands: tuple[str, ...]
+    """The sides whose hands hold the object (the other arm is free)."""
 
     def over(self, q: np.ndarray, weight: float = 1.0) -> np.ndarray:
         """`q` with its arms moved `weight` of the way to the carry posture."""
@@ -282,7 +284,7 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     q = pose_vector(body, HOLD)
     free = arm_indices(body, tuple(targets))
     solved = body.solve(q, hand_tasks(targets), free, iterations=100, posture_weight=1e-4)
-    return CarryArms(free, solved[free])
+    return CarryArms(free, solved[free], tuple(targets))
 
 
 def hand_tasks(

@@ -85,6 +85,8 @@ class Legs:
             [sizes["foot"] / 2 - sizes["heel_back"], 0.0, -sizes["ankle_height"]]
         )
         self.half_foot = sizes["foot"] / 2
+        (foot,) = body.skeleton.body("left_foot").collisions
+        self.half_foot_width = foot.shape.size[1] / 2
         index = body.index
         self.root = tuple(index(n) for n in ("base_x", "base_y", "base_yaw", "pelvis_height"))
         self.pelvis_angles = (index("pelvis_tilt"), index("pelvis_list"))
@@ -113,6 +115,15 @@ class Legs:
         ankle_at = p + R_p @ self.hip[side] + R_thigh @ [0.0, 0.0, -self.thigh]
         ankle_at = ankle_at + R_shank @ [0.0, 0.0, -self.shank]
         return SolePose(ankle_at + R_foot @ self.sole_offset, R_foot[:, 0], R_foot[:, 2])
+
+    def under_the_floor(self, q, side: str) -> float:
+        """How far the `side` foot's sole reaches under the floor (0: it does not). The leg
+        gives the foot its roll (there is no ankle to roll it back): a foot swung round a
+        turn lands rolled, and the edge of a pitched and rolled sole dips below its heel."""
+        sole = self.sole(q, side)
+        across = _cross(sole.up, sole.forward)
+        drop = self.half_foot * abs(sole.forward[2]) + self.half_foot_width * abs(across[2])
+        return max(drop - float(sole.position[2]), 0.0)
 
     def within_reach(self, q, side: str, position, forward, knee: float) -> np.ndarray:
         """`position` for the `side` sole, or where it would be had the leg moved it only as

@@ -8,6 +8,7 @@ from math import atan2, hypot, radians
 import numpy as np
 
 from hrc_drake.human.activity import Activity
+from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.grasp import (
@@ -18,19 +19,14 @@ from hrc_drake.human.grasp import (
     reach_target,
     release_targets,
 )
+from hrc_drake.human.hand_ways import WITHDRAWAL, withdrawal
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import (
-    TARGETED,
-    WITHDRAWAL,
-    Unreachable,
-    aim_clip,
-    withdrawal,
-)
+from hrc_drake.human.targeting import TARGETED, aim_clip
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3

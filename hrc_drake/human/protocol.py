@@ -14,6 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from hrc_drake.human.activity import Activity
+from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import hold_of
 from hrc_drake.human.messages import (
@@ -33,7 +34,6 @@ from hrc_drake.human.planning import (
 )
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import TurnSegment
-from hrc_drake.human.targeting import Unreachable
 from hrc_drake.messages import (
     CANCELLED,
     FAILED,

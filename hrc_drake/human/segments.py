@@ -8,13 +8,12 @@ from math import ceil, copysign, degrees, inf, radians
 
 import numpy as np
 
+from hrc_drake.human.aiming import AimedMotion
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
 from hrc_drake.human.performer import IDLE_CLIP, Performer, carried, place
-from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import AimedMotion
 from hrc_drake.human.walking import WalkSegment
 
 MAX_TURN_PER_CYCLE = radians(90.0)
@@ -59,7 +58,7 @@ class ClipSegment:
         holding what they took."""
         if self.aim is not None:
             return self.aim.hands if self.aim.holds(self.clip_time(performer, t)) else ()
-        return SIDES if self.carry is not None else ()
+        return self.carry.hands if self.carry is not None else ()
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         clip_time = self.clip_time(performer, t)
@@ -97,7 +96,7 @@ class TurnSegment:
         return self.start + self.cycles * self.clip.duration
 
     def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
-        return SIDES if self.carry is not None else ()
+        return self.carry.hands if self.carry is not None else ()
 
     def finishing(self, t: float) -> "TurnSegment":
         """This turn cut short after the cycle (two steps) under way at t, turned as far as

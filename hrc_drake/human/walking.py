@@ -19,7 +19,6 @@ from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.performer import Performer, carried, place
 from hrc_drake.human.rotations import wrap_angle
-from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.stepping import (
     START_PHASE,
     SWING_SLACK,
@@ -164,7 +163,7 @@ class WalkSegment:
 
     def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
         """The sides whose hands hold something (they stay where they are)."""
-        return SIDES if self.carry is not None else ()
+        return self.carry.hands if self.carry is not None else ()
 
     def distance(self, t: float) -> float:
         """How far along the path the pelvis is at t."""
@@ -283,8 +282,23 @@ class WalkSegment:
         for side, (position, forward, slack) in targets.items():
             if slack > 0.0:  # in the air: short of its place rather than a locked knee
                 position = performer.legs.within_reach(q, side, position, forward, STANCE_KNEE)
-            q = performer.legs.place_foot(q, side, position, forward)
+            q = _above_the_floor(
+                performer.legs,
+                performer.legs.place_foot(q, side, position, forward),
+                side,
+                position,
+                forward,
+            )
         return carried(q, self.carry)
+
+
+def _above_the_floor(legs, q, side: str, position, forward) -> np.ndarray:
+    """q with the `side` foot, placed at `position`, raised as far as its sole's edge would
+    reach under the floor (a rolled foot in the air, or landing on its heel)."""
+    under = legs.under_the_floor(q, side)
+    if under <= 0.0:
+        return q
+    return legs.place_foot(q, side, np.asarray(position) + [0.0, 0.0, under], forward)
 
 
 def _least_knee(slack: float) -> float:

@@ -15,10 +15,11 @@ from tests.scenarios.realism_checks import assert_within_the_audit_limits
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 GUIDE = DOCS / "building-a-cell.md"
-SHORT = 12.0
-"""s: the robot puts the tray's first part on the belt (at 11.2 s), the person assembles."""
+SHORT = 16.0
+"""s: the person refills the tray first (next to the robot, which slows down for them) and
+the robot puts the tray's first part on the belt (at 14.5 s)."""
 NO_ROOM = (
-    "belt_side: {translation: [1.9, 0.74, 0.0]",
+    "belt_side: {translation: [1.9, 0.6, 0.0]",
     "belt_side: {translation: [1.9, 0.45, 0.0]",
 )
 """The guide's place-to-stand mistake: the place by the belt 0.21 m from its rail."""
@@ -71,7 +72,7 @@ def released(metrics: dict) -> int:
     return sum(stats["successes"] for path, stats in robot.items() if "RobotRelease" in path)
 
 
-ACTIVITIES = ("assemble", "check_the_belt")
+ACTIVITIES = ("assemble", "check_the_belt", "refill")
 
 
 def test_the_guides_cell_runs_within_the_realism_limits(cell):
@@ -82,11 +83,12 @@ def test_the_guides_cell_runs_within_the_realism_limits(cell):
 
 @pytest.mark.long
 def test_the_guides_cell_runs_its_minute_within_the_realism_limits(cell):
-    """The whole run: the tray's three parts on the belt, the person between the work
-    table and the belt."""
+    """The whole run: the tray's three parts on the belt, the person assembling, checking
+    the belt and refilling the tray (taking a part off the work table, carrying it and
+    putting it down in the tray)."""
     metrics = run(load_scenario(cell)).metrics
     assert_within_the_audit_limits(metrics["realism"])
-    assert released(metrics) == 3
+    assert released(metrics) >= 3
     assert all(metrics["bt"]["human"][a]["successes"] for a in ACTIVITIES)
 
 

@@ -1,0 +1,153 @@
+"""The person's hands put on targets by inverse kinematics on the body, the feet kept where
+they stand, and the joint offsets that aim a clip (`AimedMotion`): what targeting.py and
+hand_ways.py both build on.
+
+The IK moves the aiming arms and the trunk; where the hands cannot get there otherwise the
+person squats (pelvis height and legs), and a target that still stays out of reach is
+`Unreachable`. Feet outrank hands: the person bends rather than sliding a foot.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from hrc_drake.human.body import FrameTask, HumanBody
+from hrc_drake.human.grasp import hand_tasks
+from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.skeleton import SIDES
+
+HAND_TOLERANCE = 0.02
+WAYPOINT_TOLERANCE = 0.06
+"""m: hands on their way (rising beside the body, over a surface's edge) need only come
+near their waypoints; the arms are then kept clear of the furniture all the way
+(hrc_drake.human.clearance)."""
+FOOT_TOLERANCE = 0.01
+FEET_WEIGHT = (4.0, 4.0, 4.0)
+"""Feet outrank hands in the IK: the person bends rather than sliding a foot."""
+TRUNK = (
+    "pelvis_height",
+    "pelvis_tilt",
+    "lumbar_flexion",
+    "lumbar_bending",
+    "thorax_flexion",
+    "thorax_rotation",
+)
+PALM_ORIENTATION = 1.0
+"""Weight of a palm's orientation reaching for a target."""
+
+
+class Unreachable(ValueError):
+    """The person cannot put a hand on the target without stepping."""
+
+
+@dataclass(frozen=True, eq=False)
+class AimedMotion:
+    """Joint offsets that aim a clip: at each key time an offset added to the clip's pose;
+    in between they ease from key to key (minimum jerk), or run straight through the evenly
+    spaced keys of a carried object's way (`paths`; the way itself eases the object)."""
+
+    times: tuple[float, ...]
+    offsets: tuple[np.ndarray, ...]
+    paths: tuple[tuple[int, int], ...] = ()
+    """(first key, last key) of each stretch that is one smooth movement."""
+    hands: tuple[str, ...] = ()
+    """The sides whose hands are aimed."""
+    held: tuple[float, float] = (0.0, 0.0)
+    """The clip times between which the aimed hands are on their targets or hold what they
+    took (on their way there and back they are free)."""
+
+    def holds(self, clip_time: float) -> bool:
+        return self.held[0] <= clip_time <= self.held[1]
+
+    def offset(self, clip_time: float) -> np.ndarray:
+        times = self.times
+        if clip_time <= times[0]:
+            return self.offsets[0]
+        if clip_time >= times[-1]:
+            return self.offsets[-1]
+        for first, last in self.paths:
+            if times[first] <= clip_time <= times[last]:
+                return self._along(first, last, clip_time)
+        k = int(np.searchsorted(times, clip_time, side="right")) - 1
+        s = minimum_jerk((clip_time - times[k]) / (times[k + 1] - times[k]))
+        return self.offsets[k] + s * (self.offsets[k + 1] - self.offsets[k])
+
+    def _along(self, first: int, last: int, clip_time: float) -> np.ndarray:
+        span = self.times[last] - self.times[first]
+        u = (clip_time - self.times[first]) / span * (last - first)
+        k = min(int(u), last - first - 1)
+        a, b = self.offsets[first + k], self.offsets[first + k + 1]
+        return a + (u - k) * (b - a)
+
+    def pose(self, placed: np.ndarray, clip_time: float) -> np.ndarray:
+        return placed + self.offset(clip_time)
+
+
+def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:
+    """Arms of the aiming hands and the trunk; with `squat` also pelvis height and legs."""
+    names = [n for n in body.joint_names if n in TRUNK and (squat or n != "pelvis_height")]
+    parts = [(side, ("shoulder", "elbow", "wrist")) for side in sides]
+    if squat:
+        parts += [(side, ("hip", "knee", "ankle")) for side in SIDES]
+    for side, joints in parts:
+        names += [n for n in body.joint_names if n.startswith(side) and any(j in n for j in joints)]
+    return np.array([body.index(n) for n in names])
+
+
+def _feet_tasks(body: HumanBody, q: np.ndarray) -> list[FrameTask]:
+    tasks = []
+    for side in SIDES:
+        X: RigidTransform = body.frame_pose(f"{side}_sole", q)
+        tasks.append(
+            FrameTask(
+                f"{side}_sole",
+                X.translation(),
+                X.rotation(),
+                FEET_WEIGHT,
+                rotation_weights=(1.0, 1.0, 1.0),
+            )
+        )
+    return tasks
+
+
+def hands_on(
+    body: HumanBody,
+    q: np.ndarray,
+    hands: dict,
+    turning: bool | None = None,
+    tolerance: float = HAND_TOLERANCE,
+) -> np.ndarray:
+    """q with the aiming hands' grasp frames on their targets, within `tolerance`, the feet
+    where they stand (a squat if the hands cannot reach otherwise). With `turning` the palms
+    may turn about their normals (the fingers pointing where the arms put them best); by
+    default two palms on an object's faces do. Raises Unreachable."""
+    feet = _feet_tasks(body, q)
+    both = len(hands) == 2 if turning is None else turning
+    for squat, oriented in ((False, True), (True, True), (True, False)):
+        aimed = hands if oriented else {s: (p, None) for s, (p, _) in hands.items()}
+        tasks = hand_tasks(aimed, PALM_ORIENTATION, turn_in_palm=both)
+        solved = body.solve(
+            q,
+            tasks + feet,
+            _free_joints(body, tuple(hands), squat),
+            iterations=150,
+            posture_weight=1e-3,
+        )
+        hand_error = body.task_error(solved, tasks)
+        feet_error = body.task_error(solved, feet) / FEET_WEIGHT[0]
+        if hand_error <= tolerance and feet_error <= FOOT_TOLERANCE:
+            return solved
+    if hand_error <= tolerance:
+        raise Unreachable("only reachable by stepping")
+    raise Unreachable(f"hand stays {hand_error:.2f} m from the target")
+
+
+def offset_to(body, placed_pose, clip, time, start, targets, fallback):
+    """The offset at clip `time` that puts the hands on `targets` (IK from the clip's pose
+    there plus `start`), or `fallback` where they cannot get there without stepping."""
+    placed = placed_pose(clip.sample(time))
+    try:
+        return hands_on(body, placed + start, targets) - placed
+    except Unreachable:
+        return fallback

@@ -1,0 +1,324 @@
+"""The ways of the hands in and out of an aimed clip: to a point above the target and a
+little wider apart before they close on it (`approached`), up beside the body and over the
+edge of the surface the target is on (`over_the_edge`), from taking an object into the carry
+posture (`carried_off`), from the carry posture to putting it down (`put_down`), and off a
+surface when a reach is cut short (`withdrawal`). Each writes its postures as keys of one
+clip (`Keys`): an offset at a clip time, or the hands put on waypoints by IK there
+(hrc_drake.human.aiming); hrc_drake.human.targeting lays them out round the clip's event.
+"""
+
+import numpy as np
+from pydrake.math import RotationMatrix
+
+from hrc_drake.human.aiming import (
+    WAYPOINT_TOLERANCE,
+    AimedMotion,
+    Unreachable,
+    hands_on,
+    offset_to,
+)
+from hrc_drake.human.body import HumanBody
+from hrc_drake.human.clip import Clip
+from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.grasp import (
+    arm_indices,
+    facing,
+    hand_below,
+    hand_extent,
+    hand_tasks,
+    outward,
+)
+from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.skeleton import SIDES
+
+APPROACH = (0.06, 0.06)
+"""m: where the hands come to before they close on the target: this far outwards (palms
+on an object's faces; a reaching hand: back towards the body) and this far above it."""
+LEAVE_AT = (0.3, 0.6)
+"""Fractions of the time from letting go to the clip's end at which hands leaving a surface
+are back above their target, and over the surface's edge again."""
+CLEARANCE = 0.02
+"""m: the hands' lowest edge passes this far above what they pass over."""
+EDGE_MARGIN = 0.015
+"""m: hands rising to a surface stay this far outside its edge."""
+TRUNK_FRONT = 0.15
+"""m: from the pelvis axis to in front of the belly with a hand's half breadth (the belly
+is 0.105 m in front for the default adult)."""
+TRUNK_SIDE = 0.22
+"""m: from the body's midline to beside the trunk, outside the shoulders (0.186 m)."""
+WITHDRAWAL = 1.0
+"""s: hands cut short on a surface take this long to leave it."""
+PASSAGE_KEYS = 4
+"""Keys (IK solutions) along a passage of the hands from one place to another."""
+CARRY_SAMPLES = 8
+"""Points of the way between the grasp and the carry posture at which the palms are put on
+the object's faces by IK."""
+CHEST = "chest"
+"""The body the hands' way with a held object is laid out in."""
+HOLDING_ORIENTATION = 1.0
+"""Weight of the hands' orientation while they hold an object on its way: a palm that
+tilts pokes its fingers into the object."""
+
+
+def approached(
+    hands: dict, heading: float, reaching: bool, opening: bool = True, above=None, room=None
+) -> dict:
+    """The hands' targets moved to where they come before closing on them: above, and
+    (`opening`) outwards from an object's faces (a reaching hand: back towards the body);
+    hands that hold what they put down stay on it. `above` (side: height) raises a hand
+    further, so far that its grasp frame is at least that high; `room` (side: m) is as far
+    as a palm can open outwards (a neighbouring object)."""
+    out, up = APPROACH
+    back = -np.array([np.cos(heading), np.sin(heading), 0.0])
+    moved = {}
+    for side, (position, R) in hands.items():
+        away = back if reaching or R is None else outward(side, R)
+        wide = min(out, (room or {}).get(side, out))
+        point = np.asarray(position) + opening * wide * away + [0.0, 0.0, up]
+        point[2] = max(point[2], (above or {}).get(side, -np.inf))
+        moved[side] = (point, R)
+    return moved
+
+
+def room_beside(body: HumanBody, furniture: Furniture, hands: dict) -> dict:
+    """Per side, how far a palm on an object's face can open outwards before the back of the
+    hand meets something (its thickness and a margin less than the free way)."""
+    room = {}
+    for side, (position, R) in hands.items():
+        if R is None:
+            continue
+        reach = hand_below(body, R)
+        free = furniture.room(position, outward(side, R), position[2] - reach, position[2] + reach)
+        room[side] = max(free - hand_extent(body, R, outward(side, R)) - EDGE_MARGIN, 0.0)
+    return room
+
+
+def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest) -> dict:
+    """Per side, the height a hand's grasp frame keeps above what it is aimed at and its
+    neighbours: its lowest edge CLEARANCE above `lowest` (side: height its lowest point
+    passes over, e.g. the top of what it takes; default: its target's height less its
+    reach below the frame), and above the surface the target is on."""
+    heights = {}
+    for side, (position, R) in hands.items():
+        reach = hand_below(body, R)
+        over = lowest.get(side, position[2] - reach) if lowest else position[2] - reach
+        support = furniture.support(position)
+        if support is not None:
+            over = max(over, support.high)
+        heights[side] = over + reach + CLEARANCE
+    return heights
+
+
+def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, heading):
+    """Where the hands rise to before they move over the surface their targets are on, and
+    leave it by: above it with the hand's whole length, whichever way it points, just
+    outside its edge (the hand's half breadth and a margin) back towards the body from
+    their approach points; beside the trunk where that is in front of it. None when no
+    target is over a surface of the cell."""
+    forward = np.array([np.cos(heading), np.sin(heading), 0.0])
+    left = np.array([-forward[1], forward[0], 0.0])
+    R = facing(heading, "sides_fingers_down")
+    clear, moved = {}, False
+    for side, (position, orientation) in near.items():
+        support = furniture.support(hands[side][0])
+        inset = hand_extent(body, R, forward) + EDGE_MARGIN
+        edge = None
+        if support is not None:
+            edge = furniture.behind_edge(support, position, -forward, inset)
+        if edge is None:
+            clear[side] = (position, orientation)
+            continue
+        ahead, aside = (edge - base) @ forward[:2], (edge - base) @ left[:2]
+        if ahead < TRUNK_FRONT:
+            sign = 1.0 if side == "left" else -1.0
+            aside = sign * max(sign * aside, TRUNK_SIDE)
+        height = max(position[2], support.high + hand_below(body, R) + CLEARANCE)
+        point = np.array([*(base + ahead * forward[:2] + aside * left[:2]), height])
+        clear[side], moved = (point, None), True
+    return clear if moved else None
+
+
+def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMotion | None:
+    """Offsets that take hands cut short on a surface (a cancelled reach) off it the way
+    they came, over WITHDRAWAL seconds of `clip` (idle) from the pose `q`: up, over the
+    edge beside the body, down. None when no hand is over a surface of the cell."""
+    hands = {side: (body.frame_pose(f"{side}_hand_grasp", q).translation(), None) for side in sides}
+    hands = {side: target for side, target in hands.items() if furniture.support(target[0])}
+    if not hands:
+        return None
+    keys = Keys(body, clip, placed_pose)
+    keys.add(0.0, q - placed_pose(clip.sample(0.0)))
+    up = approached(
+        hands, heading, False, opening=False, above=clearing(body, furniture, hands, None)
+    )
+    base = q[[body.index("base_x"), body.index("base_y")]]
+    edge = over_the_edge(body, furniture, hands, up, base, heading)
+    keys.reach(LEAVE_AT[0] * WITHDRAWAL, up)
+    if edge is not None:
+        keys.passage(LEAVE_AT[1] * WITHDRAWAL, edge)
+    keys.add(WITHDRAWAL, np.zeros_like(q))
+    return keys.motion(tuple(hands), (0.0, 0.0))
+
+
+class Keys:
+    """The offsets of an aimed clip, key by key: each an offset at a clip time, or the hands
+    put on targets by IK there; a passage moves the arms from one posture to the next over
+    PASSAGE_KEYS keys, played straight through."""
+
+    def __init__(self, body: HumanBody, clip: Clip, placed_pose):
+        self.body, self.clip, self.placed_pose = body, clip, placed_pose
+        self.times: list[float] = []
+        self.offsets: list[np.ndarray] = []
+        self.paths: list[tuple[int, int]] = []
+        self.arms = arm_indices(body, SIDES)
+
+    def add(self, time: float, offset: np.ndarray) -> None:
+        self.times.append(time)
+        self.offsets.append(offset)
+
+    def reach(self, time: float, targets: dict) -> None:
+        """A key with the hands on `targets` (fingers as the targets have them), if they
+        reach them without stepping."""
+        offset = self._solved(time, targets, self.offsets[-1])
+        if offset is not None:
+            self.add(time, offset)
+
+    def passage(self, time: float, targets: dict | None = None, offset=None) -> None:
+        """Keys from the last one to `time`, where the hands are on `targets` (or the pose
+        has `offset`): the arms move from the one posture to the other whatever the clip's
+        arms do meanwhile (a clip's own arm motion would drag the hands off their way)."""
+        if offset is None:
+            offset = self._solved(time, targets, self.offsets[-1])
+            if offset is None:
+                return
+        first, arms = len(self.times) - 1, self.arms
+        start_time, start = self.times[-1], self.offsets[-1]
+        a = self._pose(start_time, start)[arms]
+        b = self._pose(time, offset)[arms]
+        times = np.linspace(start_time, time, PASSAGE_KEYS + 1)[1:]
+        for k, t in enumerate(times, start=1):
+            s = minimum_jerk(k / len(times))
+            key = start + s * (offset - start)
+            key[arms] = a + s * (b - a) - self._pose(t, 0.0)[arms]
+            self.add(t, key)
+        self.paths.append((first, len(self.times) - 1))
+
+    def _pose(self, time: float, offset) -> np.ndarray:
+        return self.placed_pose(self.clip.sample(time)) + offset
+
+    def _solved(self, time: float, targets: dict, start: np.ndarray):
+        """The offset at `time` with the hands on `targets`: the arms start from where the
+        last key has them, or else the whole body from the clip's pose (IK finds some
+        postures only from one of them); None when neither reaches."""
+        placed = self._pose(time, 0.0)
+        following = placed + start
+        following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
+        for q in (following, placed):
+            try:
+                return hands_on(self.body, q, targets, True, WAYPOINT_TOLERANCE) - placed
+            except Unreachable:
+                continue
+        return None
+
+    def motion(self, hands: tuple[str, ...], held: tuple[float, float]) -> AimedMotion:
+        return AimedMotion(tuple(self.times), tuple(self.offsets), tuple(self.paths), hands, held)
+
+
+def _between(start: dict, end: dict, s: float) -> dict:
+    """Targets of the holding hands a fraction s of the way from their grasp frames `start`
+    to `end` (in one frame): each hand turns about its palm's normal as the object turns, two
+    palms keep their spacing about their midpoint, which moves straight."""
+    sides = tuple(start)
+    turned = {side: _slerp(start[side].rotation(), end[side].rotation(), s) for side in sides}
+    if len(sides) == 1:
+        (side,) = sides
+        a, b = start[side].translation(), end[side].translation()
+        return {side: (a + s * (b - a), turned[side])}
+    a, b = (np.mean([X[side].translation() for side in sides], axis=0) for X in (start, end))
+    width = float(np.linalg.norm(start["left"].translation() - start["right"].translation()))
+    middle = a + s * (b - a)
+    return {side: (middle + outward(side, R) * width / 2, R) for side, R in turned.items()}
+
+
+def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
+    return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
+
+
+def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms):
+    """Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
+    `end` (grasp frames in the chest's frame at the first and last time): the way runs in
+    the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
+    arms are solved to hold the object, the rest of the body eases from the offset
+    `trunk_from` to `trunk_to`."""
+    offsets, solved = [], None
+    for k, t in enumerate(times):
+        s = k / (len(times) - 1)
+        placed = placed_pose(clip.sample(t))
+        q = placed + trunk_from + s * (trunk_to - trunk_from)
+        if solved is not None:  # each point starts from the last: the arms follow the way
+            q[arms] = solved[arms]
+        chest = body.frame_pose(CHEST, q)
+        local = _between(start, end, minimum_jerk(s))
+        targets = {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION)
+        solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
+        offsets.append(solved - placed)
+    return offsets
+
+
+def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
+    """The hands' grasp frames in the chest's frame at q."""
+    chest = body.frame_pose(CHEST, q).inverse()
+    return {s: chest @ body.frame_pose(f"{s}_hand_grasp", q) for s in sides}
+
+
+def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "Keys"):
+    """Offsets of a clip that takes an object and carries it off in the carry posture:
+    `keys` up to the grasp, then the way into the carry posture."""
+    approach_time, _, hold_end = marks
+    sides = tuple(hands)
+    grasped = placed_pose(clip.sample(hold_end)) + on_target
+    end_pose = placed_pose(clip.sample(clip.duration))
+    carried = carry.over(end_pose)
+    start, end = _in_chest(body, grasped, sides), _in_chest(body, carried, sides)
+    times = tuple(np.linspace(hold_end, clip.duration, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    way = _way(
+        body, clip, placed_pose, times, start, end, on_target, zero, arm_indices(body, sides)
+    )
+    way[0], way[-1] = on_target, carried - end_pose
+    first = len(keys.times)
+    for time, offset in zip(times, way, strict=True):
+        keys.add(time, offset)
+    keys.paths.append((first, len(keys.times) - 1))
+    return keys.motion(sides, (approach_time, clip.duration))
+
+
+def put_down(body, clip, placed_pose, hands, carry, near_offset, on_target, marks, opened, edge):
+    """Offsets of a clip that starts in the carry posture and puts the object down: the
+    hands open to `opened` and, over a surface, leave it over its `edge`."""
+    approach_time, event, hold_end = marks
+    sides = tuple(hands)
+    start_pose = placed_pose(clip.sample(0.0))
+    held = carry.over(start_pose)
+    above = placed_pose(clip.sample(approach_time)) + near_offset
+    start, end = _in_chest(body, held, sides), _in_chest(body, above, sides)
+    times = tuple(np.linspace(0.0, approach_time, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    arms = arm_indices(body, sides)
+    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms)
+    way[0], way[-1] = held - start_pose, near_offset
+    keys = Keys(body, clip, placed_pose)
+    for time, offset in zip(times, way, strict=True):
+        keys.add(time, offset)
+    keys.paths.append((0, CARRY_SAMPLES - 1))
+    keys.add(event, on_target)
+    keys.add(hold_end, on_target)
+    release_end = hold_end + 0.3 * (clip.duration - hold_end)
+    keys.add(
+        release_end, offset_to(body, placed_pose, clip, release_end, on_target, opened, on_target)
+    )
+    if edge is not None:
+        keys.passage(release_end + LEAVE_AT[1] * (clip.duration - release_end), edge)
+    keys.add(clip.duration, zero)
+    return keys.motion(sides, (0.0, release_end))
