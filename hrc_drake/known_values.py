@@ -26,7 +26,7 @@ from hrc_drake.bt.controls.branches import Switch
 from hrc_drake.bt.errors import closest
 from hrc_drake.bt.node import EntryRef, Literal, TreeNode
 from hrc_drake.bt.ports import coerce
-from hrc_drake.bt.script import ScriptCode, assigned_keys
+from hrc_drake.bt.script import ScriptCode, assigned_keys, read_keys
 from hrc_drake.tree_types import Pose
 
 MAX_KNOWN = 64
@@ -85,11 +85,14 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
     """(node, port, key, the nearest key that is set) of every input a node reads from a
     blackboard entry that nothing ever sets: no scenario entry or SubTree literal, no
     node's output, SetBlackboard or script (reading it ends a run: "blackboard entry 'key'
-    is not set"). None when a script's code is itself an entry (what it writes is not
-    known). SwitchN's cases are left out: an unset case matches nothing."""
+    is not set"); and of every key a node's script (a Script port, a pre- or
+    postcondition; `port` names it) reads that nothing sets ("variable 'key' is not
+    set"). None when a script's code is itself an entry (what it writes is not known).
+    SwitchN's cases are left out: an unset case matches nothing."""
     written = _written_entries(tree)
     if written is None:
         return
+    created = {key.lstrip("@") for node in tree.node_list for key in _script_assigned(node)}
     for node in tree.node_list:
         for port, binding in node.config.inputs.items():
             entry = getattr(binding, "entry", None)
@@ -98,6 +101,13 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
             if isinstance(node, Switch) and port in node.case_ports:
                 continue
             yield node, port, binding.key, closest(binding.key, _set_keys(node, written))
+        for port, key in _script_reads(node):
+            entry = node.blackboard.entry(key)
+            if entry is None and key.lstrip("@") in created:
+                continue
+            if entry is not None and (entry.value is not UNSET or id(entry) in written):
+                continue
+            yield node, port, key, closest(key, _set_keys(node, written))
 
 
 def _written_entries(tree: Tree) -> set[int] | None:
@@ -107,25 +117,40 @@ def _written_entries(tree: Tree) -> set[int] | None:
         written.update(id(binding.entry) for binding in node.config.outputs.values())
         if isinstance(node, SetBlackboard) and (entry := _set_entry(node)) is not None:
             written.add(id(entry))
-        scripts = _script_codes(node)
-        if None in scripts:
+        if any(code is None for _, code in _script_codes(node)):
             return None
-        for key in (key for code in scripts for key in assigned_keys(code)):
+        for key in _script_assigned(node):
             if (entry := node.blackboard.entry(key)) is not None:
                 written.add(id(entry))
     return written
 
 
-def _script_codes(node: TreeNode) -> list[str | None]:
-    """The code of every script of a node (None: code read from an entry)."""
+def _script_codes(node: TreeNode) -> list[tuple[str, str | None]]:
+    """(attribute or port, code) of every script of a node (None: code read from an
+    entry)."""
     config = node.config
-    codes = [script.code for _, script in config.preconditions]
-    codes += [script.code for script in config.postconditions.values()]
+    codes = [(name, script.code) for name, script in config.preconditions]
+    codes += [(name, script.code) for name, script in config.postconditions.items()]
     script_ports = {p.name for p in getattr(type(node), "ports", ()) if p.type is ScriptCode}
-    for port in script_ports & set(config.inputs):
+    for port in sorted(script_ports & set(config.inputs)):
         binding = config.inputs[port]
-        codes.append(binding.value if isinstance(binding, Literal) else None)
+        codes.append((port, binding.value if isinstance(binding, Literal) else None))
     return codes
+
+
+def _script_assigned(node: TreeNode) -> list[str]:
+    """The keys the node's scripts assign."""
+    return [key for _, code in _script_codes(node) if code for key in assigned_keys(code)]
+
+
+def _script_reads(node: TreeNode) -> Iterator[tuple[str, str]]:
+    """(attribute or port, key) of every blackboard key the node's scripts read (enum names
+    are not keys)."""
+    enums = getattr(node.config.tree, "enums", {})
+    for port, code in _script_codes(node):
+        for key in dict.fromkeys(read_keys(code or "")):
+            if key not in enums:
+                yield port, key
 
 
 def _set_keys(node: TreeNode, written: set[int]) -> list[str]:

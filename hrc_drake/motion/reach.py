@@ -70,14 +70,15 @@ def _budget(planner: MotionPlanner) -> tuple:
 
 def _touched(planner: MotionPlanner, q: np.ndarray) -> str:
     """What of the robot at `q` comes closer to what of the cell than the planner's
-    clearance: `link_5 and vacuum_gripper would touch side_table`, ..."""
+    clearance for that pair (none for how the robot is mounted: the first link just above
+    its pedestal): `link_5 and vacuum_gripper would touch side_table`, ..."""
     model, clearance = planner.model, planner.options.clearance
     found = model.checker.CalcRobotClearance(q, clearance)
     parts: dict[str, set[str]] = {}
     for a, b, distance in zip(
         found.robot_indices(), found.other_indices(), found.distances(), strict=True
     ):
-        if distance < clearance:
+        if distance < model.checker.GetPaddingBetween(a, b):
             parts.setdefault(_name(model, b, robot=False), set()).add(_name(model, a, robot=True))
     touching = [
         f"{_and(sorted(robot))} would touch {cell}" for cell, robot in sorted(parts.items())

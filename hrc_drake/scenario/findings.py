@@ -3,7 +3,8 @@ simulated, beyond what loading it refuses (hrc_drake.scenario.checks): magnitude
 cannot be meant (hrc_drake.scenario.magnitudes), objects that start inside the cell or each
 other and places the person cannot stand (hrc_drake.scenario.cell_findings), and what the
 trees will do with the values known before a run: robot targets out of reach, animations
-the person lacks, places to stand, configurations, object types and areas that do not exist
+the person lacks, places to stand, places and reaches too far from where the person
+stands, configurations, object types and areas that do not exist
 (hrc_drake.scenario.tree_findings).
 
 Each Finding (hrc_drake.scenario.located) names the file, the line and the field (or the

@@ -2,12 +2,16 @@
 (hrc_drake.known_values), checked the way the running nodes use them: every robot target
 for reach (the planner's own inverse kinematics, the tool held as the node holds it), every
 animation against the person's clips, every place the person walks to for room to stand,
-every named configuration, object type and area against the scenario.
+every place the person puts down or reaches to against where they stand then
+(hrc_drake.scenario.reach_from_stand), every named configuration, object type and area
+against the scenario.
 """
 
 import math
 from collections.abc import Iterator
 from functools import cached_property
+
+import numpy as np
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
@@ -20,6 +24,7 @@ from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, Ac
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
+from hrc_drake.scenario.reach_from_stand import reach_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.tree_types import Pose
@@ -37,14 +42,16 @@ def tree_findings(
     places = scenario.places()
     found: list[Finding] = []
     reads = []
+    checks = _Checks(scenario, scene, at, robot_placed)
     for agent in scenario.trees:
         tree, handle = scenario.agent_tree(agent)
-        reads += [(handle, *read) for read in known_inputs(tree, sections(places))]
+        inputs = list(known_inputs(tree, sections(places)))
+        reads += [(handle, *read) for read in inputs]
         found += [
             at.node(node, port, _never_set(key, near))
             for node, port, key, near in unwritten_inputs(tree)
         ]
-    checks = _Checks(scenario, scene, at, robot_placed)
+        found += checks.reaches_from_stand(tree, handle, inputs)
     if robot_placed:
         found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
@@ -85,6 +92,20 @@ class _Checks:
             problem = configuration_problem(self.planner, station.configuration(name))
             if problem:
                 yield self.at.field(("robot", "configurations_deg", name), problem)
+
+    def reaches_from_stand(self, tree, agent, inputs) -> Iterator[Finding]:
+        """Places and reaches farther from where the tree has the person stand than a
+        hand reaches (hrc_drake.scenario.reach_from_stand)."""
+        if self.scenario.human is None:
+            return iter(())
+        known = {(id(node), port): values for node, port, values in inputs}
+
+        def point(value: Known):
+            pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
+            return None if pose is None else np.asarray(pose.position)
+
+        start = self.scenario.human.start[:2]
+        return reach_findings(tree.node_list, known, point, start, self.clips)
 
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value

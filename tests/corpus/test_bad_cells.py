@@ -35,6 +35,14 @@ ROBOT_TREE = "  robot: {file: robot.xml, period: 0.05}\n"
 OBJECTS = "  objects:\n"
 PART_ON_TABLE = "    - {type: part, pose: {translation: [0.0, 0.6, 0.93]}}\n"
 
+ON_A_PEDESTAL = GOOD_SCENARIO.replace(
+    "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
+).replace(
+    "cell:\n",
+    "cell:\n  - add_model: {name: pedestal, file: package://hrc_drake_models/cell/robot_pedestal.sdf}\n"
+    "  - add_weld: {parent: world, child: pedestal::body}\n",
+)
+"""The corpus's cell with an iisy 15 on its pedestal (its first link turns 9 mm above it)."""
 
 ISLAND = "".join(
     f"  - add_model: {{name: {name}, file: package://hrc_drake_models/cell/work_table.sdf}}\n"
@@ -295,6 +303,20 @@ CASES = {
         ),
         "ready:",
     ),
+    "configuration in the table, the arm on its pedestal": Case(
+        S,
+        "ready: [0, -45, 90, 0, 45, 0]",
+        "ready: [-90, -45, 90, 0, 45, 0]",
+        (
+            "robot.configurations_deg.ready: the vacuum_gripper would touch work_table there",
+        ),  # not the first link, which always turns just above the pedestal
+        "ready:",
+        files={
+            S: ON_A_PEDESTAL.replace(
+                "ready: [0, -45, 90, 0, 45, 0]", "ready: [-90, -45, 90, 0, 45, 0]"
+            )
+        },
+    ),
     # --- the cell at the start ---
     "person starts inside the table": Case(
         S,
@@ -367,9 +389,28 @@ CASES = {
     ),
     "an object put down inside the table": person(
         '<ActorAnimation animation_name="wave"/>',
-        '<ActorPlace target="0.3;0.6;0.88"/>',
+        '<ActorMovement target="0.3;1.6;0"/><ActorPlace target="0.3;0.6;0.88"/>',
         ("port 'target': '0.3;0.6;0.88' at (0.30, 0.60, 0.88) lies 0.020 m inside work_table",),
         "ActorPlace",
+    ),
+    "a place out of reach from where the walk ends": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorPlace target="0.3;0.9;0.95"/>',
+        (
+            "port 'target': '0.3;0.9;0.95' at (0.30, 0.90, 0.95) is 2.70 m from where the "
+            "person stands (location 'door', ActorMovement at ",
+            "walk closer first",
+        ),
+        "ActorPlace",
+    ),
+    "a reach out of reach from the person's start": person(
+        '<ActorMovement target="door"/>',
+        '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',
+        (
+            "port 'target': '0.0;0.6;1.0' at (0.00, 0.60, 1.00) is 2.44 m from where the "
+            "person stands (the person's start)",
+        ),
+        "ActorReach",
     ),
     "area in millimetres": Case(
         S,
@@ -428,3 +469,17 @@ def test_a_mistake_a_run_would_find_is_one_located_line(name, tmp_path, hrc_drak
     scenario = write_workspace(tmp_path, case)
     status, _, err = hrc_drake("validate", scenario)
     assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)
+
+
+def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
+    """Where a Fallback's first try walks (and may have failed half-way), where the person
+    stands is not known before the run: validate says nothing rather than guess."""
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<Fallback><Sequence><ActorMovement target="0.3;1.6;0"/><AlwaysFailure/></Sequence>'
+        '<ActorPlace target="0.3;0.9;0.95"/></Fallback>',
+        (),
+        "ActorPlace",
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err

@@ -148,6 +148,20 @@ CASES = {
         ),
         'input="{at}"',
     ),
+    "a script counts from a key never set": Case(
+        T,
+        MOVE,
+        f'<Script code="picked := picked + 1"/>{MOVE}',
+        ("port 'code': blackboard entry 'picked' is never set",),
+        "Script",
+    ),
+    "a precondition reads a key typo": Case(
+        T,
+        MOVE,
+        '<RobotMove target="{above}" _skipIf="sped > 1"/>',
+        ("port '_skipIf': blackboard entry 'sped' is never set", "(did you mean 'speed'?)"),
+        "_skipIf",
+    ),
     "unknown holder": Case(
         T,
         MOVE,

@@ -1,0 +1,162 @@
+"""Where the person's hand goes against where the tree has them stand: a place or reach
+target farther from the last walk's end (or the person's start) than a hand reaches
+without walking fails the node at run time ("out of reach without walking"), so validate
+says it first.
+
+Where the person stands is known statically only along the tree's certain paths: the last
+walk among the earlier children of the Sequences above the node. A Fallback's earlier
+children, a Parallel's others, a loop or a skippable walk make it uncertain, and then
+nothing is said.
+"""
+
+from collections.abc import Callable, Iterator
+
+import numpy as np
+
+from hrc_drake.bt import TreeNode
+from hrc_drake.bt.controls.sequences import ReactiveControl, SequentialControl
+from hrc_drake.bt.decorators import SubTreeNode
+from hrc_drake.bt.status import FAILURE
+from hrc_drake.human.clip_files import clip_catalog
+from hrc_drake.human.targeting import MAX_HORIZONTAL_REACH, TARGETED
+from hrc_drake.known_values import Known
+from hrc_drake.nodes.person import ActorMovement, ActorPlace, ActorReach
+from hrc_drake.scenario.located import Finding, Locator
+
+UNKNOWN = object()
+"""Where a subtree leaves the person cannot be known statically."""
+
+Resolve = Callable[[Known], np.ndarray | None]
+"""A known pose value to its point in the world (None: not resolvable)."""
+
+
+def clip_step_back(clips: dict) -> float:
+    """How far (m) a targeted clip moves the person's base before its hands arrive: the
+    run measures the reach from there, so validate allows for it."""
+    steps = [0.0]
+    for name, event in TARGETED.items():
+        clip = clips[name]
+        x, y = (clip.joint_names.index(axis) for axis in ("base_x", "base_y"))
+        moved = clip.sample(clip.events[event]) - clip.sample(0.0)
+        steps.append(float(np.hypot(moved[x], moved[y])))
+    return max(steps)
+
+
+def reach_findings(
+    nodes: list[TreeNode],
+    known: dict[tuple[int, str], list[Known]],
+    resolve: Resolve,
+    start: np.ndarray,
+    clips: dict | None = None,
+) -> Iterator[Finding]:
+    """A Finding at each ActorPlace/ActorReach whose known target is farther from every
+    place the person can stand there than a hand reaches (`known`: the known values by
+    (id(node), port); `start`: the person's start on the floor)."""
+    limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
+    parents = {id(child): node for node in nodes for child in node.children_nodes()}
+    for node in nodes:
+        if not isinstance(node, ActorPlace | ActorReach):
+            continue
+        stand = _stand_before(node, parents)
+        if stand is UNKNOWN:
+            continue
+        stands = _stand_points(stand, known, resolve, start)
+        if not stands:
+            continue
+        for value in known.get((id(node), "target"), ()):
+            target = resolve(value)
+            if target is None:
+                continue
+            distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _ in stands)
+            if distance > limit:
+                yield Locator.node(
+                    node, "target", _too_far(value, target, distance, stands, limit), target
+                )
+
+
+def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str]]:
+    """The points the person can stand at (with what says so): the walk's known targets,
+    or the start when no walk comes before."""
+    if stand is None:
+        return [(np.asarray(start, dtype=float), "the person's start")]
+    points = []
+    for value in known.get((id(stand), "target"), ()):
+        point = resolve(value)
+        if point is None:
+            return []
+        config = stand.config
+        points.append((point, f"{value}, {config.registration_id} at {config.file}:{config.line}"))
+    return points
+
+
+def _too_far(value: Known, target, distance: float, stands, limit: float) -> str:
+    where = "(" + ", ".join(f"{v:.2f}" for v in target) + ")"
+    nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
+    return (
+        f"{value} at {where} is {distance:.2f} m from where the person stands ({nearest}); "
+        f"a hand reaches at most {limit:.2f} m without walking: walk closer first"
+    )
+
+
+def _stand_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
+    """The walk whose end the person stands at when `node` starts (None: no walk before
+    it, they stand at their start; UNKNOWN: not known statically)."""
+    child = node
+    while (parent := parents.get(id(child))) is not None:
+        earlier = _earlier_siblings(parent, child)
+        if isinstance(parent, SubTreeNode):
+            pass
+        elif _is_sequence(parent):
+            for sibling in reversed(earlier):
+                last = _last_walk(sibling)
+                if last is not None:
+                    return last
+        elif any(_walks(sibling) for sibling in _others(parent, child)):
+            return UNKNOWN  # a Fallback's failed tries, a Parallel's others: not known
+        elif not _passes_through(parent, child):
+            return UNKNOWN
+        child = parent
+    return None
+
+
+def _last_walk(node: TreeNode) -> TreeNode | None | object:
+    """The walk that leaves the person where they are once `node` succeeded (None: it
+    does not move them)."""
+    if not _walks(node):
+        return None
+    if isinstance(node, ActorMovement):
+        return node if not node.config.preconditions else UNKNOWN
+    if isinstance(node, SubTreeNode):
+        return _last_walk(node.child)
+    if _is_sequence(node):
+        for child in reversed(node.children_nodes()):
+            if _walks(child):
+                return _last_walk(child)
+    return UNKNOWN
+
+
+def _walks(node: TreeNode) -> bool:
+    """Whether a walk is in the subtree of `node`."""
+    return isinstance(node, ActorMovement) or any(_walks(c) for c in node.children_nodes())
+
+
+def _is_sequence(node: TreeNode) -> bool:
+    """A Sequence of any kind without skippable children: its earlier children have
+    succeeded when a later one runs."""
+    sequence = isinstance(node, SequentialControl | ReactiveControl) and node.stops_on is FAILURE
+    return sequence and not any(c.config.preconditions for c in node.children_nodes())
+
+
+def _passes_through(parent: TreeNode, child: TreeNode) -> bool:
+    """A control whose child runs after nothing that walks (a Fallback's first child);
+    decorators that repeat or loop do not (the walk may come from an earlier round)."""
+    return isinstance(parent, SequentialControl) and not _earlier_siblings(parent, child)
+
+
+def _earlier_siblings(parent: TreeNode, child: TreeNode) -> list[TreeNode]:
+    children = parent.children_nodes()
+    return children[: [id(c) for c in children].index(id(child))]
+
+
+def _others(parent: TreeNode, child: TreeNode) -> list[TreeNode]:
+    return [c for c in parent.children_nodes() if c is not child]
