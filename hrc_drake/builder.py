@@ -38,10 +38,10 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
-from hrc_drake.evaluation.replay import dress_scene
+from hrc_drake.evaluation.replay import camera_of, dress_scene
 from hrc_drake.evaluation.replay_sensors import draw_sensors
 from hrc_drake.human.clip_files import clip_catalog
-from hrc_drake.human.navigation import cell_navigation
+from hrc_drake.human.navigation import cell_navigation, cell_obstacles
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
@@ -158,7 +158,7 @@ def build_diagram(
     trees = {agent: _add_tree(builder, scenario, agent, sources) for agent in scenario.trees}
     recorder = None
     if meshcat is not None:
-        recorder = _add_visualizer(builder, scene_graph, meshcat, scenario, sources)
+        recorder = _add_visualizer(builder, scene_graph, mirror, meshcat, scenario, sources)
     station = Station(
         plant,
         arm,
@@ -368,16 +368,16 @@ def _export_open_inputs(builder, systems) -> None:
                 builder.ExportInput(port, f"{system.get_name()}.{port.get_name()}")
 
 
-def _add_visualizer(builder, scene_graph, meshcat, scenario, sources) -> ReplayRecorder | None:
-    """Meshcat draws the world scene; with `record`, a ReplayRecorder samples it (and the
-    safety state and held workpieces) for replay.html at the visualizer's rate."""
+def _add_visualizer(
+    builder, scene_graph, mirror, meshcat, scenario, sources
+) -> ReplayRecorder | None:
+    """Meshcat draws the world scene (seen by the scenario's camera, or one framing the
+    mirror's cell); with `record`, a ReplayRecorder samples it (and the safety state and
+    held workpieces) for replay.html at the visualizer's rate."""
     options = scenario.visualization
-    dress_scene(
-        meshcat,
-        options.camera_position,
-        options.camera_target,
-        scenario.robot.base_pose.GetDeterministicValue(),
-    )
+    obstacles = cell_obstacles(mirror, scene_graph.model_inspector())
+    base = scenario.robot.base_pose.GetDeterministicValue()
+    dress_scene(meshcat, *camera_of(scenario, obstacles), base)
     if SAFETY in sources and scenario.safety.sensors.present:
         draw_sensors(meshcat, scenario.safety.sensors)
     roles = {VISUAL_PREFIX: Role.kIllustration}

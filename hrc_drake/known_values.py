@@ -26,7 +26,8 @@ from hrc_drake.bt.controls.branches import Switch
 from hrc_drake.bt.errors import closest
 from hrc_drake.bt.node import EntryRef, Literal, TreeNode
 from hrc_drake.bt.ports import coerce
-from hrc_drake.bt.script import ScriptCode, assigned_keys, read_keys
+from hrc_drake.bt.script import ScriptCode
+from hrc_drake.bt.script_keys import assigned_keys, read_keys
 from hrc_drake.tree_types import Pose
 
 MAX_KNOWN = 64

@@ -49,19 +49,19 @@ ASSIGNMENTS = (":=", "=", "+=", "-=", "*=", "/=")
 
 
 @dataclass(frozen=True)
-class _Token:
+class Token:
     kind: str
     text: str
     position: int
 
 
-def _tokenize(code: str) -> list[_Token]:
+def tokenize(code: str) -> list[Token]:
     tokens, position = [], 0
     while True:
         while position < len(code) and code[position].isspace():
             position += 1
         if position >= len(code):
-            return [*tokens, _Token("end", "", position)]
+            return [*tokens, Token("end", "", position)]
         match = _TOKEN.match(code, position)
         if match is None or match.end() == position:
             raise BTError(
@@ -69,7 +69,7 @@ def _tokenize(code: str) -> list[_Token]:
                 f"'{code[position]}' in '{code}'"
             )
         kind = match.lastgroup
-        tokens.append(_Token(kind, match.group(kind), match.start(kind)))
+        tokens.append(Token(kind, match.group(kind), match.start(kind)))
         position = match.end()
 
 
@@ -187,11 +187,11 @@ def _compare(left: Any, right: Any, symbol: str, env: ScriptEnv) -> bool:
 class _Parser:
     def __init__(self, code: str):
         self.code = code
-        self.tokens = _tokenize(code)
+        self.tokens = tokenize(code)
         self.index = 0
 
     @property
-    def current(self) -> _Token:
+    def current(self) -> Token:
         return self.tokens[self.index]
 
     def error(self, what: str) -> BTError:
@@ -372,42 +372,6 @@ class Script:
 
     def is_true(self, env: ScriptEnv) -> bool:
         return _truthy(self(env))
-
-
-def assigned_keys(code: str) -> list[str]:
-    """The blackboard keys a script sets, without running it: each `key := value` or
-    `key = value` whose value does not read the key itself (`n := n + 1` and `n += 1` need
-    `n` set before)."""
-    assigned = []
-    for statement in _statements(_tokenize(code)):
-        names = [t.text for t in statement if t.kind == "name"]
-        if len(statement) > 1 and statement[1].text in (":=", "=") and names[0] not in names[1:]:
-            assigned.append(names[0])
-    return assigned
-
-
-def read_keys(code: str) -> list[str]:
-    """The names a script reads (blackboard keys or enum names), without running it: every
-    name but those it only assigns (`:=`, `=`); `+=` and the like read theirs too."""
-    tokens = _tokenize(code)
-    return [
-        token.text
-        for token, following in zip(tokens, tokens[1:], strict=False)
-        if token.kind == "name"
-        and token.text not in ("true", "false")
-        and following.text not in (":=", "=")
-    ]
-
-
-def _statements(tokens: list[_Token]) -> list[list[_Token]]:
-    """The tokens of each `;`-separated statement."""
-    statements = [[]]
-    for token in tokens:
-        if token.text == ";":
-            statements.append([])
-        elif token.kind != "end":
-            statements[-1].append(token)
-    return [s for s in statements if s]
 
 
 @functools.lru_cache(maxsize=1024)

@@ -105,6 +105,46 @@ def _float32(values) -> msgpack.ExtType:
 # --- the scene -----------------------------------------------------------------------------
 
 
+CAMERA_DIRECTION = (0.45, -0.75, 0.7)
+"""From the middle of the cell towards the camera that frames it: in front, to the right
+and above, as the bundled scenarios' cameras look."""
+FLOOR_PLACE = 0.05
+"""m: a location this close to the floor is a place to stand (framed with the cell)."""
+SMALLEST_CELL = 2.5
+"""m: a framed cell is at least this wide (one table and a robot)."""
+
+
+def framing_camera(points_xy) -> tuple[list[float], list[float]]:
+    """A camera position and target that show every one of `points_xy` (the cell's
+    furniture corners, the robot, the places to stand): a user's own cell is seen whole
+    before they choose a camera of their own."""
+    points = np.asarray(points_xy, dtype=float)
+    low, high = points.min(axis=0), points.max(axis=0)
+    size = max(float(np.linalg.norm(high - low)), SMALLEST_CELL)
+    target = np.array([*(low + high) / 2, 0.5])
+    distance = 0.55 * size / np.tan(np.radians(CAMERA_FOV) / 2)
+    direction = np.array(CAMERA_DIRECTION) / np.linalg.norm(CAMERA_DIRECTION)
+    return (target + distance * direction).round(2).tolist(), target.round(2).tolist()
+
+
+def camera_of(scenario, obstacles) -> tuple[list[float], list[float]]:
+    """The scenario's camera (position, target), or one framing the cell: the furniture's
+    outlines (`obstacles`, hrc_drake.human.navigation), the robot, the person's start and
+    the places on the floor."""
+    options = scenario.visualization
+    if options.camera_position and options.camera_target:
+        return options.camera_position, options.camera_target
+    points = [xy for obstacle in obstacles for xy in obstacle.outline.exterior.coords]
+    points.append(scenario.robot.base_pose.GetDeterministicValue().translation()[:2])
+    if scenario.human is not None:
+        points.append(scenario.human.start[:2])
+    for name in scenario.locations:
+        position = scenario.location(name).translation()
+        if abs(position[2]) < FLOOR_PLACE:
+            points.append(position[:2])
+    return framing_camera(points)
+
+
 def dress_scene(meshcat: Meshcat, camera_position, camera_target, robot_base: RigidTransform):
     """Camera, lights and shadows, no helpers, and the safety ring (full speed at first)."""
     meshcat.SetCamera(Meshcat.PerspectiveCamera(fov=CAMERA_FOV, near=0.05, far=100.0))

@@ -1,10 +1,11 @@
 """What the layout view shows of a scenario, gathered without simulating: the furniture
 (the person's navigation obstacles, by model), where the person may walk and stand, the
 robot's reach at the heights its tree moves the tool to, the named places, areas and
-starting objects, and `validate`'s findings with their points in the cell."""
+starting objects, the safety sensors with their fields, and `validate`'s findings with their
+points in the cell."""
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +18,7 @@ from hrc_drake.known_values import known_inputs
 from hrc_drake.layout.reach_map import ReachMap, ReachMapper
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.nodes.robot import RobotMove, RobotMoveLinear, tool_pose
+from hrc_drake.safety.sensors import SensorsConfig
 from hrc_drake.scenario.cell_findings import CellScene
 from hrc_drake.scenario.findings import Finding, findings
 from hrc_drake.scenario.schema import Scenario
@@ -98,6 +100,8 @@ class CellLayout:
     person_start: tuple[float, float, float] | None
     """x, y (m) and the heading (rad) the person starts at."""
     findings: list[Finding]
+    sensors: SensorsConfig = field(default_factory=SensorsConfig)
+    """The scanners (with their protective and warning fields) and light curtains."""
 
 
 def cell_layout(scenario: Scenario, path: Path | None) -> CellLayout:
@@ -129,6 +133,7 @@ def cell_layout(scenario: Scenario, path: Path | None) -> CellLayout:
         objects=objects,
         person_start=(None if human is None else (*human.start[:2], math.radians(human.start[2]))),
         findings=findings(scenario, path) if path is not None else [],
+        sensors=scenario.safety.sensors,
     )
 
 

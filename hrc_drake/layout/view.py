@@ -5,8 +5,9 @@ Each panel shows the furniture with its name and heights, the floor the person m
 on (the body's clearance round the furniture and the robot's inner space), the robot's reach
 with the tool down at that height (green, darker where more of the tool's orientation range
 reaches; red where the arm reaches but would touch the cell), the robot targets at that
-height, the named places, areas and starting objects, and every finding of `validate`
-numbered at its point (listed below the panels).
+height, the named places, areas and starting objects, the safety sensors with their fields
+(the whole cell), and every finding of `validate` numbered at its point (listed below the
+panels).
 """
 
 import math
@@ -38,6 +39,7 @@ PERSON_RADIUS = 0.2
 REACH_COLOURS = plt.get_cmap("Greens")
 BLOCKED_COLOUR = "#e7298a"
 FINDING_COLOUR = "#d7301f"
+PROTECTIVE_COLOUR, WARNING_COLOUR = "#cb181d", "#fd8d3c"
 
 
 def draw_layout(layout: CellLayout) -> Figure:
@@ -122,6 +124,8 @@ def _panel(ax, layout: CellLayout, reach: ReachMap | None, bounds, whole: bool) 
         x, y = area.exterior.coords[0]
         ax.text(x, y, f" {name}", fontsize=7, color="#3182bd", va="bottom", clip_on=True)
     _objects(ax, layout)
+    if whole:
+        _sensors(ax, layout)
     _places(ax, layout, whole)
     if reach is not None and not whole:
         _targets(ax, layout, reach)
@@ -230,14 +234,40 @@ def _places(ax, layout: CellLayout, whole: bool) -> None:
         _person(ax, x, y, yaw, "#fd8d3c")
         ax.text(
             x,
-            y - PERSON_RADIUS,
+            y + PERSON_RADIUS,
             "person's start",
             fontsize=7,
             color="#a63603",
             ha="center",
-            va="top",
+            va="bottom",
             clip_on=True,
         )
+
+
+def _sensors(ax, layout: CellLayout) -> None:
+    """Each scanner (a triangle, named) with its protective (red) and warning (orange)
+    fields, one outline per speed set labelled with its speed, the slower sets dashed; each
+    light curtain a red line."""
+    for name, scanner in layout.sensors.scanners.items():
+        x, y = scanner.pose[:2]
+        ax.plot(x, y, marker="^", ms=8, color=PROTECTIVE_COLOUR, gid=f"scanner-{name}")
+        ax.text(x, y, f" {name}", fontsize=7, color=PROTECTIVE_COLOUR, va="top", clip_on=True)
+        fastest = max((s.speed for s in scanner.fields), default=0.0)
+        for fields in scanner.fields:
+            style = {"ls": "-" if fields.speed == fastest else "--", "lw": 1.0}
+            for kind, colour in (("protective", PROTECTIVE_COLOUR), ("warning", WARNING_COLOUR)):
+                points = getattr(fields, kind)
+                if len(points) < 3:
+                    continue
+                gid = f"{name}-{kind}-{fields.speed:g}"
+                _fill(ax, Polygon(points), facecolor="none", edgecolor=colour, gid=gid, **style)
+                px, py = points[0]
+                label = f"{name} {kind} {fields.speed:.0%}"
+                ax.text(px, py, label, fontsize=6, color=colour, va="bottom", clip_on=True)
+    for name, curtain in layout.sensors.light_curtains.items():
+        (x0, y0), (x1, y1) = curtain.ends
+        ax.plot([x0, x1], [y0, y1], color=PROTECTIVE_COLOUR, lw=2.0)
+        ax.text((x0 + x1) / 2, (y0 + y1) / 2, f" {name}", fontsize=7, color=PROTECTIVE_COLOUR)
 
 
 def _person(ax, x, y, yaw, colour) -> None:
@@ -298,7 +328,9 @@ def _legend() -> str:
         "reaches but would touch the cell; hatched: no walking (the body's clearance, "
         "the robot's inner space); "
         "dotted purple: closer than this, a person has no room to stand and turn; "
-        "circles: places to stand (arrow: facing); dots: robot targets at that height"
+        "circles: places to stand (arrow: facing); dots: robot targets at that height; "
+        "red triangle: a safety scanner, red and orange outlines: its protective and warning "
+        "fields per speed set (dashed: the slower sets); red line: a light curtain"
     )
 
 
@@ -309,6 +341,10 @@ def _bounds(layout: CellLayout):
         points += [(x0, y0), (x1, y1)]
     points += [p.position[:2] for p in layout.places]
     points += [f.point[:2] for f in layout.findings if f.point is not None]
+    for scanner in layout.sensors.scanners.values():
+        points += [scanner.pose[:2]]
+        points += [p for s in scanner.fields for p in (*s.protective, *s.warning)]
+    points += [end for curtain in layout.sensors.light_curtains.values() for end in curtain.ends]
     if layout.person_start is not None:
         points.append(layout.person_start[:2])
     for reach in layout.reach:

@@ -54,8 +54,10 @@ class VisualizationOptions:
     """s between frames Meshcat draws and the replay records"""
     record: bool = True
     show_collision: bool = False
-    camera_position: list[float] = field(default_factory=lambda: [1.7, -1.4, 1.5])
-    camera_target: list[float] = field(default_factory=lambda: [0.0, 0.35, 0.9])
+    camera_position: list[float] = field(default_factory=list)
+    """m, world frame; empty: a camera that frames the whole cell (its furniture, the robot,
+    the person's start and places to stand)"""
+    camera_target: list[float] = field(default_factory=list)
 
 
 @dataclass

@@ -2,6 +2,8 @@
 tolerances, the safety ring and the held spans follow the recording, and every bundled
 scenario's camera frames its action."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from pydrake.common.eigen_geometry import Quaternion
@@ -12,12 +14,14 @@ from hrc_drake.evaluation.replay import (
     CAMERA_FOV,
     POSITION_TOLERANCE,
     angle_error,
+    camera_of,
     held_spans,
     kept_keys,
     position_error,
     ring_tracks,
 )
 from hrc_drake.scenario import bundled_scenarios, load_scenario
+from hrc_drake.scenario.cell_findings import CellScene
 
 TIMES = np.arange(0, 20.0, 1 / 32)
 
@@ -114,11 +118,17 @@ def action_points(scenario) -> list:
     return points
 
 
-@pytest.mark.parametrize("name", bundled_scenarios())
+NEW_CELL = Path(__file__).resolve().parents[1] / "corpus" / "new_cell" / "cell.yaml"
+"""A user's first cell, written from the README: it names no camera."""
+
+
+@pytest.mark.parametrize("name", [*bundled_scenarios(), NEW_CELL])
 def test_the_default_camera_frames_the_action(name):
+    """Each bundled scenario's camera, and the one that frames a user's cell without a
+    camera of its own, show everything that happens."""
     scenario = load_scenario(name)
-    camera = np.asarray(scenario.visualization.camera_position)
-    target = scenario.visualization.camera_target
+    camera, target = camera_of(scenario, CellScene(scenario).navigation.obstacles)
+    camera = np.asarray(camera)
     for aspect in (16 / 9, 4 / 3):
         screen = np.array([project(camera, target, p, aspect) for p in action_points(scenario)])
         assert np.abs(screen).max() <= 0.9, f"{aspect:.2f}: something is out of view"

@@ -112,3 +112,19 @@ def test_each_runs_report_shows_the_layout_with_what_validate_finds(tmp_path, mi
     html = (tmp_path / "run" / "report.html").read_text()
     assert '<h2 id="layout">Layout</h2><img src="layout.png"' in html
     assert len(layout_of(scenario, mistaken_cell).findings) == 3
+
+
+def test_the_whole_cell_shows_the_safety_scanner_and_its_fields():
+    """Where the person stops or slows the robot is part of how the cell can be used: the
+    bundled scanner cell's scanner and each speed set's fields are drawn where the scenario
+    puts them."""
+    scenario = load_scenario("guarded_cell")
+    ((name, scanner),) = scenario.safety.sensors.scanners.items()
+    whole = draw_layout(layout_of(scenario, None)).axes[0]
+    marks = [line.get_xydata()[0] for line in whole.lines if line.get_gid() == f"scanner-{name}"]
+    np.testing.assert_allclose(marks, [scanner.pose[:2]])
+    drawn = {patch.get_gid(): patch.get_path().vertices for patch in whole.patches}
+    for fields in scanner.fields:
+        for kind in ("protective", "warning"):
+            outline = drawn[f"{name}-{kind}-{fields.speed:g}"]
+            np.testing.assert_allclose(outline[:-1], getattr(fields, kind))
