@@ -301,7 +301,8 @@ def _add_sensors(builder, scene_graph, mirror, human_plant, safety, scenario):
 
 
 def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario):
-    """The realism audit of the person, sampled at the person's own rate."""
+    """The realism audit of the person, sampled at every `audit_every`-th of the person's
+    poses."""
     if human is None:
         return None
     solids = workpieces.cell.solids() if workpieces is not None else {}
@@ -314,7 +315,7 @@ def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, sce
         human,
         workpieces,
         solids,
-        period=human.period,
+        period=human.period * scenario.human.audit_every,
         stride_time=human.stride_time,
     )
 

@@ -5,7 +5,9 @@ Inputs: `query_object` (the world SceneGraph), `human_status` (HumanStatus) and
 from state only. A periodic unrestricted update at the person's rate takes one sample:
 penetrations come from SceneGraph (the person against the cell's static geometry through
 the broad phase; against objects, which are filtered out of contact queries, through pair
-queries after a bounding-capsule test), sole points from the feet's collision boxes.
+queries after a bounding-capsule test), sole points from the feet's collision boxes. Its
+period is a multiple of the person's (`human.audit_every`), so every sample is one of the
+person's poses.
 """
 
 import math
@@ -41,6 +43,7 @@ class RealismAudit(LeafSystem):
         stride_time: float,
     ):
         super().__init__()
+        self.period = period
         parts = human_parts(human_plant, inspector, human_instance)
         self._regions = {part.geometry: part.name for part in parts}
         self._static = dict(static_geometry)

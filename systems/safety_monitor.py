@@ -22,10 +22,11 @@ Input `robot_path_rate` (size 1, RobotMotion's `path_rate`): the fraction of ful
 robot moves at along its path, which its stopping time depends on. Unconnected, a moving
 robot is taken to move at full speed.
 
-While the person is far (`Judge.far`: full speed stays safe even if the next measurement
-came `far_period` later and the person ran at the fastest speed of any rule), the monitor
-measures every `far_period` rather than every `period`; the updates in between only check
-whether the object in the gripper changed (which measures at once).
+While the person is far (`Judge.next_period`: full speed stays safe even if the next
+measurement came that much later and the person ran at the fastest speed of any rule), the
+monitor measures less often than every `period`: every `far_period`, or every multiple of
+`period` below it that is still safe; the updates in between only check whether the object
+in the gripper changed (which measures at once).
 
 A contact is quasi-static when the touched body region is pinned against the cell (the
 bodies welded to the world) or another robot part; see `ProximityMeter.pinned`.
@@ -164,8 +165,8 @@ class SafetyMonitor(LeafSystem):
         state.get_mutable_discrete_state(self._scale).set_value([status.scale])
         signals = status.signals(reading.person_xy, part)
         state.get_mutable_discrete_state(self._signals).set_value(signals)
-        period = self._judge.config.far_period if self._judge.far(status) else self._period
-        state.get_mutable_discrete_state(self._due).set_value([time + period, held_id])
+        due = time + self._judge.next_period(status)
+        state.get_mutable_discrete_state(self._due).set_value([due, held_id])
         return EventStatus.Succeeded()
 
     def _sensing(self, context, time: float, robot_capsules, path_rate: float):

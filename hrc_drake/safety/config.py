@@ -34,9 +34,9 @@ class SafetyConfig:
     SSM or causes a contact.
 
     While the person is so far from the robot that the monitor would allow full speed even
-    if it measured only every `far_period` (with the `measured` rule: and the person came at
-    `v_h`), it measures every `far_period` instead of every `period` (`Judge.far`); 0
-    measures every `period` always.
+    if it measured only every `far_period`, or a multiple of `period` below it (with the
+    `measured` rule: and the person came at `v_h`), it measures that much less often
+    (`Judge.next_period`); 0 measures every `period` always.
 
     A contact is quasi-static (clamping) when the touched body region has cell geometry or
     another robot part within `clamping_gap` on its far side; otherwise it is transient.

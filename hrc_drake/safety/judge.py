@@ -41,29 +41,49 @@ class Judge:
     sensed: dict[str, SsmModel] = field(default_factory=dict)
 
     @functools.cached_property
-    def far_model(self) -> SsmModel:
-        """S_p's model as if the monitor measured only every `far_period`, with a person who
-        may come at ISO 13855's approach speed even where the rule is `measured`."""
+    def slower_models(self) -> tuple[tuple[float, SsmModel], ...]:
+        """The longer periods the monitor may measure at, longest first (`far_period` and
+        every multiple of `period` below it), each with S_p's model as if the monitor
+        measured only that often, with a person who may come at ISO 13855's approach speed
+        even where the rule is `measured`."""
         config = self.config
         rule = CONSTANT if config.v_h_rule == MEASURED else config.v_h_rule
-        slow = dataclasses.replace(config, period=config.far_period, v_h_rule=rule)
         latency = self.model.lead_time - config.period
-        return SsmModel.from_config(slow, self.model.stop, latency)
+        multiples = range(math.ceil(config.far_period / config.period - 1e-9) - 1, 1, -1)
+        periods = [config.far_period, *(k * config.period for k in multiples)]
+        return tuple(
+            (
+                period,
+                SsmModel.from_config(
+                    dataclasses.replace(config, period=period, v_h_rule=rule),
+                    self.model.stop,
+                    latency,
+                ),
+            )
+            for period in periods
+            if period > config.period
+        )
+
+    def next_period(self, status: SafetyStatus) -> float:
+        """How long the monitor may go unmeasured after `status`: the longest of
+        `slower_models`' periods at which, at the separation less the hysteresis, a monitor
+        measuring that often would keep full speed, while the robot may move at full speed
+        and nothing touches; else `period`. Then no measurement in between could have
+        slowed the robot (tests/safety/test_far_rate.py). Always `period` with safety
+        sensors: their S_p counts one monitor period from a report to the robot, so the
+        monitor reads every report as it comes."""
+        config = self.config
+        if status.scale < 1.0 or status.contact or status.sensing is not None:
+            return config.period
+        room = status.separation - config.hysteresis
+        for period, model in self.slower_models:
+            if max_safe_scale(room, 0.0, model) >= 1.0:
+                return period
+        return config.period
 
     def far(self, status: SafetyStatus) -> bool:
-        """Whether the next `far_period` may pass unmeasured: the robot may move at full
-        speed, nothing touches, and at the separation less the hysteresis a monitor that
-        measured every `far_period` would keep full speed (`far_model`). Then no measurement
-        in between could have slowed the robot (tests/safety/test_far_rate.py). Never with
-        safety sensors: their S_p counts one monitor period from a report to the robot, so
-        the monitor reads every report as it comes."""
-        config = self.config
-        if config.far_period <= config.period or status.scale < 1.0 or status.contact:
-            return False
-        if status.sensing is not None:
-            return False
-        room = status.separation - config.hysteresis
-        return max_safe_scale(room, 0.0, self.far_model) >= 1.0
+        """Whether the monitor may measure less often than every `period` after `status`."""
+        return self.next_period(status) > self.config.period
 
     def status(
         self,

@@ -99,6 +99,7 @@ FIELD_RULES: dict[str, Rule] = {
     "visualization.period": positive,
     "report.period": positive,
     "human.period": positive,
+    "human.audit_every": positive,
     "simulator.max_step_size": positive,
     "simulator.accuracy": positive,
     "simulator.target_realtime_rate": not_negative,

@@ -66,7 +66,7 @@ class HumanConfig:
     percentile of a published survey (`percentile` given: they set height and mass, see
     hrc_drake.human.anthropometry.survey_size), where they start (x, y in metres, facing
     yaw in degrees) and how often their protocol and pose are updated (above Meshcat's
-    frame rate; their realism is audited at the same rate)."""
+    frame rate)."""
 
     height: float = 1.75
     mass: float = 75.0
@@ -74,6 +74,10 @@ class HumanConfig:
     percentile: float | None = None
     start: list[float] = field(default_factory=lambda: [0.0, -2.0, 90.0])
     period: float = UPDATE_PERIOD
+    audit_every: int = 2
+    """The realism audit samples every this many of the person's poses (every second, 30
+    Hz: its worst values lie within 1 mm of every pose's in the bundled scenarios,
+    tests/evaluation/test_audit_rate.py)."""
     clips: list[str] = field(default_factory=list)
     """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
     which trees play by their file names."""

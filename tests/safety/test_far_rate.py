@@ -1,7 +1,8 @@
 """The monitor measures less often only where no measurement in between could have changed
-its answer: while it is `far`, a person coming at ISO 13855's walking speed (1.6 m/s: the
+its answer: wherever it lets a longer period pass (`Judge.next_period`: `far_period` or a
+multiple of its period below it), a person coming at ISO 13855's walking speed (1.6 m/s: the
 monitor goes slow only well beyond ISO 13855's 0.5 m, where that speed applies) and the
-robot's fastest point coming at full speed for a whole `far_period` still leave a separation
+robot's fastest point coming at full speed for that whole period still leave a separation
 at which the monitor, measuring at its own period, keeps full speed."""
 
 import numpy as np
@@ -27,6 +28,10 @@ def far_separations(j: Judge) -> np.ndarray:
     return np.array([s.separation for s in status if j.far(s)])
 
 
+def next_periods(j: Judge) -> np.ndarray:
+    return np.array([j.next_period(SafetyStatus(separation=d, scale=1.0)) for d in SEPARATIONS])
+
+
 @pytest.mark.parametrize("rule", [ISO_13855, CONSTANT, MEASURED])
 @pytest.mark.parametrize("far_period", [0.03, 0.05, 0.1])
 def test_no_measurement_between_far_ones_could_slow_the_robot(rule, far_period):
@@ -36,11 +41,24 @@ def test_no_measurement_between_far_ones_could_slow_the_robot(rule, far_period):
     assert far.size > 0 and far.min() > 1.0  # it goes slow far away, and only there
     assert far.min() > config.near_distance
     closing = config.v_h + config.robot_speed
-    for elapsed in np.linspace(0.0, far_period, 11):
-        for person_speed in (0.0, config.v_h / 2, config.v_h):
-            for d in far:
+    periods = next_periods(j)
+    slower = periods > config.period
+    for d, period in zip(SEPARATIONS[slower], periods[slower], strict=True):
+        for elapsed in np.linspace(0.0, period, 11):
+            for person_speed in (0.0, config.v_h / 2, config.v_h):
                 left = d - closing * elapsed
-                assert max_safe_scale(left, person_speed, j.model) >= 1.0, (d, elapsed)
+                assert max_safe_scale(left, person_speed, j.model) >= 1.0, (d, period, elapsed)
+
+
+@pytest.mark.parametrize("far_period", [0.05, 0.1])
+def test_the_period_grows_with_the_separation_through_every_multiple(far_period):
+    """Between where it must measure every period and where it may wait `far_period` the
+    monitor waits every multiple of its period in turn, longer the farther the person."""
+    config = SafetyConfig(far_period=far_period, robot_speed=1.5)
+    periods = next_periods(judge(config))
+    assert np.all(np.diff(periods) >= 0.0)
+    expected = config.period * np.arange(1, round(far_period / config.period) + 1)
+    assert np.allclose(np.unique(periods), expected)
 
 
 def test_near_or_slowed_or_touching_measures_every_period():
