@@ -103,18 +103,12 @@ def _stand_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
     it, they stand at their start; UNKNOWN: not known statically)."""
     child = node
     while (parent := parents.get(id(child))) is not None:
-        earlier = _earlier_siblings(parent, child)
-        if isinstance(parent, SubTreeNode):
-            pass
-        elif _is_sequence(parent):
-            for sibling in reversed(earlier):
-                last = _last_walk(sibling)
-                if last is not None:
+        if _is_sequence(parent):
+            for sibling in reversed(_earlier_siblings(parent, child)):
+                if (last := _last_walk(sibling)) is not None:
                     return last
-        elif any(_walks(sibling) for sibling in _others(parent, child)):
-            return UNKNOWN  # a Fallback's failed tries, a Parallel's others: not known
-        elif not _passes_through(parent, child):
-            return UNKNOWN
+        elif not isinstance(parent, SubTreeNode) and not _runs_first(parent, child):
+            return UNKNOWN  # a Fallback's failed tries, a Parallel's others, a loop
         child = parent
     return None
 
@@ -147,16 +141,12 @@ def _is_sequence(node: TreeNode) -> bool:
     return sequence and not any(c.config.preconditions for c in node.children_nodes())
 
 
-def _passes_through(parent: TreeNode, child: TreeNode) -> bool:
-    """A control whose child runs after nothing that walks (a Fallback's first child);
-    decorators that repeat or loop do not (the walk may come from an earlier round)."""
+def _runs_first(parent: TreeNode, child: TreeNode) -> bool:
+    """Whether nothing of `parent` runs before `child` (a Fallback's first child);
+    decorators that repeat or loop do not count (the walk may come from an earlier round)."""
     return isinstance(parent, SequentialControl) and not _earlier_siblings(parent, child)
 
 
 def _earlier_siblings(parent: TreeNode, child: TreeNode) -> list[TreeNode]:
     children = parent.children_nodes()
     return children[: [id(c) for c in children].index(id(child))]
-
-
-def _others(parent: TreeNode, child: TreeNode) -> list[TreeNode]:
-    return [c for c in parent.children_nodes() if c is not child]
