@@ -9,17 +9,20 @@ from pydrake.common.schema import Transform
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject, WorkpiecesConfig
-from hrc_drake.workpieces.messages import Despawn
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Despawn
 from tests.workpieces.workpieces_rig import (
     BELT_TOP,
     CONVEYOR_Y,
     PART_HEIGHT,
     build_rig,
+    carry_to,
     config_with,
+    part_on_table,
 )
 
 SPEED = 0.2
 PART_LENGTH = 0.12
+PART_WIDTH = 0.08
 REMOVING_Y = -2.5
 QUEUED = (1, 2, 3)
 PERIOD = WorkpiecesConfig().period
@@ -114,3 +117,23 @@ def test_a_queue_at_rest_costs_no_updates_and_moves_up_when_its_front_leaves(que
     moved_up = queue.advance(7.0)
     assert x_of(moved_up, 2) + PART_LENGTH / 2 == pytest.approx(1.0)
     assert x_of(moved_up, 1) + PART_LENGTH / 2 == pytest.approx(1.0 - PART_LENGTH)
+
+
+def test_a_part_dropped_behind_a_standing_queue_rides_up_to_it():
+    """The queue stands still while the robot carries a part (the workpieces update for the
+    carried part, not for the queue); the part released above the belt lands on it and
+    queues behind the last one, its narrow side along the belt (the tool turned it)."""
+    queued = [on_belt(x, CONVEYOR_Y) for x in (0.2, 0.5)]
+    config = config_with(objects=[part_on_table(), *queued])
+    tool, commands = carry_to((0.4, CONVEYOR_Y, BELT_TOP + PART_HEIGHT + 0.1), release_at=4.0)
+    rig = build_rig(config, commands=commands, tool=tool)
+    standing = rig.advance(3.9)
+    assert standing.object(1).holder == ROBOT_HOLDER
+    assert [x_of(standing, i) + PART_LENGTH / 2 for i in (3, 2)] == pytest.approx(
+        [1.0, 1.0 - PART_LENGTH]
+    )
+    end = rig.advance(7.0)
+    dropped = end.object(1)
+    assert dropped.support == "belt"
+    assert not dropped.velocity.get_coeffs().any()
+    assert x_of(end, 1) + PART_WIDTH / 2 == pytest.approx(1.0 - 2 * PART_LENGTH)
