@@ -58,8 +58,8 @@ def still(
     """Whether the next update can be left out: no issuer has a new command, and no object
     is held, falling or moving. Objects queued on a belt count as at rest: a belt's plan
     depends only on where its riders are, so riders that stand still stay where they are
-    until a command changes the world. The holders' samples go stale meanwhile; a grasp
-    after a pause takes its holder's velocity from the last sample before it."""
+    until a command changes the world. The holders' samples go stale meanwhile: a holder's
+    first sample after the pause has no velocity (`hrc_drake.workpieces.step.PAUSE`)."""
     if any(newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers):
         return False
     return all(_resting(piece) for piece in world.pieces.values())
