@@ -5,6 +5,9 @@ It replaces MoveIt, ros_control and the re-planning workaround of the thesis sys
 timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
 product of the SetSpeed fraction and the safety monitor's scale. Each update also writes the
 desired motion until the next update as a quintic segment per joint (state, `desired_segment`);
+while the robot holds still or cruises at a constant rate, one segment runs STEADY_HORIZON ahead
+and the updates within it are left out unless a command, the safety scale or the held object
+changes (`MotionStateMachine.horizon`, `unchanged`);
 Drake's C++ `SymbolicVectorSystem` evaluates it at every plant step for the inverse-dynamics
 controller (`add_desired_motion`), so no Python runs between updates and nothing feeds through.
 The state machine is plain Python in hrc_drake/motion/state_machine.py: this system reads its
