@@ -6,10 +6,12 @@ import numpy as np
 import pytest
 
 from hrc_drake.messages import SUCCEEDED
-from hrc_drake.motion.messages import MoveJoints, SetSpeed
+from hrc_drake.motion.messages import Grip, MoveJoints, MoveTo, SetSpeed
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.state_machine import STEADY_HORIZON
+from hrc_drake.workpieces.messages import Despawn
 from tests.motion.motion_helpers import build_station, make_scenario
+from tests.motion.test_commands import LIGHT_ID, grasp, parts_on_the_table
 
 PERIOD = MotionOptions().period
 
@@ -61,3 +63,25 @@ def test_cruising_skips_updates_and_the_move_arrives(station):
     assert len(times) < 0.6 / PERIOD  # some periods carried by a longer segment
     assert station.run_until_finished(1) == SUCCEEDED
     assert np.abs(station.q() - np.radians([0, -45, 90, 0, 45, 0])).max() < 1e-3
+
+
+def test_losing_the_held_object_is_taken_at_the_next_period_while_holding():
+    """The object the robot holds still is despawned by a tree just after an update that
+    planned a steady segment: RobotMotion notices at its next update, not at the end of
+    the segment."""
+    station = build_station(make_scenario(), workpieces=parts_on_the_table())
+    for seq, command in enumerate((MoveTo(seq=1, pose=grasp("light")), Grip(seq=2)), start=1):
+        station.command(command)
+        assert station.run_until_finished(seq) == SUCCEEDED
+    assert station.status().held_object == LIGHT_ID
+    segment = station.motion.GetOutputPort("desired_segment")
+    motion_context = station.motion.GetMyContextFromRoot(station.context)
+    planned_at = segment.Eval(motion_context)[0]
+    while segment.Eval(motion_context)[0] == planned_at:  # to the next update that runs
+        station.simulator.AdvanceTo(station.context.get_time() + PERIOD / 4)
+    start = segment.Eval(motion_context)[0]
+    despawn = Despawn(seq=100, object_id=LIGHT_ID)
+    station.diagram.GetInputPort("workpieces.robot_tree_command").FixValue(station.context, despawn)
+    station.simulator.AdvanceTo(start + 2.5 * PERIOD)  # the workpieces' update, then ours
+    assert start + 2.5 * PERIOD < start + STEADY_HORIZON
+    assert station.status().held_object is None
