@@ -5,6 +5,9 @@ It replaces MoveIt, ros_control and the re-planning workaround of the thesis sys
 timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
 product of the SetSpeed fraction and the safety monitor's scale. Each update also writes the
 desired motion until the next update as a quintic segment per joint (state, `desired_segment`);
+while the robot holds still or cruises at a constant rate, one segment runs STEADY_HORIZON ahead
+and the updates within it are left out unless a command, the safety scale or the held object
+changes (`MotionStateMachine.horizon`, `unchanged`);
 Drake's C++ `SymbolicVectorSystem` evaluates it at every plant step for the inverse-dynamics
 controller (`add_desired_motion`), so no Python runs between updates and nothing feeds through.
 The state machine is plain Python in hrc_drake/motion/state_machine.py: this system reads its
@@ -19,7 +22,7 @@ from pydrake.systems.primitives import Demultiplexer, SymbolicVectorSystem
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import NO_COMMANDS
-from hrc_drake.motion.execution import SEGMENT_COEFFICIENTS, hermite_segment
+from hrc_drake.motion.execution import SEGMENT_COEFFICIENTS, faithful_segment, hermite_segment
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import MotionInputs, MotionState, MotionStateMachine
@@ -66,7 +69,11 @@ class RobotMotion(LeafSystem):
         self._n = len(VARIANTS[station.variant].joint_names)
         initial = self._machine.initial(station.initial_positions)
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
-        self._segment = self.DeclareDiscreteState(self._segment_of(initial, 0.0))
+        self._segment = self.DeclareDiscreteState(
+            self._segment_of(initial, 0.0, self._options.period)
+        )
+        self._segment_end = self.DeclareDiscreteState(np.zeros(1))
+        """When the desired segment ends: the next update that must run."""
 
         self._command = self.DeclareAbstractInputPort(
             command_input(tree_issuer(ROBOT)), message_value()
@@ -102,11 +109,23 @@ class RobotMotion(LeafSystem):
     def _state(self, context) -> MotionState:
         return context.get_abstract_state(self._state_index).get_value()
 
-    def _segment_of(self, state: MotionState, t: float) -> np.ndarray:
-        """The desired motion from `t` to the next update, as `desired_segment` holds it."""
+    def _segment_of(self, state: MotionState, t: float, horizon: float) -> np.ndarray:
+        """The desired motion from `t` for `horizon` seconds, as `desired_segment` holds it."""
+        ends = (state.motion_at(t), state.motion_at(t + horizon))
+        return np.concatenate([[t], hermite_segment(*ends, horizon).ravel()])
+
+    def _segment_ahead(self, state: MotionState, t: float) -> tuple[np.ndarray, float]:
+        """The desired segment from `t` and how long it runs: as long as the state machine
+        knows the motion ahead where one quintic follows it (`faithful_segment`), else one
+        period."""
         period = self._options.period
-        ends = (state.motion_at(t), state.motion_at(t + period))
-        return np.concatenate([[t], hermite_segment(*ends, period).ravel()])
+        horizon = self._machine.horizon(state)
+        if horizon > period:
+            ends = (state.motion_at(t), state.motion_at(t + horizon))
+            coefficients = hermite_segment(*ends, horizon)
+            if faithful_segment(coefficients, state.motion_at(t + horizon / 2), horizon):
+                return np.concatenate([[t], coefficients.ravel()]), horizon
+        return self._segment_of(state, t, period), period
 
     def _calc_path_rate(self, context, output: BasicVector) -> None:
         output.SetAtIndex(0, self._state(context).path_rate_at(context.get_time()))
@@ -121,11 +140,28 @@ class RobotMotion(LeafSystem):
     # The periodic update: read the inputs, run the state machine, keep its state.
 
     def _update(self, context, new_state) -> EventStatus:
+        if self._within_segment(context):
+            return EventStatus.DidNothing()
+        t = context.get_time()
         state = self._machine.update(self._state(context), self._inputs(context))
         new_state.get_mutable_abstract_state(self._state_index).set_value(state)
-        segment = self._segment_of(state, context.get_time())
+        segment, horizon = self._segment_ahead(state, t)
         new_state.get_mutable_discrete_state(self._segment).set_value(segment)
+        new_state.get_mutable_discrete_state(self._segment_end).set_value([t + horizon])
         return EventStatus.Succeeded()
+
+    def _within_segment(self, context) -> bool:
+        """Whether the desired segment still runs and nothing it was planned on changed:
+        the C++ desired motion carries on and this update is skipped."""
+        end = context.get_discrete_state(self._segment_end).get_value()[0]
+        if context.get_time() > end - self._options.period / 2:
+            return False
+        return self._machine.unchanged(
+            self._state(context),
+            value_or_none(self._command, context),
+            self._safety_scale(context),
+            value_or_none(self._workpieces, context),
+        )
 
     def _inputs(self, context) -> MotionInputs:
         x = self._robot_state.Eval(context)

@@ -128,3 +128,25 @@ def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.n
     c4 = (-15.0 * h + 7.0 * dv - da) / T**4
     c5 = (6.0 * h - 3.0 * dv + 0.5 * da) / T**5
     return np.column_stack([q0, v0, 0.5 * a0, c3, c4, c5])
+
+
+SEGMENT_TOLERANCES = np.array([1e-6, 1e-4, 1e-2])
+"""rad, rad/s, rad/s²: how far a segment longer than one update period may stray from the
+desired q, q̇ and q̈ in its middle (checked there, `faithful_segment`); a segment that strays
+farther (across the timing's changes of acceleration) is not used."""
+
+
+def segment_motion(coefficients: np.ndarray, since: float) -> np.ndarray:
+    """q, q̇ and q̈ stacked of a `hermite_segment` (joints × 6) at `since` after its start."""
+    powers = since ** np.arange(SEGMENT_COEFFICIENTS)
+    q = coefficients @ powers
+    v = coefficients[:, 1:] @ (np.arange(1, SEGMENT_COEFFICIENTS) * powers[:-1])
+    a = coefficients[:, 2:] @ (np.array([2.0, 6.0, 12.0, 20.0]) * powers[:-2])
+    return np.concatenate([q, v, a])
+
+
+def faithful_segment(coefficients: np.ndarray, middle: np.ndarray, duration: float) -> bool:
+    """Whether the segment meets the desired motion `middle` (q, q̇, q̈ stacked) halfway
+    within SEGMENT_TOLERANCES."""
+    error = np.abs(segment_motion(coefficients, duration / 2) - middle).reshape(3, -1)
+    return bool(np.all(error.max(axis=1) <= SEGMENT_TOLERANCES))

@@ -58,6 +58,11 @@ from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, Workpiec
 
 ARRIVAL_SPEED = 0.01
 """rad/s: joint speeds below which a finished move counts as at rest."""
+STEADY_HORIZON = 0.05
+"""s an update may plan ahead while the robot holds still or moves along its path at a
+constant rate with nothing to wait for: the updates in between would change nothing but the
+status's measured tool pose and speed, so RobotMotion skips them unless an input changes
+(`MotionStateMachine.unchanged`)."""
 
 
 @dataclass(frozen=True)
@@ -181,6 +186,36 @@ class MotionStateMachine:
         state = self._workpieces_seen(state, inputs.workpieces, t)
         state = self._planned_when_at_rest(state, t, inputs.person_xy)
         return self._advanced(state, inputs.q, inputs.v, t)
+
+    def horizon(self, state: MotionState) -> float:
+        """How long the motion after an update that left `state` is known in advance:
+        STEADY_HORIZON while holding still or moving at a constant rate short of the path's
+        end (nothing to wait for, plan or settle), else one period."""
+        if state.pending is not None or state.gripper_waiting:
+            return self._options.period
+        if state.path is None:
+            return STEADY_HORIZON
+        progress = state.progress
+        cruising = (
+            state.stop_seq is None
+            and state.move_seq is not None
+            and state.arrived_since is None
+            and progress.rate_change == 0.0
+            and progress.rate == state.speed_fraction * state.safety_scale
+            and progress.tau + progress.rate * STEADY_HORIZON < state.path.duration
+        )
+        return STEADY_HORIZON if cruising else self._options.period
+
+    def unchanged(self, state: MotionState, commands, safety_scale: float, workpieces) -> bool:
+        """Whether an update within the horizon of the last would only measure the tool
+        again: no new command, the same safety scale, the same object held (the inputs as
+        MotionInputs names them)."""
+        if newer_commands(commands, state.seen_seq) or safety_scale != state.safety_scale:
+            return False
+        if workpieces is None:
+            return True
+        held = workpieces.held_by(ROBOT_HOLDER)
+        return (held.id if held is not None else None) == state.held_object
 
     def _measured(self, state: MotionState, inputs: MotionInputs) -> MotionState:
         progress = state.progress

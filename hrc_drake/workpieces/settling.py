@@ -36,12 +36,12 @@ def settle(step: Step, instantly: bool) -> None:
     the start, drop every piece onto its support at once).
 
     Only commands and removals change what rests on what; otherwise a piece at rest on
-    something fixed stays put, so only moving pieces and belt riders are looked at."""
+    something fixed stays put, and so does a belt rider at rest: the belt's end or riders
+    at rest ahead of it hold it back (one ahead that moved would leave it room), and a
+    piece landing on the belt can only hold it back more. So only moving pieces are
+    looked at; every rider still counts in its belt's plan."""
     free = [p for p in step.pieces.values() if p.holder is None]
-    if instantly or step.changed:
-        active = free
-    else:
-        active = [p for p in free if _moving(p) or p.support in step.cell.belts]
+    active = free if instantly or step.changed else [p for p in free if _moving(p)]
     if not active:
         return
     active.sort(key=lambda p: (p.bottom, p.id))

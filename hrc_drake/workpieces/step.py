@@ -12,6 +12,12 @@ from hrc_drake.workpieces.geometry import moved, upright, velocity_at
 from hrc_drake.workpieces.layouts import Placement
 from hrc_drake.workpieces.world import HolderSample, Piece, Sampled, Workcell, World
 
+PAUSE = 1.5
+"""Update periods after which the world's last update counts as a pause (updates left out
+while everything rested): the holders' samples from before it say nothing of how they move
+now, so a holder's first sample after it has no velocity (a grasp then takes the object at
+rest for one period, not at the holder's average speed over the pause)."""
+
 
 class Step:
     """One update in progress: a working copy of the world that commands and motion change."""
@@ -23,8 +29,9 @@ class Step:
         self.next_id = world.next_id
         self.seen = dict(world.seen)
         self.results = dict(world.results)
+        paused = now - world.time > PAUSE * self.config.period
         self.samples = {
-            h: _sample(world.holders.get(h), X, now if t is None else t)
+            h: _sample(None if paused else world.holders.get(h), X, now if t is None else t)
             for h, (X, t) in frames.items()
         }
         self._holder_poses = {}

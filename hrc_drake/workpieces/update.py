@@ -12,7 +12,7 @@
 
 Steps 1 and 2 happen as the update's working copy (hrc_drake.workpieces.step) is made.
 An update that would change nothing but the holders' samples is not needed (`still`): no new
-command, and every object at rest on something that does not move.
+command, and every object at rest on something, a belt's queue included.
 """
 
 from hrc_drake.messages import newer_commands
@@ -56,15 +56,17 @@ def still(
     cell: Workcell, world: World, commands: dict[str, WorkpiecesCommand | tuple | None]
 ) -> bool:
     """Whether the next update can be left out: no issuer has a new command, and no object
-    is held, falling, moving or on a belt. The holders' samples go stale meanwhile; a grasp
-    after a pause takes its holder's velocity from the last sample before it."""
+    is held, falling or moving. Objects queued on a belt count as at rest: a belt's plan
+    depends only on where its riders are, so riders that stand still stay where they are
+    until a command changes the world. The holders' samples go stale meanwhile: a holder's
+    first sample after the pause has no velocity (`hrc_drake.workpieces.step.PAUSE`)."""
     if any(newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers):
         return False
-    return all(_resting(piece, cell) for piece in world.pieces.values())
+    return all(_resting(piece) for piece in world.pieces.values())
 
 
-def _resting(piece, cell: Workcell) -> bool:
-    if piece.holder is not None or piece.support is None or piece.support in cell.belts:
+def _resting(piece) -> bool:
+    if piece.holder is not None or piece.support is None:
         return False
     return not piece.velocity.get_coeffs().any()
 

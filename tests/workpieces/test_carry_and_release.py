@@ -5,20 +5,24 @@ import pytest
 from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.common.schema import Transform
 
-from hrc_drake.messages import SUCCEEDED
-from hrc_drake.workpieces.config import GridLayout
-from hrc_drake.workpieces.messages import ROBOT_HOLDER
+from hrc_drake.messages import FAILED, SUCCEEDED
+from hrc_drake.workpieces.config import GridLayout, WorkpiecesConfig
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach
 from tests.workpieces.workpieces_rig import (
     PART_HEIGHT,
     PART_TOP,
     TABLE_TOP,
+    TOOL_DOWN,
     X,
     Y,
     build_rig,
     carry_to,
     config_with,
     part_on_table,
+    path,
 )
+
+PERIOD = WorkpiecesConfig().period
 
 
 def test_gripped_object_follows_the_tool_and_rests_on_the_table_when_released():
@@ -64,3 +68,19 @@ def test_released_over_the_floor_rests_on_the_floor():
     carried = rig.advance(4.0).object(1)
     assert carried.support == "floor"
     assert abs(carried.pose.translation()[2] - PART_HEIGHT / 2) < 1e-3
+
+
+def test_a_grip_after_a_pause_takes_the_object_at_the_tools_speed_now():
+    """Everything rests while the tool comes down onto the part (the workpieces leave their
+    updates out); gripped by a tool at rest, the part is at rest, not moving at the tool's
+    average speed since the world's last update (a failed grip far above it)."""
+    tool = path([(0.2, (X, Y, PART_TOP + 0.4), TOOL_DOWN), (1.0, (X, Y, PART_TOP), TOOL_DOWN)])
+    too_far = Attach(seq=1, holder=ROBOT_HOLDER, max_mass=3.0)
+    grip = Attach(seq=2, holder=ROBOT_HOLDER, max_mass=3.0)
+    commands = {"robot_gripper": [(0.3, too_far), (1.5, grip)]}
+    rig = build_rig(config_with(objects=[part_on_table()]), commands, tool)
+    assert rig.advance(0.4).results_of("robot_gripper").outcome_of(1) == FAILED
+    gripped = rig.advance(1.5 + PERIOD / 2)
+    assert gripped.results_of("robot_gripper").outcome_of(2) == SUCCEEDED
+    assert gripped.object(1).velocity.get_coeffs() == pytest.approx(np.zeros(6))
+    np.testing.assert_allclose(gripped.object(1).pose.translation()[:2], [X, Y], atol=1e-9)

@@ -7,19 +7,25 @@ import numpy as np
 import pytest
 from pydrake.common.schema import Transform
 
-from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject
+from hrc_drake.messages import SUCCEEDED
+from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject, WorkpiecesConfig
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Despawn
 from tests.workpieces.workpieces_rig import (
     BELT_TOP,
     CONVEYOR_Y,
     PART_HEIGHT,
     build_rig,
+    carry_to,
     config_with,
+    part_on_table,
 )
 
 SPEED = 0.2
 PART_LENGTH = 0.12
+PART_WIDTH = 0.08
 REMOVING_Y = -2.5
 QUEUED = (1, 2, 3)
+PERIOD = WorkpiecesConfig().period
 REMOVED = (4, 5)
 
 
@@ -82,3 +88,52 @@ def test_an_object_on_a_conveyed_object_rides_along_and_leaves_with_it(run):
     assert rider.pose.translation()[2] == pytest.approx(BELT_TOP + 1.5 * PART_HEIGHT)
     assert rider.velocity.translational() == pytest.approx([SPEED, 0.0, 0.0])
     assert run[3.0].object(6) is None
+
+
+@pytest.fixture(scope="module")
+def queue():
+    """The three parts queued at the belt's stopped end by 4.5 s; the front one is taken
+    away at 5.5 s (a command while the workpieces' updates are left out)."""
+    config = config_with(objects=[on_belt(x, CONVEYOR_Y) for x in (-0.2, 0.1, 0.4)])
+    return build_rig(config, commands={"robot_tree": [(5.5, Despawn(seq=1, object_id=3))]})
+
+
+def world_time(rig) -> float:
+    """When the workpieces' world last changed (the time of its last update)."""
+    context = rig.workpieces.GetMyContextFromRoot(rig.simulator.get_context())
+    return rig.workpieces.world(context).time
+
+
+def test_a_queue_at_rest_costs_no_updates_and_moves_up_when_its_front_leaves(queue):
+    queue.advance(5.0)
+    queued_since = world_time(queue)
+    assert queued_since <= 4.6
+    queue.advance(5.4)
+    assert world_time(queue) == queued_since  # nothing moved since, nothing was updated
+    taken = queue.advance(5.5 + PERIOD)
+    assert taken.results_of("robot_tree").outcome_of(1) == SUCCEEDED
+    assert taken.object(3) is None
+    assert taken.object(2).velocity.translational()[0] == pytest.approx(SPEED)
+    moved_up = queue.advance(7.0)
+    assert x_of(moved_up, 2) + PART_LENGTH / 2 == pytest.approx(1.0)
+    assert x_of(moved_up, 1) + PART_LENGTH / 2 == pytest.approx(1.0 - PART_LENGTH)
+
+
+def test_a_part_dropped_behind_a_standing_queue_rides_up_to_it():
+    """The queue stands still while the robot carries a part (the workpieces update for the
+    carried part, not for the queue); the part released above the belt lands on it and
+    queues behind the last one, its narrow side along the belt (the tool turned it)."""
+    queued = [on_belt(x, CONVEYOR_Y) for x in (0.2, 0.5)]
+    config = config_with(objects=[part_on_table(), *queued])
+    tool, commands = carry_to((0.4, CONVEYOR_Y, BELT_TOP + PART_HEIGHT + 0.1), release_at=4.0)
+    rig = build_rig(config, commands=commands, tool=tool)
+    standing = rig.advance(3.9)
+    assert standing.object(1).holder == ROBOT_HOLDER
+    assert [x_of(standing, i) + PART_LENGTH / 2 for i in (3, 2)] == pytest.approx(
+        [1.0, 1.0 - PART_LENGTH]
+    )
+    end = rig.advance(7.0)
+    dropped = end.object(1)
+    assert dropped.support == "belt"
+    assert not dropped.velocity.get_coeffs().any()
+    assert x_of(end, 1) + PART_WIDTH / 2 == pytest.approx(1.0 - 2 * PART_LENGTH)
