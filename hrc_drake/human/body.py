@@ -18,6 +18,9 @@ from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS, build_sk
 from hrc_drake.human.sdf import MODEL_NAME, human_sdf
 from hrc_drake.human.skeleton import SIDES
 
+LIMIT_PASSES = 4
+"""Times an IK step is solved again without the joints it pushes into their limits."""
+
 
 def parse_human(plant: MultibodyPlant, height: float, mass: float, name: str = MODEL_NAME):
     """Add the person to `plant` (not finalized) and return the model instance."""
@@ -125,12 +128,30 @@ class HumanBody:
             error, jacobian = self._task_errors(q, tasks)
             if np.linalg.norm(error) < tolerance:
                 break
-            J = jacobian[:, free]
-            posture = posture_weight * (q_ref[free] - q[free])
-            lhs = J.T @ J + (posture_weight + 1e-6) * np.eye(len(free))
-            step = np.linalg.solve(lhs, J.T @ error + posture)
+            step = self._step(q, q_ref, free, error, jacobian, posture_weight)
             q[free] = np.clip(q[free] + step, self.lower[free], self.upper[free])
         return q
+
+    def _step(self, q, q_ref, free, error, jacobian, posture_weight) -> np.ndarray:
+        """One damped least-squares step of the `free` joints; joints at a limit that the
+        step would push further into it are held and the step solved again without them
+        (clipped, they would absorb the step and leave the task where it was: a hand
+        reaching up that only leans the trunk back against its limit)."""
+        moving = np.ones(len(free), dtype=bool)
+        step = np.zeros(len(free))
+        for _ in range(LIMIT_PASSES):
+            J = jacobian[:, free[moving]]
+            posture = posture_weight * (q_ref[free[moving]] - q[free[moving]])
+            lhs = J.T @ J + (posture_weight + 1e-6) * np.eye(int(moving.sum()))
+            step[:] = 0.0
+            step[moving] = np.linalg.solve(lhs, J.T @ error + posture)
+            pushing = ((q[free] <= self.lower[free]) & (step < 0)) | (
+                (q[free] >= self.upper[free]) & (step > 0)
+            )
+            if not pushing.any():
+                break
+            moving &= ~pushing
+        return step
 
     def task_error(self, q: np.ndarray, tasks: list[FrameTask]) -> float:
         """Largest weighted position error of the tasks (m)."""

@@ -49,6 +49,12 @@ PUSH_STEPS = 8
 PUSHES = 3
 """An arm is pushed out at most this often at one pose (each push may bring another of its
 points in)."""
+HAND_SHIFT = 0.01
+"""m: a correction moves a held hand this far at most, or as far as it must to get the arm
+out of what its planned pose puts it in (the IK puts a hand within a centimetre or so of
+its target; moved further, a palm leaves the face it holds or goes into the object)."""
+SHIFT_SEARCH = 6
+"""Halvings of a correction that would move a held hand too far."""
 HELD = (3.0, 3.0, 3.0)
 """A hand that holds or is aimed stays where it is: its position outweighs the push."""
 
@@ -201,13 +207,17 @@ def check_arm(
 
 def push_out(body: HumanBody, q: np.ndarray, side: str, check: ArmCheck, keep_hand: bool):
     """q with the `side` arm moved so that its deepest point is MARGIN clear of what it went
-    into the way `check` says (the hand's grasp frame kept where it is with `keep_hand`)."""
+    into the way `check` says (with `keep_hand` the hand's grasp frame kept where it is but
+    along that way, the world axis nearest it: a palm on a box's side may slide up off the
+    board under it, never sideways into the box)."""
     target = check.at + (check.depth + MARGIN) * check.out
     tasks = [FrameTask(check.frame, target, point=tuple(check.point))]
     if keep_hand:
         X = body.frame_pose(f"{side}_hand_grasp", q)
+        along = np.abs(check.out) == np.abs(check.out).max()
+        weights = tuple(np.where(along, 0.0, HELD))
         tasks.append(
-            FrameTask(f"{side}_hand_grasp", X.translation(), X.rotation(), HELD, (1.0,) * 3)
+            FrameTask(f"{side}_hand_grasp", X.translation(), X.rotation(), weights, (1.0,) * 3)
         )
     return body.solve(
         q, tasks, arm_indices(body, (side,)), iterations=PUSH_STEPS, posture_weight=1e-3
@@ -269,9 +279,11 @@ def arm_correction(body, furniture, pose, start, end, held):
         if len(near.axes) == 0 or _clear(body, near, q, holding):
             offset = None
             continue
-        if offset is None or not _clear(body, near, q + offset, holding):
-            cleared = clear_of(body, near, q if offset is None else q + offset, holding)
-            offset = (cleared - q) if cleared is not None else offset
+        tried = q if offset is None else _keeping_held_hands(body, near, q, q + offset, holding)
+        if tried is q or not _clear(body, near, tried, holding):
+            cleared = clear_of(body, near, tried, holding)
+            tried = cleared if cleared is not None else tried
+        offset = tried - q
         moved[float(t)] = offset
     if not moved:
         return None
@@ -280,13 +292,43 @@ def arm_correction(body, furniture, pose, start, end, held):
         for t in _near(sorted(moved), start, end):
             q, holding = pose(t), held(t)
             near = prisms.near(q[:2], NEAR)
-            corrected = correction.over(q, t)
-            if not _clear(body, near, corrected, holding):
+            eased = correction.over(q, t)
+            corrected = _keeping_held_hands(body, near, q, eased, holding)
+            if corrected is not eased or not _clear(body, near, corrected, holding):
                 cleared = clear_of(body, near, corrected, holding)
                 moved[t], added = (cleared if cleared is not None else corrected) - q, True
         if not added:
             return correction
     return _correction(moved, start)
+
+
+def _keeping_held_hands(body, near, q, corrected, holding):
+    """`corrected` with the arms of held hands it would move off their places further than
+    they must go to get out of what q puts them in (at least HAND_SHIFT) brought back
+    towards q until it moves them that far: a correction found while a hand was free must
+    not carry it away from what it then takes or holds."""
+    kept = corrected
+    for side in holding:
+        arm, frame = arm_indices(body, (side,)), f"{side}_hand_grasp"
+        place = body.frame_pose(frame, q).translation()
+        allowed = max(HAND_SHIFT, check_arm(body, near, q, side).depth + MARGIN)
+
+        def scaled(scale, arm=arm, base=kept):
+            pose = base.copy()
+            pose[arm] = q[arm] + scale * (corrected[arm] - q[arm])
+            return pose
+
+        def shift(pose, frame=frame, place=place):
+            return np.linalg.norm(body.frame_pose(frame, pose).translation() - place)
+
+        if shift(kept) <= allowed:
+            continue
+        low, high = 0.0, 1.0
+        for _ in range(SHIFT_SEARCH):
+            middle = (low + high) / 2
+            low, high = (middle, high) if shift(scaled(middle)) <= allowed else (low, middle)
+        kept = scaled(low)
+    return kept
 
 
 def _near(times: list, start: float, end: float) -> list:

@@ -11,6 +11,7 @@ from hrc_drake.bt import InputPort, OneOf, OutputPort, Status, SyncActionNode
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.messages import ResultLog
 from hrc_drake.nodes.command import CommandNode
+from hrc_drake.nodes.stacks import covered
 from hrc_drake.tree_types import Pose
 from hrc_drake.wiring import WORKPIECES
 from hrc_drake.workpieces import messages as wp
@@ -70,9 +71,10 @@ class CountObjects(ObjectsNode):
 
 
 class NextObject(ObjectsNode):
-    """The oldest free object in an area matching a filter; FAILURE when there is none.
-    Its pose is the centre without orientation, so a RobotMove to it (offset to the top
-    face) keeps the tool pointing down."""
+    """The oldest free object in an area matching a filter with nothing resting on it (an
+    object under another is not offered: a person takes the one on top first); FAILURE
+    when there is none. Its pose is the centre without orientation, so a RobotMove
+    to it (offset to the top face) keeps the tool pointing down."""
 
     ports = (
         AREA_PORT,
@@ -83,6 +85,9 @@ class NextObject(ObjectsNode):
 
     def tick(self) -> Status:
         found = self.free_objects_in("area", "filter")
+        if found:
+            under = covered(self.agent.workpieces.objects)
+            found = [obj for obj in found if obj.id not in under]
         if not found:
             return Status.FAILURE
         self.set_output("object_id", found[0].id)

@@ -17,6 +17,7 @@ from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
 from hrc_drake.nodes.command import CommandNode
+from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.tree_types import Pose
 from hrc_drake.wiring import HUMAN, WORKPIECES
 from hrc_drake.workpieces import messages as wp
@@ -303,7 +304,7 @@ class ActorPick(TargetedAction):
 
 class ActorPlace(TargetedAction):
     """Puts what the hands hold down with its centre at a target point (one hand or both,
-    as they hold it); it settles on the surface."""
+    as they hold it); it settles on the surface, or on what already lies there."""
 
     ports = (InputPort("target", Pose, description="where the object's centre goes"),)
     contact_event = "release"
@@ -312,7 +313,11 @@ class ActorPlace(TargetedAction):
         return "place_table" if self.target_point()[2] >= TABLE_HEIGHT else "place_floor"
 
     def target_point(self):
-        return tuple(self.agent.transform(self.get_input("target")).translation())
+        point = self.agent.transform(self.get_input("target")).translation()
+        held = self.held()
+        if held is None or self.agent.workpieces is None:
+            return tuple(point)
+        return tuple(on_top_of_what_lies_there(point, held, self.agent.workpieces.objects))
 
     def object_command(self, seq: int):
         held = self.held()

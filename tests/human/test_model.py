@@ -5,8 +5,9 @@ import pytest
 from pydrake.geometry import Role, SceneGraph
 from pydrake.multibody.plant import MultibodyPlant
 
+from hrc_drake.human.aiming import hands_on
 from hrc_drake.human.anthropometry import build_skeleton
-from hrc_drake.human.body import HumanBody, parse_human
+from hrc_drake.human.body import HumanBody, human_body, parse_human
 from hrc_drake.human.sdf import REGION_SEPARATOR
 from hrc_drake.human.skeleton import COLORS, REGIONS
 
@@ -80,3 +81,24 @@ def test_frames_for_hands_head_and_feet():
     right = body.frame_pose("right_hand_grasp", q).translation()
     assert left[1] > 0 > right[1]
     assert left[2] == pytest.approx(right[2])
+
+
+@pytest.mark.parametrize(
+    "target",
+    [(0.35, 1.0), (0.3, 1.2), (0.25, 1.3), (0.55, 1.25)],
+    ids=["at the belly", "at the chest", "close at the shoulders", "ahead at the chest"],
+)
+def test_both_hands_reach_up_in_front_of_the_body(target):
+    """From standing, the IK puts both hands anywhere a person holds them in front of the
+    chest (over a shelf board's edge): it bends the elbows rather than leaning the trunk
+    back against its limit and stopping there (it did: hands 0.1-0.2 m short)."""
+    body = human_body()
+    ahead, height = target
+    hands = {
+        side: (np.array([ahead, sign * 0.13, height]), None)
+        for side, sign in (("left", 1.0), ("right", -1.0))
+    }
+    q = hands_on(body, body.standing_pose(), hands, turning=True, tolerance=0.01)
+    for side, (position, _) in hands.items():
+        reached = body.frame_pose(f"{side}_hand_grasp", q).translation()
+        assert np.linalg.norm(reached - position) <= 0.01, side

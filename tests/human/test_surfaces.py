@@ -56,6 +56,12 @@ PALLET = furniture("euro_pallet", 0.0, 0.55, 90.0)
 """A EUR pallet across the person's way, its near side 0.15 m in front of the pelvis."""
 ON_A_CRATE = 0.144 + 0.24 + 0.1
 """The centre of a carton standing on a crate on the pallet."""
+SHELF = furniture("shelf", 0.0, 0.55)
+"""Our material shelf as coexistence has it: its front 0.35 m in front of the pelvis,
+boards with tops at 0.1, 0.6, 1.1 and 1.6 m."""
+ON_THE_THIRD_BOARD = 1.1 + 0.04
+"""The centre of a box of material on the shelf's third board, at chest height: the hands
+rise in front of the board's edge and reach over it."""
 
 
 @pytest.mark.parametrize(
@@ -73,23 +79,41 @@ def test_picking_up_and_putting_down_keeps_the_hands_out_of_the_furniture(
     """The palms close on the object's faces, and the arms stay out of what it stands on."""
     pick, place = clips
     grasp = Grasp("both", center, np.pi / 2, size)
-    hold = hold_of(grasp, STANDING[2])
     put_down = _duration(pick) + 0.3
     schedule = [
         (0.1, AnimateCommand(1, pick, grasp=grasp)),
-        (put_down, AnimateCommand(2, place, target=center, hold=hold)),
+        (put_down, AnimateCommand(2, place, target=center, hold=hold_of(grasp, STANDING[2]))),
     ]
-    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, cell], segments=ARMS)
-    run.record(0.1 + load_clips()[pick].events["grasp"])
-    q = run.positions()[run.body.plant_index]
-    box = Solid("box", size)
-    X_OW = RigidTransform(RotationMatrix.MakeZRotation(grasp.yaw), center).inverse()
-    for side in ("left", "right"):
-        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
-        assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
+    run = _taken(schedule, cell, grasp)
     run.record(put_down + _duration(place) + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_material_is_taken_off_a_shelf_board_at_chest_height():
+    """The hands rise in front of the board's edge, where the arms must be kept out of it,
+    then close on the material: a correction found for the arms on their way up must not
+    keep the palms off it (it did: 13 cm short, and the pick failed), and the arms stay out
+    of the board taking the material off it too."""
+    grasp = Grasp("both", (-0.15, 0.55, ON_THE_THIRD_BOARD), np.pi / 2, MATERIAL)
+    run = _taken([(0.1, AnimateCommand(1, "pick_table", grasp=grasp))], SHELF, grasp)
+    run.record(_duration("pick_table") + 0.3)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def _taken(schedule, cell, grasp) -> Run:
+    """A run of `schedule` in `cell` up to the first command's grasp, where the palms must be
+    on the faces of what it takes."""
+    run = Run(schedule, start_pose=STANDING, cell=[FLOOR, cell], segments=ARMS)
+    run.record(0.1 + load_clips()[schedule[0][1].animation_name].events["grasp"])
+    q = run.positions()[run.body.plant_index]
+    box = Solid("box", grasp.size)
+    X_OW = RigidTransform(RotationMatrix.MakeZRotation(grasp.yaw), grasp.center).inverse()
+    for side in ("left", "right"):
+        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
+        assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
+    return run
 
 
 def test_the_hands_keep_out_of_the_box_next_to_the_one_they_take():

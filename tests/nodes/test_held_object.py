@@ -1,4 +1,5 @@
-"""HeldObject: the person's tree finds the box the robot holds out at a hand-over."""
+"""The boxes the person handles: HeldObject finds the box the robot holds out at a hand-over,
+NextObject which free box is taken next, ActorPlace where a box put down goes."""
 
 import pytest
 from pydrake.math import RigidTransform
@@ -7,6 +8,7 @@ from pydrake.multibody.math import SpatialVelocity
 from hrc_drake.bt import BTError, Status, load_tree
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
+from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.workpieces import messages as wp
 
 
@@ -55,3 +57,57 @@ def test_held_object_fails_when_the_holder_holds_nothing():
 def test_held_object_rejects_an_unknown_holder():
     with pytest.raises(BTError, match="port 'holder': unknown value 'gripper'; known: robot, "):
         tick_held_object(objects_status((1, wp.ROBOT_HOLDER)), holder="gripper")
+
+
+@pytest.mark.parametrize(
+    ("second_x", "taken"),
+    [(1.02, 2), (1.17, 1)],
+    ids=["on the first", "beside it, touching"],
+)
+def test_next_object_offers_the_box_on_top_before_the_one_under_it(second_x, taken):
+    """Box 1, the oldest, has box 2 lying on it: the person takes box 2 first (pulling box 1
+    out from under it put their hand into box 2). A box that only touches box 1's edge
+    (settling may name it as its support) does not keep box 1 back."""
+    objects = (
+        _material(1, (1.0, 0.0, 0.94)),
+        _material(2, (second_x, 0.0, 1.02), support=wp.object_support(1)),
+    )
+    xml = (
+        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
+        '<NextObject area="-9,-9;9,-9;9,9;-9,-9;9,9;-9,9" object_id="{id}"/>'
+        "</BehaviorTree></root>"
+    )
+    agent = Agent("human", Places())
+    agent.statuses["workpieces"] = wp.WorkpiecesStatus(0.0, objects, {}, {})
+    tree = load_tree(xml, hrc_registry(), agent=agent)
+    assert tree.tick(0.0) is Status.SUCCESS
+    assert tree.root_blackboard.get("id") == taken
+
+
+MATERIAL = (0.16, 0.12, 0.08)
+
+
+def _material(object_id, position, holder=None, support=None) -> wp.ObjectStatus:
+    return wp.ObjectStatus(
+        id=object_id,
+        type="material",
+        pose=RigidTransform(position),
+        velocity=SpatialVelocity.Zero(),
+        holder=holder,
+        support=support,
+        attributes={},
+        size=MATERIAL,
+    )
+
+
+def test_a_box_put_down_where_others_lie_goes_on_top_of_them():
+    """The person puts a box onto the stack at the target, not into it (their hands went
+    9 cm into the box already there); a box 0.3 m away is left alone."""
+    held = _material(9, (0.0, 0.0, 1.2), holder=wp.BOTH_HANDS)
+    target = (0.05, 0.0, 0.94)
+    apart = [_material(1, (0.3, 0.0, 0.94))]
+    assert on_top_of_what_lies_there(target, held, [held, *apart])[2] == pytest.approx(0.94)
+    one = [*apart, _material(2, (0.0, 0.0, 0.94))]
+    assert on_top_of_what_lies_there(target, held, [held, *one])[2] == pytest.approx(1.02)
+    two = [*one, _material(3, (0.02, 0.0, 1.02))]
+    assert on_top_of_what_lies_there(target, held, [held, *two])[2] == pytest.approx(1.10)
