@@ -309,26 +309,32 @@ def _keeping_held_hands(body, near, q, corrected, holding):
     not carry it away from what it then takes or holds."""
     kept = corrected
     for side in holding:
-        arm, frame = arm_indices(body, (side,)), f"{side}_hand_grasp"
-        place = body.frame_pose(frame, q).translation()
         allowed = max(HAND_SHIFT, check_arm(body, near, q, side).depth + MARGIN)
-
-        def scaled(scale, arm=arm, base=kept):
-            pose = base.copy()
-            pose[arm] = q[arm] + scale * (corrected[arm] - q[arm])
-            return pose
-
-        def shift(pose, frame=frame, place=place):
-            return np.linalg.norm(body.frame_pose(frame, pose).translation() - place)
-
-        if shift(kept) <= allowed:
-            continue
-        low, high = 0.0, 1.0
-        for _ in range(SHIFT_SEARCH):
-            middle = (low + high) / 2
-            low, high = (middle, high) if shift(scaled(middle)) <= allowed else (low, middle)
-        kept = scaled(low)
+        kept = _arm_pulled_back(body, q, kept, side, allowed)
     return kept
+
+
+def _arm_pulled_back(body, q, corrected, side: str, allowed: float):
+    """`corrected` with the `side` arm's offset from q scaled down (by bisection) until its
+    hand is at most `allowed` from where q has it."""
+    arm, frame = arm_indices(body, (side,)), f"{side}_hand_grasp"
+    place = body.frame_pose(frame, q).translation()
+
+    def scaled(scale):
+        pose = corrected.copy()
+        pose[arm] = q[arm] + scale * (corrected[arm] - q[arm])
+        return pose
+
+    def within(pose) -> bool:
+        return np.linalg.norm(body.frame_pose(frame, pose).translation() - place) <= allowed
+
+    if within(corrected):
+        return corrected
+    low, high = 0.0, 1.0
+    for _ in range(SHIFT_SEARCH):
+        middle = (low + high) / 2
+        low, high = (middle, high) if within(scaled(middle)) else (low, middle)
+    return scaled(low)
 
 
 def _near(times: list, start: float, end: float) -> list:

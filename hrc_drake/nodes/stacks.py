@@ -31,7 +31,8 @@ def on_top_of_what_lies_there(point, held: wp.ObjectStatus, objects) -> np.ndarr
     would come down on: those level with it whose outlines are within half its narrower
     extent of the point."""
     point = np.array(point, dtype=float)
-    reach, half = min(held.size[:2]) / 2, _solid(held).height / 2
+    solid = _solid(held)
+    reach, half = np.ptp(solid.outline(), axis=0).min() / 2, solid.height / 2
     others = [obj for obj in objects if obj.holder is None and obj.id != held.id]
     for _ in others:  # each pass may lift it onto one more object of a stack
         tops = [
