@@ -218,7 +218,10 @@ class TargetedAction(PersonCommandNode):
 
     def on_running(self) -> Status:
         if self.contact_seq is None and self._contact_event_fired():
-            self.contact_seq = self.agent.send(WORKPIECES, self.object_command)
+            try:
+                self.contact_seq = self.agent.send(WORKPIECES, self.object_command)
+            except ObjectGone as gone:
+                return self._gone_at_contact(gone)
         status = super().on_running()
         if status is not Status.SUCCESS or not self.contact_event:
             return status
@@ -226,6 +229,13 @@ class TargetedAction(PersonCommandNode):
             self.failure_reason = f"the {self.playing} clip ended before its '{self.contact_event}'"
             return Status.FAILURE
         return self._contact_result()
+
+    def _gone_at_contact(self, gone: ObjectGone) -> Status:
+        """FAILURE, saying so, when the object went away while the hands went to it (the
+        robot or a belt took it); the person stops the clip rather than close on nothing."""
+        self.failure_reason = f"{gone} at the clip's '{self.contact_event}'"
+        self.agent.send(self.actor, self.cancel_command)
+        return Status.FAILURE
 
     def _contact_event_fired(self) -> bool:
         status = self.agent.human

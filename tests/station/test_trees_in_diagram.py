@@ -126,3 +126,16 @@ def test_a_persons_failed_pick_says_why_in_the_run_logs(tmp_path):
     assert [(record["path"], record["reason"]) for record in failures] == [
         ("pick_moving_part", why)
     ]
+
+
+def test_a_part_that_vanishes_while_the_person_reaches_for_it_fails_the_pick():
+    """The part is despawned between the start of the person's pick and the moment the
+    hands close (as when the robot or a belt takes it first): the pick fails with the
+    reason, the person stops reaching and the tree goes on; the run does not crash."""
+    sim = Simulation(cell(human="pick_what_vanishes.xml")).advance(7.0)
+    pick = sim.tree("human").node("pick_vanishing_part")
+    assert pick.failure_reason == "no object 1 (gone or never made) at the clip's 'grasp'"
+    human = sim["human_status"]
+    assert CANCELLED in [result.outcome for result in human.results]
+    assert human.animation == "idle"
+    assert sim.events("human") == ["went_on"]
