@@ -4,13 +4,13 @@ tree engine's built-ins."""
 
 from hrc_drake.bt import NodeRegistry, default_registry
 from hrc_drake.bt.ports import type_name as port_type_name
-from hrc_drake.nodes import general, objects, person, robot, safety
+from hrc_drake.nodes import general, objects, person, robot, safety, targeted
 
 
 def hrc_registry() -> NodeRegistry:
     """Built-ins plus every HRC node."""
     registry = default_registry()
-    for module in (general, robot, person, objects, safety):
+    for module in (general, robot, person, targeted, objects, safety):
         for node in module.NODES:
             registry.register(node)
     return registry

@@ -1,32 +1,17 @@
-"""Person nodes: the thesis system's ActorAnimation, ActorMovement, IsCalled and SetCalledTo, and
-the targeted actions the scenarios need (pick, place, reach, hand over, carry).
-
-Targeted actions play a clip aimed at a point; at the clip's contact event (`grasp`,
-`release`, `extended`) they tell the Workpieces system to attach, release or transfer the
-object, so the object changes hands at the moment the hand is there. Which hands take an
-object follows from its size, mass and attributes (hrc_drake.human.grasp); every command
-tells the person what the hands hold, so they carry it in the carry posture.
+"""Person nodes: the thesis system's ActorAnimation, ActorMovement, IsCalled and SetCalledTo,
+and ActorCarry; the base of every command to the person, which tells the person what the
+hands hold, so they carry it in the carry posture. The targeted actions (pick, place,
+reach, hand over) are in hrc_drake.nodes.targeted.
 """
 
-from abc import abstractmethod
-
-import numpy as np
-
-from hrc_drake.bt import ConditionNode, InputPort, OneOf, Range, Status, SyncActionNode
+from hrc_drake.bt import ConditionNode, InputPort, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
-from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
-from hrc_drake.messages import RUNNING, SUCCEEDED
+from hrc_drake.human.grasp import hold_of
 from hrc_drake.nodes.command import CommandNode
-from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.tree_types import Pose
-from hrc_drake.wiring import HUMAN, WORKPIECES
+from hrc_drake.wiring import HUMAN
 from hrc_drake.workpieces import messages as wp
 from hrc_drake.workpieces.geometry import yaw_of
-
-TABLE_HEIGHT = 0.5
-"""Targets below this height are picked or placed with the floor clips (a squat)."""
-NEARBY = 0.8
-"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
@@ -60,10 +45,10 @@ class PersonCommandNode(CommandNode):
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
     """How `hands` take `obj` (a cylinder is taken like the box around it)."""
-    return human.Grasp(hands, *_box(obj))
+    return human.Grasp(hands, *box_of(obj))
 
 
-def _box(obj: wp.ObjectStatus):
+def box_of(obj: wp.ObjectStatus):
     """An object's centre, heading and box extents (a cylinder: the box around it)."""
     size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
     return tuple(obj.pose.translation()), yaw_of(obj.pose.rotation()), tuple(size)
@@ -151,259 +136,4 @@ class SetCalledTo(SyncActionNode):
         return Status.SUCCESS
 
 
-class ObjectGone(Exception):
-    """The object an action is to take is not in the world (any more)."""
-
-
-class TargetedAction(PersonCommandNode):
-    """Plays `clip()` aimed at `target_point()`; at the clip event `contact_event` it sends
-    `object_command(seq)` to the Workpieces system. SUCCESS when both succeeded."""
-
-    commands = (HUMAN, WORKPIECES)
-    contact_event = ""
-    """Clip event at which the object changes hands ("": the action moves no object)."""
-
-    @abstractmethod
-    def clip(self) -> str:
-        """The clip to play."""
-
-    @abstractmethod
-    def target_point(self) -> tuple[float, float, float]:
-        """Where the clip aims the hand(s), in the world."""
-
-    def object_command(self, seq: int):
-        """The Workpieces command at the contact event (actions that have one)."""
-        raise TypeError(f"{type(self).__name__} moves no object")
-
-    def on_start(self) -> Status:
-        """Sends the command; FAILURE at once, saying so, when the object is gone (a belt
-        took it away, or someone else did)."""
-        self.contact_seq = None
-        try:
-            self.playing = self.clip()
-            return super().on_start()
-        except ObjectGone as gone:
-            self.failure_reason = str(gone)
-            return Status.FAILURE
-
-    def command(self, seq: int):
-        target = self.target_point()
-        return human.AnimateCommand(
-            seq,
-            self.playing,
-            target=target,
-            hold=self.hold(),
-            grasp=self.grasp(),
-            nearby=self.nearby(target),
-        )
-
-    def nearby(self, target) -> tuple[human.Box, ...]:
-        """The free objects near `target` (not the one the action takes): the person's arms
-        keep out of them."""
-        status = self.agent.workpieces
-        if status is None:
-            return ()
-        taken = self.taken_id()
-        return tuple(
-            human.Box(*_box(obj))
-            for obj in status.objects
-            if obj.holder is None
-            and obj.id != taken
-            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(target[:2]))) <= NEARBY
-        )
-
-    def grasp(self) -> human.Grasp | None:
-        """What the clip takes (None: it takes nothing)."""
-        return None
-
-    def on_running(self) -> Status:
-        if self.contact_seq is None and self._contact_event_fired():
-            try:
-                self.contact_seq = self.agent.send(WORKPIECES, self.object_command)
-            except ObjectGone as gone:
-                return self._gone_at_contact(gone)
-        status = super().on_running()
-        if status is not Status.SUCCESS or not self.contact_event:
-            return status
-        if self.contact_seq is None:
-            self.failure_reason = f"the {self.playing} clip ended before its '{self.contact_event}'"
-            return Status.FAILURE
-        return self._contact_result()
-
-    def _gone_at_contact(self, gone: ObjectGone) -> Status:
-        """FAILURE, saying so, when the object went away while the hands went to it (the
-        robot or a belt took it); the person stops the clip rather than close on nothing."""
-        self.failure_reason = f"{gone} at the clip's '{self.contact_event}'"
-        self.agent.send(self.actor, self.cancel_command)
-        return Status.FAILURE
-
-    def _contact_event_fired(self) -> bool:
-        status = self.agent.human
-        return (
-            bool(self.contact_event)
-            and self.outcome() == RUNNING
-            and self.contact_event in status.activity_events
-        )
-
-    def _contact_result(self) -> Status:
-        """The objects' answer to the command at the contact moment (why, when it failed)."""
-        status = self.agent.workpieces
-        result = status.results_of(self.agent.issuer).result_of(self.contact_seq)
-        if result is None or result.outcome == RUNNING:
-            return Status.RUNNING
-        return Status.SUCCESS if result.outcome == SUCCEEDED else self.failed(result)
-
-    def taken_id(self) -> int | None:
-        """The object the action is about (None: it is about none)."""
-        names = {port.name for port in self.ports}
-        return self.get_input("object_id") if "object_id" in names else None
-
-    def taken(self) -> wp.ObjectStatus:
-        obj = self.agent.workpieces.object(self.get_input("object_id"))
-        if obj is None:
-            raise ObjectGone(f"no object {self.get_input('object_id')} (gone or never made)")
-        return obj
-
-    def object_point(self) -> tuple[float, float, float]:
-        return tuple(self.taken().pose.translation())
-
-    def taking_grasp(self) -> human.Grasp:
-        """Both hands or one, as the port says or (auto) as the object's geometry says."""
-        obj = self.taken()
-        hands = self.get_input("hand")
-        if hands == "auto":
-            hands = grasp_hands(obj.size, obj.mass, obj.attributes)
-        return grasp_of(obj, hands)
-
-    def holder_and_center(self):
-        """The holder that takes the object and where its centre goes in the holder's frame."""
-        grasp = self.grasp()
-        hold = hold_of(grasp, self._heading())
-        return HOLDERS[grasp.hands], object_center_in_holder(hold)
-
-
-TAKE_OR_GIVE = OneOf(("take", "give"))
-HAND_PORT = InputPort(
-    "hand",
-    str,
-    default="auto",
-    description="auto (from the object), right or both",
-    accepts=OneOf(("auto", *HOLDERS)),
-)
-
-
-class ActorPick(TargetedAction):
-    """Picks up an object (table or floor clip by its height) into the hand(s)."""
-
-    ports = (InputPort("object_id", int), HAND_PORT)
-    contact_event = "grasp"
-
-    def clip(self) -> str:
-        return "pick_table" if self.object_point()[2] >= TABLE_HEIGHT else "pick_floor"
-
-    def target_point(self):
-        return self.object_point()
-
-    def grasp(self) -> human.Grasp:
-        return self.taking_grasp()
-
-    def object_command(self, seq: int):
-        holder, center = self.holder_and_center()
-        return wp.Attach(seq, holder, self.get_input("object_id"), center=center)
-
-
-class ActorPlace(TargetedAction):
-    """Puts what the hands hold down with its centre at a target point (one hand or both,
-    as they hold it); it settles on the surface, or on what already lies there."""
-
-    ports = (InputPort("target", Pose, description="where the object's centre goes"),)
-    contact_event = "release"
-
-    def clip(self) -> str:
-        return "place_table" if self.target_point()[2] >= TABLE_HEIGHT else "place_floor"
-
-    def target_point(self):
-        point = self.agent.transform(self.get_input("target")).translation()
-        held = self.held()
-        if held is None or self.agent.workpieces is None:
-            return tuple(point)
-        return tuple(on_top_of_what_lies_there(point, held, self.agent.workpieces.objects))
-
-    def object_command(self, seq: int):
-        held = self.held()
-        return wp.Detach(seq, held.holder if held is not None else wp.BOTH_HANDS)
-
-
-class ActorReach(TargetedAction):
-    """Reaches one arm to a point in front (into a workspace, to straighten a part); with
-    `object_id` and `place`, the hand squares that object up there when it is on it."""
-
-    ports = (
-        InputPort("target", Pose, description="point to reach"),
-        InputPort("object_id", int, default=None, description="an object to square up"),
-        InputPort("place", Pose, default=None, description="where that object is set down"),
-    )
-
-    @property
-    def contact_event(self) -> str:
-        return "reached" if self.get_input("object_id") is not None else ""
-
-    def clip(self) -> str:
-        return "reach"
-
-    def target_point(self):
-        return tuple(self.agent.transform(self.get_input("target")).translation())
-
-    def taken_id(self) -> int | None:
-        """None: the hand moves the object where it stands (it is not taken)."""
-        return None
-
-    def object_command(self, seq: int):
-        place = self.agent.transform(self.get_input("place"))
-        return wp.Move(seq, self.get_input("object_id"), place)
-
-
-class ActorHandOver(TargetedAction):
-    """Hand-over with the robot: extends the hands to the object at the hand-over point
-    and takes it (`take`: the palms close on its faces, the robot lets go once they hold
-    it) or gives what the hands hold to the robot's cup (`give`)."""
-
-    ports = (
-        InputPort("object_id", int),
-        InputPort(
-            "direction", str, default="take", description="take or give", accepts=TAKE_OR_GIVE
-        ),
-        HAND_PORT,
-    )
-    contact_event = "extended"
-
-    def clip(self) -> str:
-        return "hand_over"
-
-    def target_point(self):
-        return self.object_point()
-
-    def takes(self) -> bool:
-        return self.get_input("direction") == "take"
-
-    def grasp(self) -> human.Grasp | None:
-        return self.taking_grasp() if self.takes() else None
-
-    def object_command(self, seq: int):
-        if not self.takes():
-            return wp.Transfer(seq, self.get_input("object_id"), wp.ROBOT_HOLDER)
-        holder, center = self.holder_and_center()
-        return wp.Transfer(seq, self.get_input("object_id"), holder, center=center)
-
-
-NODES = (
-    ActorAnimation,
-    ActorMovement,
-    ActorCarry,
-    IsCalled,
-    SetCalledTo,
-    ActorPick,
-    ActorPlace,
-    ActorReach,
-    ActorHandOver,
-)
+NODES = (ActorAnimation, ActorMovement, ActorCarry, IsCalled, SetCalledTo)

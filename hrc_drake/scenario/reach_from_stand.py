@@ -20,7 +20,8 @@ from hrc_drake.bt.status import FAILURE
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.targeting import MAX_HORIZONTAL_REACH, TARGETED
 from hrc_drake.known_values import Known
-from hrc_drake.nodes.person import ActorMovement, ActorPlace, ActorReach
+from hrc_drake.nodes.person import ActorMovement
+from hrc_drake.nodes.targeted import ActorPlace, ActorReach
 from hrc_drake.scenario.located import Finding, Locator
 
 UNKNOWN = object()

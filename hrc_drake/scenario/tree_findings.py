@@ -20,8 +20,9 @@ from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
-from hrc_drake.nodes.person import ActorAnimation, ActorMovement, ActorPlace, ActorReach
+from hrc_drake.nodes.person import ActorAnimation, ActorMovement
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.nodes.targeted import ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
