@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from math import cos, sin
 
 import numpy as np
+import shapely
 from shapely.geometry import LineString, Point, Polygon
 
 from hrc_drake.human.navigation import Obstacle
@@ -61,6 +62,23 @@ class Furniture:
             ),
             default=FAR,
         )
+
+    def clear_way(self, start, direction, half_width: float, low: float, high: float) -> float:
+        """How far (m) a band `half_width` either side of `start` (x, y) is clear along the
+        floor direction `direction` (a unit vector) of the pieces spanning the heights `low`
+        to `high` (FAR: all the way; 0: a piece covers `start`)."""
+        ahead = np.asarray(direction[:2], dtype=float)
+        side = half_width * np.array([-ahead[1], ahead[0]])
+        at = np.asarray(start[:2], dtype=float)
+        band = Polygon([at - side, at + side, at + side + FAR * ahead, at - side + FAR * ahead])
+        reached = [
+            float((shapely.get_coordinates(inside) @ ahead).min() - at @ ahead)
+            for piece in self.pieces
+            if piece.low < high
+            and piece.high > low
+            and not (inside := piece.outline.intersection(band)).is_empty
+        ]
+        return max(min(reached, default=FAR), 0.0)
 
     def behind_edge(self, piece: Obstacle, point, back, margin: float):
         """`point` (x, y) moved along the floor direction `back` until it is `margin` outside

@@ -21,14 +21,18 @@ from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
+    PALM_GAP,
     arm_indices,
     facing,
     hand_below,
     hand_extent,
+    hand_half_breadth,
     hand_tasks,
     outward,
+    release_targets,
 )
 from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.messages import Hold
 from hrc_drake.human.skeleton import SIDES
 
 APPROACH = (0.06, 0.06)
@@ -87,10 +91,38 @@ def room_beside(body: HumanBody, furniture: Furniture, hands: dict) -> dict:
     for side, (position, R) in hands.items():
         if R is None:
             continue
-        reach = hand_below(body, R)
+        reach = hand_below(body, R, side)
         free = furniture.room(position, outward(side, R), position[2] - reach, position[2] + reach)
-        room[side] = max(free - hand_extent(body, R, outward(side, R)) - EDGE_MARGIN, 0.0)
+        room[side] = max(free - hand_extent(body, R, outward(side, R), side) - EDGE_MARGIN, 0.0)
     return room
+
+
+def room_for_the_palms(body: HumanBody, furniture: Furniture, hold: Hold, center, heading):
+    """`center`, where the held object is to be put down, moved across its held faces so
+    that what stands beside it leaves room for each palm on them: the palm's gap, the
+    hand's thickness and a margin (a box put down against another would have the palm
+    between them in the other box; people put it down a hand's width off). Moved only as
+    far as the other side has room; unchanged where neither side has enough."""
+    center = np.asarray(center, dtype=float)
+    palms = release_targets(hold, center, heading)
+    left = np.array([-np.sin(heading), np.cos(heading), 0.0])
+    half_height = hold.size[2] / 2
+    slack = {}
+    for side, across in (("left", left), ("right", -left)):
+        need, low, high, start = 0.0, center[2] - half_height, center[2] + half_height, center
+        if side in palms:
+            position, R = palms[side]
+            need = PALM_GAP + hand_extent(body, R, across, side) + EDGE_MARGIN
+            low = min(low, position[2] - hand_below(body, R, side))
+            start = position - across * (hold.size[1] / 2 + PALM_GAP)
+        breadth = hand_half_breadth(body)
+        free = furniture.clear_way(start, across, breadth, low, high) - hold.size[1] / 2
+        slack[side] = free - need
+    short, other = sorted(slack, key=slack.get)
+    if slack[short] >= 0.0 or slack[other] <= 0.0:
+        return center
+    away = -left if short == "left" else left
+    return center + min(-slack[short], slack[other]) * away
 
 
 def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest) -> dict:
@@ -100,7 +132,7 @@ def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest) -> dict
     reach below the frame), and above the surface the target is on."""
     heights = {}
     for side, (position, R) in hands.items():
-        reach = hand_below(body, R)
+        reach = hand_below(body, R, side)
         over = lowest.get(side, position[2] - reach) if lowest else position[2] - reach
         support = furniture.support(position)
         if support is not None:
@@ -121,7 +153,7 @@ def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, hea
     clear, moved = {}, False
     for side, (position, orientation) in near.items():
         support = furniture.support(hands[side][0])
-        inset = hand_extent(body, R, forward) + EDGE_MARGIN
+        inset = hand_extent(body, R, forward, side) + EDGE_MARGIN
         edge = None
         if support is not None:
             edge = furniture.behind_edge(support, position, -forward, inset)
@@ -132,7 +164,7 @@ def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, hea
         if ahead < TRUNK_FRONT:
             sign = 1.0 if side == "left" else -1.0
             aside = sign * max(sign * aside, TRUNK_SIDE)
-        height = max(position[2], support.high + hand_below(body, R) + CLEARANCE)
+        height = max(position[2], support.high + hand_below(body, R, side) + CLEARANCE)
         point = np.array([*(base + ahead * forward[:2] + aside * left[:2]), height])
         clear[side], moved = (point, None), True
     return clear if moved else None

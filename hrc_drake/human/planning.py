@@ -11,6 +11,7 @@ from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
+from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -19,7 +20,7 @@ from hrc_drake.human.grasp import (
     reach_target,
     release_targets,
 )
-from hrc_drake.human.hand_ways import WITHDRAWAL, withdrawal
+from hrc_drake.human.hand_ways import WITHDRAWAL, room_for_the_palms, withdrawal
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
@@ -115,7 +116,7 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
     if command.target is not None or command.grasp is not None:
         if clip.name not in TARGETED:
             raise Unreachable(f"'{clip.name}' takes no target")
-        hands, takes = _aimed_hands(performer, clip, command, pose)
+        hands, takes = _aimed_hands(performer, clip, command, pose, furniture)
         lowest = None
         if takes:
             carry = _carry(performer, hold_of(command.grasp, pose[2]))
@@ -138,17 +139,20 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
 
 
 def _aimed_hands(
-    performer: Performer, clip: Clip, command: AnimateCommand, pose
+    performer: Performer, clip: Clip, command: AnimateCommand, pose, furniture: Furniture
 ) -> tuple[dict, bool]:
     """Each aiming hand's target (position, orientation or None), and whether the clip
     takes an object: the palms on the faces of what it takes, on the faces of what they
-    put down at the target, or (holding nothing) the right hand's edge of a reach on the
-    target and both hands of other clips either side of it, as far apart as the clip has
-    them."""
+    put down at the target (off what stands beside it, with room for the palms), or
+    (holding nothing) the right hand's edge of a reach on the target and both hands of
+    other clips either side of it, as far apart as the clip has them."""
     if command.grasp is not None:
         return palm_targets(command.grasp, pose[2]), True
     if command.hold is not None:
-        return release_targets(command.hold, command.target, pose[2]), False
+        center = room_for_the_palms(
+            performer.body, furniture, command.hold, command.target, pose[2]
+        )
+        return release_targets(command.hold, center, pose[2]), False
     target = np.asarray(command.target, dtype=float)
     if clip.name == "reach":
         return reach_target(performer.body, target, pose[2]), False

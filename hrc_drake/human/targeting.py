@@ -103,7 +103,7 @@ def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> np.nd
 def _lowest(body: HumanBody, q: np.ndarray, side: str) -> float:
     """The height of the `side` hand's lowest point at q."""
     X = body.frame_pose(f"{side}_hand_grasp", q)
-    return X.translation()[2] - hand_below(body, X.rotation())
+    return X.translation()[2] - hand_below(body, X.rotation(), side)
 
 
 def aim_clip(

@@ -7,7 +7,7 @@ import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.grasp import hold_of
+from hrc_drake.human.grasp import PALM_GAP, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.scene import FLOOR, Run, furniture
@@ -134,6 +134,34 @@ def test_the_hands_keep_out_of_the_box_next_to_the_one_they_take():
     ]
     neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(np.pi / 2), beside))
     run = Run(schedule, STANDING, [FLOOR, TABLE], ARMS, objects=[neighbour])
+    run.record(put_down + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0], ids=["on its right", "on its left"])
+def test_a_box_put_down_against_another_leaves_room_for_the_palm_between_them(side):
+    """The person puts a box down touching another one (the target the tree gives): the box
+    goes down a hand's thickness beside it, so that the palm between the two is in neither
+    (coexistence seed 9 put material against a stack: a hand 3.4 cm in it)."""
+    taken, beside = (-0.25 * side, 0.4, TOP + 0.04), (0.08 * side, 0.4, TOP + 0.04)
+    against = (beside[0] - side * MATERIAL[1], *beside[1:])  # the boxes' faces touch
+    grasp = Grasp("both", taken, np.pi / 2, MATERIAL)
+    nearby = (Box(beside, np.pi / 2, MATERIAL),)
+    put_down = _duration("pick_table") + 0.3
+    place = AnimateCommand(
+        2, "place_table", target=against, hold=hold_of(grasp, STANDING[2]), nearby=nearby
+    )
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp)), (put_down, place)]
+    neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(np.pi / 2), beside))
+    run = Run(schedule, STANDING, [FLOOR, TABLE], ARMS, objects=[neighbour])
+    run.record(put_down + load_clips()["place_table"].events["release"])
+    q = run.positions()[run.body.plant_index]
+    palms = [run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right")]
+    left, right = palms
+    assert abs(left[2] - right[2]) <= HAND_ON_OBJECT  # both palms on the box's faces
+    assert abs(np.linalg.norm(left - right) - MATERIAL[1] - 2 * PALM_GAP) <= HAND_ON_OBJECT
+    assert 0.0 < side * (against[0] - (left[0] + right[0]) / 2) <= 0.07  # beside, not far
     run.record(put_down + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
