@@ -36,7 +36,7 @@ from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS,
 HOLDING_HANDS = {LEFT_HAND: ("left",), RIGHT_HAND: ("right",), BOTH_HANDS: SIDES}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Recorded:
     """One sampled instant of the person and the objects, linked to the one before: the
     record grows by one value per sample and is never copied (immutable, so Drake's state
