@@ -71,22 +71,18 @@ class Points:
     @cached_property
     def starts(self) -> np.ndarray:
         """Where each shape's corners start among all of them."""
-        return _read_only(np.cumsum([0, *(len(p) for p in self.points[:-1])]))
+        return np.cumsum([0, *(len(p) for p in self.points[:-1])])
 
     @cached_property
     def radii_column(self) -> np.ndarray:
-        return _read_only(np.asarray(self.radii)[None, None, :])
+        return np.asarray(self.radii)[None, None, :]
 
     @cached_property
     def stacked(self) -> np.ndarray:
-        """All the corners, shape by shape (n × 3)."""
-        return _read_only(np.vstack(self.points))
-
-
-def _read_only(array: np.ndarray) -> np.ndarray:
-    """An array kept once and handed out many times (its rows too): nobody may change it."""
-    array.setflags(write=False)
-    return array
+        """All the corners, shape by shape (n × 3; read-only: checks hand out its rows)."""
+        stacked = np.vstack(self.points)
+        stacked.setflags(write=False)
+        return stacked
 
 
 @lru_cache(maxsize=16)
@@ -166,14 +162,13 @@ class Prisms:
             lead, axis = int(np.argmax(run)), -self.axes[k, f]
         return float(depth[k, shape]), int(shape), axis, starts[shape] + lead
 
-    def deepest(self, points: np.ndarray, radii: np.ndarray, starts: np.ndarray) -> float:
-        """`overlap`'s depth alone."""
-        return float(self._depths(points, radii, starts)[-1].max())
+    def deepest(self, points: np.ndarray, arm: Points) -> float:
+        """`overlap`'s depth alone, of an arm's hull corners at `points`."""
+        return float(self._depths(points, arm.radii_column, arm.starts)[-1].max())
 
     def _depths(self, points, radii, starts):
-        """The points' projections on the prisms' axes, how far each shape reaches past
-        each face forward and backward, the lesser of the two, and per prism and shape the
-        least over the faces (the separating-axis depth)."""
+        """Projections on the axes, reaches past each face forward, backward and the lesser,
+        and per prism and shape the least over the faces (the separating-axis depth)."""
         projections = np.einsum("kfj,nj->kfn", self.axes, points)
         low = np.minimum.reduceat(projections, starts, axis=2) - radii
         high = np.maximum.reduceat(projections, starts, axis=2) + radii
@@ -215,19 +210,15 @@ class ArmCheck:
 @lru_cache(maxsize=16)
 def arm_frames(body: HumanBody, sides: tuple[str, ...]) -> tuple:
     """The plant frames of the `sides` arms' bodies, side by side (as `arm_points` has them)."""
-    return tuple(
-        body.plant.GetFrameByName(name) for side in sides for name in arm_points(body, side).frames
-    )
+    return tuple(body.plant.GetFrameByName(f) for s in sides for f in arm_points(body, s).frames)
 
 
 def arms_in_world(body: HumanBody, q: np.ndarray, sides: tuple[str, ...]) -> dict:
-    """Each of the `sides` arms' hull corners in the world at q (n × 3), from one forward
-    kinematics of the body."""
+    """The `sides` arms' hull corners in the world at q (n × 3), by one forward kinematics."""
     poses = body.world_poses(arm_frames(body, sides), body.plant_positions(q))
     world = {}
     for k, side in enumerate(sides):
-        arm = poses[k * len(ARM) : (k + 1) * len(ARM)]
-        points = arm_points(body, side).points
+        arm, points = poses[k * len(ARM) : (k + 1) * len(ARM)], arm_points(body, side).points
         world[side] = np.hstack([X @ local.T for X, local in zip(arm, points, strict=True)]).T
     return world
 
@@ -391,13 +382,7 @@ def _correction(moved: dict, start: float) -> ArmCorrection:
 
 def _clear(body, prisms: Prisms, q, holding) -> bool:
     arms = arms_in_world(body, q, SIDES)
-    return all(_depth(body, prisms, side, arms[side]) <= TOLERANCE for side in SIDES)
-
-
-def _depth(body, prisms: Prisms, side: str, world: np.ndarray) -> float:
-    """`check_arm`'s depth of the `side` arm's corners in the world."""
-    arm = arm_points(body, side)
-    return prisms.deepest(world, arm.radii_column, arm.starts)
+    return all(prisms.deepest(arms[s], arm_points(body, s)) <= TOLERANCE for s in SIDES)
 
 
 def _eased(corrected, start: float):
