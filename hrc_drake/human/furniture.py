@@ -80,6 +80,16 @@ class Furniture:
         ]
         return max(min(reached, default=FAR), 0.0)
 
+    def highest_between(self, area: Polygon, low: float, high: float) -> float | None:
+        """The highest top of the pieces over a floor area that reach between the heights
+        `low` and `high` (None: none does)."""
+        tops = [
+            p.high
+            for p in self.pieces
+            if p.high > low and p.low < high and p.outline.intersects(area)
+        ]
+        return max(tops, default=None)
+
     def behind_edge(self, piece: Obstacle, point, back, margin: float):
         """`point` (x, y) moved along the floor direction `back` until it is `margin` outside
         the piece's outline (None: it is outside already)."""

@@ -252,6 +252,8 @@ class CarryArms:
     values: np.ndarray
     hands: tuple[str, ...]
     """The sides whose hands hold the object (the other arm is free)."""
+    size: tuple[float, float, float]
+    """The held object's extents along the person's forward, sideways and up directions."""
 
     def over(self, q: np.ndarray, weight: float = 1.0) -> np.ndarray:
         """`q` with its arms moved `weight` of the way to the carry posture."""
@@ -286,7 +288,7 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     q = pose_vector(body, HOLD)
     free = arm_indices(body, tuple(targets))
     solved = body.solve(q, hand_tasks(targets), free, iterations=100, posture_weight=1e-4)
-    return CarryArms(free, solved[free], tuple(targets))
+    return CarryArms(free, solved[free], tuple(targets), size)
 
 
 def hand_tasks(

@@ -9,6 +9,7 @@ clip (`Keys`): an offset at a clip time, or the hands put on waypoints by IK the
 
 import numpy as np
 from pydrake.math import RotationMatrix
+from shapely.geometry import MultiPoint
 
 from hrc_drake.human.aiming import (
     WAYPOINT_TOLERANCE,
@@ -22,17 +23,19 @@ from hrc_drake.human.clip import Clip
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
     PALM_GAP,
+    CarryArms,
     arm_indices,
     facing,
     hand_below,
     hand_extent,
     hand_half_breadth,
     hand_tasks,
+    object_center_in_holder,
     outward,
     release_targets,
 )
 from hrc_drake.human.keyed_clips import minimum_jerk
-from hrc_drake.human.messages import Hold
+from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Hold
 from hrc_drake.human.skeleton import SIDES
 
 APPROACH = (0.06, 0.06)
@@ -276,12 +279,13 @@ def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
     return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
 
 
-def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms):
+def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
     """Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
     `end` (grasp frames in the chest's frame at the first and last time): the way runs in
     the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
     arms are solved to hold the object, the rest of the body eases from the offset
-    `trunk_from` to `trunk_to`."""
+    `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
+    it first, crosses at that height and lowers last (over what stands on the way)."""
     offsets, solved = [], None
     for k, t in enumerate(times):
         s = k / (len(times) - 1)
@@ -290,12 +294,69 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms)
         if solved is not None:  # each point starts from the last: the arms follow the way
             q[arms] = solved[arms]
         chest = body.frame_pose(CHEST, q)
-        local = _between(start, end, minimum_jerk(s))
+        local = _between(start, end, minimum_jerk(s if over is None else _crossing(s)))
         targets = {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
+        if over is not None:
+            middle = np.mean([p for p, _ in targets.values()], axis=0)
+            rise = _plateau(s) * max(over - middle[2], 0.0)
+            targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
         tasks = hand_tasks(targets, HOLDING_ORIENTATION)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
     return offsets
+
+
+def _crossing(s: float) -> float:
+    """How far across a way over something the hands are at s: in its middle half."""
+    return min(max(2.0 * s - 0.5, 0.0), 1.0)
+
+
+def _plateau(s: float) -> float:
+    """How far up to the crossing height the hands are at s: up in the first quarter of the
+    way, down in the last."""
+    return minimum_jerk(min(4.0 * s, 1.0)) * minimum_jerk(min(4.0 * (1.0 - s), 1.0))
+
+
+def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
+    """The height the holding palms' midpoint keeps while it carries the object from `a` to
+    `b` (the midpoint's world positions at the two ends): the object's bottom and the
+    hands' lowest edges CLEARANCE above whatever stands under its way higher than where the
+    object's bottom is at the lower end and lower than its top at the higher one (a stack
+    beside where a box is put down, the edge of a board it is taken off; not the board
+    above). None: nothing does."""
+    depth, width, height = carry.size
+    ahead, aside, below = object_center_in_holder(Hold(_hands_of(carry), carry.size))
+    R = facing(heading, "sides_fingers_forward")
+    hand = max(hand_extent(body, R, outward(side, R), side) for side in carry.hands)
+    lowest = max(-below + height / 2, *(hand_below(body, R, side) for side in carry.hands))
+    up = (0.0, 0.0, 1.0)
+    highest = max(below + height / 2, *(hand_extent(body, R, up, side) for side in carry.hands))
+    forward = np.array([np.cos(heading), np.sin(heading)])
+    left = np.array([-forward[1], forward[0]])
+    corners = [
+        np.asarray(end[:2]) + (ahead + u * depth / 2) * forward + (aside + v) * left
+        for end in (a, b)
+        for u in (-1.0, 1.0)
+        for v in (-width / 2 - PALM_GAP - hand, width / 2 + PALM_GAP + hand)
+    ]
+    bottom = min(a[2], b[2]) - lowest
+    area = MultiPoint(corners).convex_hull
+    top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
+    return None if top is None else top + CLEARANCE + lowest
+
+
+def _over(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around) -> float | None:
+    """The crossing height of the way of the held object from pose a to pose b."""
+    furniture, heading = around
+    middle = [
+        np.mean([body.frame_pose(f"{s}_hand_grasp", q).translation() for s in carry.hands], axis=0)
+        for q in (a, b)
+    ]
+    return crossing_height(body, furniture, carry, *middle, heading)
+
+
+def _hands_of(carry: CarryArms) -> str:
+    return BOTH_HANDS if len(carry.hands) == 2 else ONE_HAND
 
 
 def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
@@ -304,9 +365,10 @@ def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
     return {s: chest @ body.frame_pose(f"{s}_hand_grasp", q) for s in sides}
 
 
-def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "Keys"):
+def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "Keys", around):
     """Offsets of a clip that takes an object and carries it off in the carry posture:
-    `keys` up to the grasp, then the way into the carry posture."""
+    `keys` up to the grasp, then the way into the carry posture, over what stands on it
+    (`around`: the furniture and the person's heading)."""
     approach_time, _, hold_end = marks
     sides = tuple(hands)
     grasped = placed_pose(clip.sample(hold_end)) + on_target
@@ -315,9 +377,9 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     start, end = _in_chest(body, grasped, sides), _in_chest(body, carried, sides)
     times = tuple(np.linspace(hold_end, clip.duration, CARRY_SAMPLES))
     zero = np.zeros_like(on_target)
-    way = _way(
-        body, clip, placed_pose, times, start, end, on_target, zero, arm_indices(body, sides)
-    )
+    over = _over(body, carry, grasped, carried, around)
+    arms = arm_indices(body, sides)
+    way = _way(body, clip, placed_pose, times, start, end, on_target, zero, arms, over)
     way[0], way[-1] = on_target, carried - end_pose
     first = len(keys.times)
     for time, offset in zip(times, way, strict=True):
@@ -326,9 +388,12 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     return keys.motion(sides, (approach_time, clip.duration))
 
 
-def put_down(body, clip, placed_pose, hands, carry, near_offset, on_target, marks, opened, edge):
-    """Offsets of a clip that starts in the carry posture and puts the object down: the
-    hands open to `opened` and, over a surface, leave it over its `edge`."""
+def put_down(
+    body, clip, placed_pose, hands, carry, near_offset, on_target, marks, opened, edge, around
+):
+    """Offsets of a clip that starts in the carry posture and puts the object down over
+    what stands on its way (`around`: the furniture and the person's heading): the hands
+    open to `opened` and, over a surface, leave it over its `edge`."""
     approach_time, event, hold_end = marks
     sides = tuple(hands)
     start_pose = placed_pose(clip.sample(0.0))
@@ -338,7 +403,8 @@ def put_down(body, clip, placed_pose, hands, carry, near_offset, on_target, mark
     times = tuple(np.linspace(0.0, approach_time, CARRY_SAMPLES))
     zero = np.zeros_like(on_target)
     arms = arm_indices(body, sides)
-    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms)
+    over = _over(body, carry, held, above, around)
+    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over)
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
     for time, offset in zip(times, way, strict=True):

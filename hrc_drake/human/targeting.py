@@ -160,6 +160,7 @@ def aim_clip(
             marks,
             opened,
             over_the_edge(body, furniture, hands, opened, base, heading),
+            (furniture, heading),
         )
     edge = over_the_edge(body, furniture, hands, near, base, heading)
     keys = Keys(body, clip, placed_pose)
@@ -171,7 +172,8 @@ def aim_clip(
         keys.add(approach_time, near_offset)
     keys.add(event, on_target)
     if takes:
-        return carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys)
+        around = (furniture, heading)
+        return carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys, around)
     keys.add(hold_end, on_target)
     if edge is not None:
         rest = clip.duration - hold_end

@@ -9,6 +9,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
+from hrc_drake.human.skeleton import SIDES
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.scene import FLOOR, Run, furniture
 
@@ -165,6 +166,36 @@ def test_a_box_put_down_against_another_leaves_room_for_the_palm_between_them(si
     run.record(put_down + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_box_taken_from_beside_another_is_lifted_over_it_in_both_hands():
+    """Coexistence seed 2 at 40.9 s, as the person stood: material taken off the bench from
+    beside another box, which lies on the way to the carry posture. The box rises over its
+    neighbour before it comes to the body: the palms stay on its faces all the way (the
+    audit's hand-object gap; they went 2.8 cm into it where the arms were pushed out of
+    the neighbour sideways) and no arm goes into the neighbour."""
+    start = (0.0, -0.2, np.pi / 2)  # the pelvis 0.35 m from the bench's edge
+    taken, beside = (0.25, 0.27, TOP + 0.04), (0.031, 0.321, TOP + 0.04)
+    grasp = Grasp("both", taken, 0.0, MATERIAL)
+    nearby = (Box(beside, 0.102, MATERIAL),)
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby))]
+    neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(0.102), beside))
+    run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=[neighbour])
+    grasped = 0.1 + load_clips()["pick_table"].events["grasp"]
+    for t in np.arange(grasped + 0.05, 0.1 + _duration("pick_table"), 1.0 / 30.0):
+        run.record(t)
+        assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
+    run.record(0.1 + _duration("pick_table") + 0.2)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def _palms_off_the_faces(run: Run, width: float) -> float:
+    """How far each palm is from the face it holds of a box `width` across that both hands
+    hold: its centre lies midway between the palms (hrc_drake.workpieces)."""
+    q = run.positions()[run.body.plant_index]
+    left, right = (run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES)
+    return abs(float(np.linalg.norm(left - right)) - width) / 2
 
 
 def test_inspecting_at_the_table_keeps_the_forearms_above_it():
