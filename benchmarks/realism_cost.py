@@ -1,95 +1,85 @@
-"""What the realism audit costs, and what it finds, on the short run of each scenario.
+"""What the realism audit costs, and what it finds, on a short run of each scenario.
 
-Each scenario's short run (the seed and length of its scenario test) runs once; the
-RealismAudit's updates are timed inside the same run, so the audit's share of the run's CPU
-time is a ratio taken in one process. Printed per scenario: the real-time factor (simulated
-seconds per CPU second, the whole diagram), the audit's share, the tasks done in the run and
-the audit's worst values against their limits (docs/realism.md).
+Each scenario's short run is simulated twice in this process, with the audit and without it
+(the station built with no RealismAudit), the two advancing `SLICE` simulated seconds each in
+turn and timed by this process's CPU time, so that load from other processes falls on both
+alike. The audit's cost is then the run's extra time with it (its recording during the run)
+and the time its `realism` output takes to read after the run (the audit proper), both as a
+share of the run without it. Printed per scenario: the real-time factor without the audit,
+the two shares, and the audit's worst values against their limits (docs/realism.md).
 
-    .venv/bin/python benchmarks/realism_cost.py [coexistence cooperation collaboration]
+    .venv/bin/python benchmarks/realism_cost.py [--duration 30] [coexistence cooperation ...]
 """
 
 import argparse
+import sys
 import time
-from collections import Counter
+from pathlib import Path
 
 from pydrake.systems.analysis import Simulator
 
-from hrc_drake.builder import build_diagram
+from hrc_drake import builder
 from hrc_drake.evaluation.realism import LIMITS, PELVIS_SPEED_SWING, realism_metrics
 from hrc_drake.scenario import load_scenario
-from hrc_drake.systems.realism_audit import RealismAudit
 
-SHORT_RUNS = {"coexistence": (2, 45.0), "cooperation": (0, 50.0), "collaboration": (15, 80.0)}
-"""(seed, seconds) of each scenario test's short run."""
-TASKS = {
-    "coexistence": ("part_finished", "part_added"),
-    "cooperation": ("part_good", "part_scrapped"),
-    "collaboration": ("box_unloaded", "box_by_person", "handover", "regrip"),
-}
-"""The task events that count as work done."""
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from scenarios import timed_in_turns  # noqa: E402
+
+SHORT_RUNS = {"coexistence": 0, "cooperation": 0, "collaboration": 15}
+"""The seed of each scenario's short run."""
 
 
-class AuditClock:
-    """CPU time spent in the audit's updates (wraps RealismAudit._update while in use)."""
-
-    def __init__(self):
-        self.seconds = 0.0
-        self._update = RealismAudit._update
-
-    def __enter__(self):
-        update = self._update
-
-        def timed(audit, context, state):
-            start = time.process_time()
-            update(audit, context, state)
-            self.seconds += time.process_time() - start
-
-        RealismAudit._update = timed
-        return self
-
-    def __exit__(self, *exc):
-        RealismAudit._update = self._update
+def simulator(name: str, with_audit: bool):
+    """The scenario's run, initialized; without the audit its station has none."""
+    add_audit = builder._add_audit
+    if not with_audit:
+        builder._add_audit = lambda *args: None
+    try:
+        diagram = builder.build_diagram(load_scenario(name, [("seed", SHORT_RUNS[name])]))
+    finally:
+        builder._add_audit = add_audit
+    simulator = Simulator(diagram)
+    simulator.Initialize()
+    return simulator
 
 
-def short_run(name: str):
-    """CPU seconds of the whole run and of the audit, task events, realism section."""
-    seed, duration = SHORT_RUNS[name]
-    with AuditClock() as clock:  # the audit binds its update when it is built
-        diagram = build_diagram(load_scenario(name, [("seed", seed)]))
-        simulator = Simulator(diagram)
-        context = simulator.get_context()
-        simulator.Initialize()
-        start = time.process_time()
-        simulator.AdvanceTo(duration)
-        total = time.process_time() - start
-    events = Counter(
-        event.name
-        for agent in ("robot", "human")
-        for event in diagram.GetOutputPort(f"{agent}_task_events").Eval(context)
-    )
-    realism = realism_metrics(diagram.GetOutputPort("realism").Eval(context))
-    return duration, total, clock.seconds, events, realism
+def audit_cost(name: str, duration: float):
+    """CPU seconds of the run without the audit and with it, of reading the audit after the
+    run, and the audit's realism section."""
+    audited, bare = simulator(name, True), simulator(name, False)
+    with_audit, without = timed_in_turns([audited, bare], duration, time.process_time)
+    start = time.process_time()
+    realism = audited.get_system().GetOutputPort("realism").Eval(audited.get_context())
+    read = time.process_time() - start
+    return without, with_audit, read, realism_metrics(realism)
+
+
+def short_runs_asked(doc: str) -> argparse.Namespace:
+    """The scenarios (of SHORT_RUNS) and the duration a short-run benchmark is asked for."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("scenarios", nargs="*", default=list(SHORT_RUNS))
+    parser.add_argument("--duration", type=float, default=30.0)
+    return parser.parse_args()
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("scenarios", nargs="*", default=list(SHORT_RUNS))
-    args = parser.parse_args()
+    args = short_runs_asked(__doc__)
     for name in args.scenarios:
-        duration, total, audit, events, realism = short_run(name)
-        tasks = ", ".join(f"{task} {events[task]}" for task in TASKS[name])
-        print(f"{name}: {duration:.0f} s, RTF {duration / total:.2f}, audit {audit / total:.1%}")
-        print(f"  tasks: {tasks}")
+        without, with_audit, read, realism = audit_cost(name, args.duration)
+        print(
+            f"{name} seed {SHORT_RUNS[name]}, {args.duration:.0f} s: RTF without the audit "
+            f"{args.duration / without:.2f}; the audit adds {with_audit / without - 1:+.1%} "
+            f"during the run and {read / without:.1%} to read it after"
+        )
         for measure, limit in LIMITS.items():
             worst = realism[measure]
             where = worst.get("where") or worst.get("object") or worst.get("point")
             value, when = worst["max"], worst["time"]
-            print(f"  {measure:20s} {value:8.3f} (limit {limit:g}) {where} at {when:.1f} s")
+            print(f"  {measure:20s} {value:8.4f} (limit {limit:g}) {where} at {when:.2f} s")
         pelvis = realism["pelvis_speed"]
         print(
-            f"  {'pelvis_speed':20s} {pelvis['variation_max']:8.3f} (limit {PELVIS_SPEED_SWING:g})"
-            f" median {pelvis['variation_median']:.3f} over {pelvis['strides']} strides"
+            f"  {'pelvis_speed':20s} {pelvis['variation_max']:8.4f} (limit {PELVIS_SPEED_SWING:g})"
+            f" median {pelvis['variation_median']:.4f} over {pelvis['strides']} strides"
         )
 
 

@@ -1,22 +1,29 @@
-"""RealismAudit: samples the person in the world scene and keeps the realism audit.
+"""RealismAudit: records the person and the objects during the run; its `realism` output
+is the realism audit of what it recorded, worked out when it is read (after the run).
 
-Inputs: `query_object` (the world SceneGraph), `human_status` (HumanStatus) and
-`workpieces_status` (optional). Output `realism` (hrc_drake.evaluation.realism.AuditState),
-from state only. A periodic unrestricted update at the person's rate takes one sample:
-penetrations come from SceneGraph (the person against the cell's static geometry through
-the broad phase; against objects, which are filtered out of contact queries, through pair
-queries after a bounding-capsule test), sole points from the feet's collision boxes. Its
-period is a multiple of the person's (`human.audit_every`), so every sample is one of the
-person's poses.
+Inputs: `human_status` (HumanStatus), `human_positions` (the person's plant's joint
+positions) and `workpieces_status` (optional). Output `realism`
+(hrc_drake.evaluation.realism.AuditState), from state only. A periodic unrestricted update
+keeps one sample (references to the immutable statuses and a copy of the joint positions);
+its period is a multiple of the person's (`human.audit_every`), so every sample is one of
+the person's poses, as the world scene holds it at that instant.
+
+Reading `realism` poses each sample in a scene of its own (the world SceneGraph's geometry
+in a context of the audit's, `AuditScene`): penetrations come from SceneGraph (the person
+against the cell's static geometry through the broad phase; against objects, which are
+filtered out of contact queries, through pair queries after a bounding-capsule test), sole
+points from the feet's collision boxes. Nothing of this runs inside the simulation's
+steps, and a person standing still is posed once.
 """
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.value import AbstractValue
-from pydrake.geometry import QueryObject
+from pydrake.geometry import FramePoseVector
 from pydrake.multibody.tree import BodyIndex
-from pydrake.systems.framework import LeafSystem
+from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
@@ -29,114 +36,264 @@ from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS,
 HOLDING_HANDS = {LEFT_HAND: ("left",), RIGHT_HAND: ("right",), BOTH_HANDS: SIDES}
 
 
-class RealismAudit(LeafSystem):
-    """Keeps the worst penetration, hand gap, tilt, foot slip and stride speed swing."""
+@dataclass(frozen=True, eq=False)
+class Recorded:
+    """One sampled instant of the person and the objects, linked to the one before: the
+    record grows by one value per sample and is never copied (immutable, so Drake's state
+    copies share it)."""
 
-    def __init__(
-        self,
-        inspector,
-        human_plant,
-        human_instance,
-        static_geometry: dict,
-        solids: dict[str, Solid],
-        period: float,
-        stride_time: float,
-    ):
+    earlier: "Recorded | None"
+    time: float
+    pose_time: float
+    """When the person took the pose (their last update)."""
+    pelvis: tuple[float, float]
+    walking: bool
+    hands: dict[str, tuple[float, ...]]
+    """Each hand's grasp point (x, y, z, then its orientation) by side."""
+    positions: np.ndarray
+    """The person's plant's joint positions, which the world scene poses the person from."""
+    objects: tuple
+    """The objects' statuses (hrc_drake.workpieces.messages.ObjectStatus)."""
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def since(self, start: "Recorded | None") -> list["Recorded"]:
+        """The samples after `start` (one of this record's, or None: all), oldest first."""
+        samples, node = [], self
+        while node is not start:
+            samples.append(node)
+            node = node.earlier
+        return samples[::-1]
+
+    def holds(self, sample: "Recorded") -> bool:
+        """Whether `sample` is this record's last or an earlier one."""
+        node = self
+        while node is not None and node is not sample:
+            node = node.earlier
+        return node is not None
+
+
+class RealismAudit(LeafSystem):
+    """Records the person and the objects at the audit's rate (see the module docstring)."""
+
+    def __init__(self, scene: "AuditScene", period: float, stride_time: float):
         super().__init__()
         self.period = period
+        self._scene = scene
+        self._stride_time = stride_time
+        self._last_audit: tuple[Recorded | None, AuditState] = (None, AuditState())
+        self._human = self.DeclareAbstractInputPort("human_status", message_value())
+        self._positions = self.DeclareVectorInputPort("human_positions", scene.num_positions)
+        self._objects = self.DeclareAbstractInputPort("workpieces_status", message_value())
+        self._record = self.DeclareAbstractState(AbstractValue.Make(None))
+        self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._sample)
+        self.DeclareAbstractOutputPort(
+            "realism",
+            lambda: AbstractValue.Make(AuditState()),
+            self._calc_realism,
+            prerequisites_of_calc={self.abstract_state_ticket(self._record)},
+        )
+
+    def _sample(self, context, state) -> EventStatus:
+        status = value_or_none(self._human, context)
+        if status is None or not status.left_hand:
+            return EventStatus.DidNothing()
+        objects = value_or_none(self._objects, context)
+        record = Recorded(
+            earlier=context.get_abstract_state(self._record).get_value(),
+            time=context.get_time(),
+            pose_time=status.time,
+            pelvis=tuple(status.base_pose[:2]),
+            walking=status.state == "MOVEMENT",
+            hands={"left": status.left_hand, "right": status.right_hand},
+            positions=self._positions.Eval(context).copy(),
+            objects=objects.objects if objects is not None else (),
+        )
+        state.get_mutable_abstract_state(self._record).set_value(record)
+        return EventStatus.Succeeded()
+
+    def _calc_realism(self, context, output) -> None:
+        """The audit of the record: the last audit read carried on over the samples since,
+        when this record goes on from it (a run read as it goes is audited once)."""
+        record = context.get_abstract_state(self._record).get_value()
+        last, audit = self._last_audit
+        if record is None or last is None or not record.holds(last):
+            last, audit = None, AuditState()
+        for recorded in record.since(last) if record is not None else ():
+            audit = audited(audit, self._scene.sample(recorded), self._stride_time)
+        self._last_audit = (record, audit)
+        output.set_value(audit)
+
+
+class AuditScene:
+    """The world scene's geometry in a context of the audit's own, posed as at a recorded
+    sample: the cell's static geometry as it stands, the person from their joint positions,
+    the objects from their statuses."""
+
+    def __init__(self, scene_graph, mirror, human_plant, human_instance, workpieces, solids):
+        inspector = scene_graph.model_inspector()
+        self._scene_graph = scene_graph
+        self._inspector = inspector
+        self._mirror = mirror
+        self._plant = human_plant
+        self._workpieces = workpieces
+        self.num_positions = human_plant.num_positions()
+        self._contexts = None
         parts = human_parts(human_plant, inspector, human_instance)
         self._regions = {part.geometry: part.name for part in parts}
-        self._static = dict(static_geometry)
+        self._geometries = [part.geometry for part in parts]
+        self._static = static_geometry(mirror, inspector)
         self._solids = dict(solids)
-        self._stride_time = stride_time
-        self._bounds = {
-            part.geometry: bounding_segment(inspector.GetShape(part.geometry)) for part in parts
-        }
-        self._ends = {
-            g: np.column_stack([start, end]) for g, (start, end, _) in self._bounds.items()
-        }
-        """Each region's bounding segment's ends as the columns of a 3 × 2 matrix."""
-        self._radii = np.array([radius for _, _, radius in self._bounds.values()])
         self._object_radii = {name: _bounding_radius(solid) for name, solid in self._solids.items()}
+        bounds = [bounding_segment(inspector.GetShape(g)) for g in self._geometries]
+        self._radii = np.array([radius for _, _, radius in bounds])
+        self._bodies = sorted({self._body_of(g) for g in self._geometries})
+        """The person's bodies that carry collision geometry, by index."""
+        self._rows = [self._bodies.index(self._body_of(g)) for g in self._geometries]
+        self._ends = np.array(
+            [
+                self._in_body(g, np.column_stack(b[:2]))
+                for g, b in zip(self._geometries, bounds, strict=True)
+            ]
+        )
+        """Each region's bounding segment's ends in its body's frame, as the columns of a
+        3 × 2 matrix."""
         self._soles = {}
         for side in SIDES:
             foot = human_plant.GetBodyByName(f"{side}_foot", human_instance)
             (geometry,) = human_plant.GetCollisionGeometriesForBody(foot)
             length, _, height = inspector.GetShape(geometry).size()
             heel_and_toe = [[-length / 2, length / 2], [0.0, 0.0], [-height / 2, -height / 2]]
-            self._soles[side] = (geometry, np.array(heel_and_toe))
-        self._query = self.DeclareAbstractInputPort(
-            "query_object", AbstractValue.Make(QueryObject())
-        )
-        self._human = self.DeclareAbstractInputPort("human_status", message_value())
-        self._objects = self.DeclareAbstractInputPort("workpieces_status", message_value())
-        self._state = self.DeclareAbstractState(AbstractValue.Make(AuditState()))
-        self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._update)
-        self.DeclareStateOutputPort("realism", self._state)
+            row = self._bodies.index(foot.index())
+            self._soles[side] = (row, self._in_body(geometry, np.array(heel_and_toe)))
+        self._last = (None, None, None)
+        """(joint positions, objects, what the scene showed) of the last sample posed."""
+        self._objects_posed = None
 
-    def _update(self, context, state) -> None:
-        status = value_or_none(self._human, context)
-        if status is None or not status.left_hand:
-            return
-        query = self._query.Eval(context)
-        objects = value_or_none(self._objects, context)
-        objects = objects.objects if objects is not None else ()
-        held = [o for o in objects if o.holder in PERSON_HOLDERS]
-        sample = Sample(
-            time=context.get_time(),
-            static_depths=self._static_depths(query),
-            object_depths=self._object_depths(
-                query, [o for o in objects if o.holder not in PERSON_HOLDERS]
-            ),
-            hand_gaps=tuple(
-                gap for o in held for gap in self._hand_gaps(o, status, context.get_time())
-            ),
+    def _body_of(self, geometry):
+        return self._plant.GetBodyFromFrameId(self._inspector.GetFrameId(geometry)).index()
+
+    def _in_body(self, geometry, points: np.ndarray) -> np.ndarray:
+        """Points (3 × k) of the geometry's frame in its body's."""
+        return _transformed(self._inspector.GetPoseInFrame(geometry), points)
+
+    def sample(self, recorded: Recorded) -> Sample:
+        """What the audit sees of the recorded instant."""
+        held = [o for o in recorded.objects if o.holder in PERSON_HOLDERS]
+        static_depths, object_depths, sole_points = self._seen(recorded)
+        return Sample(
+            time=recorded.time,
+            static_depths=static_depths,
+            object_depths=object_depths,
+            hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, recorded)),
             tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
-            sole_points=self._sole_points(query),
-            pelvis=(status.time, *status.base_pose[:2]),
-            walking=status.state == "MOVEMENT",
-        )
-        audit = context.get_abstract_state(self._state).get_value()
-        state.get_mutable_abstract_state(self._state).set_value(
-            audited(audit, sample, self._stride_time)
+            sole_points=sole_points,
+            pelvis=(recorded.pose_time, *recorded.pelvis),
+            walking=recorded.walking,
         )
 
-    def _static_depths(self, query) -> tuple:
+    def _seen(self, recorded: Recorded) -> tuple:
+        """Penetrations and sole points: the last sample's while the person's joints and the
+        objects stay as they were (the objects' statuses are the same tuple while no object
+        moves)."""
+        positions, objects, seen = self._last
+        if objects is not recorded.objects or not np.array_equal(positions, recorded.positions):
+            bodies = self._posed_person(recorded.positions)
+            free = [o for o in recorded.objects if o.holder not in PERSON_HOLDERS]
+            seen = (
+                self._static_depths(),
+                self._object_depths(bodies, recorded, free),
+                self._sole_points(bodies),
+            )
+            self._last = (recorded.positions, recorded.objects, seen)
+        return seen
+
+    def _posed_person(self, positions: np.ndarray) -> np.ndarray:
+        """Poses the person in the scene; returns their bodies' world poses (n × 3 × 4)."""
+        if self._contexts is None:
+            self._contexts = self._new_contexts()
+        scene, plant = self._contexts
+        self._plant.SetPositions(plant, positions)
+        self._fix_poses(
+            scene,
+            self._plant.get_source_id(),
+            self._plant.get_geometry_pose_output_port().Eval(plant),
+        )
+        poses = self._plant.get_body_poses_output_port().Eval(plant)
+        return np.array([poses[b].GetAsMatrix34() for b in self._bodies])
+
+    def _query(self, objects=None):
+        """The scene's query object (with `objects`, a sample's objects placed first)."""
+        scene, _ = self._contexts
+        if objects is not None and objects is not self._objects_posed:
+            self._fix_poses(scene, self._workpieces.source_id, self._object_poses(objects))
+            self._objects_posed = objects
+        return self._scene_graph.get_query_output_port().Eval(scene)
+
+    def _object_poses(self, objects) -> FramePoseVector:
+        """Every slot where the Workpieces put it: the objects' poses, the others parked."""
+        poses = FramePoseVector()
+        for frame, parked in self._workpieces.parked_poses():
+            poses.set_value(frame, parked)
+        for o in objects:
+            if o.geometry_id is not None:
+                poses.set_value(self._inspector.GetFrameId(o.geometry_id), o.pose)
+        return poses
+
+    def _new_contexts(self):
+        """The scene's context with the cell posed (the mirror's default pose: the static
+        geometry does not move) and the objects parked, and the person's plant's context."""
+        scene = self._scene_graph.CreateDefaultContext()
+        mirror = self._mirror.CreateDefaultContext()
+        poses = self._mirror.get_geometry_pose_output_port().Eval(mirror)
+        self._fix_poses(scene, self._mirror.get_source_id(), poses)
+        if self._workpieces is not None:
+            self._fix_poses(scene, self._workpieces.source_id, self._object_poses(()))
+        return scene, self._plant.CreateDefaultContext()
+
+    def _fix_poses(self, scene_context, source, poses: FramePoseVector) -> None:
+        self._scene_graph.get_source_pose_port(source).FixValue(scene_context, poses)
+
+    def _static_depths(self) -> tuple:
+        """The person's regions in the cell's static geometry (objects are filtered out of
+        these contact queries, so where they are does not matter here)."""
         depths = []
-        for pair in query.ComputePointPairPenetration():
+        for pair in self._query().ComputePointPairPenetration():
             for own, other in ((pair.id_A, pair.id_B), (pair.id_B, pair.id_A)):
                 if own in self._regions and other in self._static:
                     depths.append((pair.depth, f"{self._regions[own]} in {self._static[other]}"))
         return tuple(depths)
 
-    def _object_depths(self, query, objects) -> tuple:
+    def _object_depths(self, bodies: np.ndarray, recorded: Recorded, objects) -> tuple:
         """Exact distances only for the pairs whose bounding shapes overlap."""
         near = [o for o in objects if o.geometry_id is not None]
         if not near:
             return ()
-        geometries = list(self._bounds)
-        ends = np.array([_transformed(query.GetPoseInWorld(g), self._ends[g]) for g in geometries])
-        ends = ends.transpose(0, 2, 1)  # (geometry, start or end, xyz)
+        posed = bodies[self._rows]
+        ends = np.einsum("nij,njk->nki", posed[:, :, :3], self._ends) + posed[:, None, :, 3]
         centers = np.array([o.pose.translation() for o in near])
         reach = self._radii[:, None] + np.array([self._object_radii[o.type] for o in near])
         close = _point_segment_distances(centers, ends[:, 0], ends[:, 1]) <= reach
+        if not close.any():
+            return ()
+        query = self._query(recorded.objects)
         depths = []
         for i, k in zip(*np.nonzero(close), strict=True):
-            obj = near[k]
+            obj, geometry = near[k], self._geometries[i]
             distance = query.ComputeSignedDistancePairClosestPoints(
-                geometries[i], obj.geometry_id
+                geometry, obj.geometry_id
             ).distance
             if distance < 0:
-                where = f"{self._regions[geometries[i]]} in {obj.type} {obj.id}"
-                depths.append((-distance, where))
+                depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
         return tuple(depths)
 
-    def _hand_gaps(self, obj, status, now: float) -> list:
+    def _hand_gaps(self, obj, recorded: Recorded) -> list:
         """Each holding hand's distance to the object's surface, both at the time of the
         person's pose (the object's pose moved back to it along its velocity)."""
         solid = self._solids[obj.type]
-        X_OW = moved(obj.pose, obj.velocity, status.time - now).inverse()
-        hands = {"left": status.left_hand, "right": status.right_hand}
+        X_OW = moved(obj.pose, obj.velocity, recorded.pose_time - recorded.time).inverse()
+        hands = recorded.hands
         return [
             (
                 abs(solid.signed_distance_to(X_OW @ np.array(hands[side][:3]))),
@@ -145,10 +302,10 @@ class RealismAudit(LeafSystem):
             for side in HOLDING_HANDS[obj.holder]
         ]
 
-    def _sole_points(self, query) -> dict[str, np.ndarray]:
+    def _sole_points(self, bodies: np.ndarray) -> dict[str, np.ndarray]:
         points = {}
-        for side, (geometry, heel_and_toe) in self._soles.items():
-            heel, toe = _transformed(query.GetPoseInWorld(geometry), heel_and_toe).T
+        for side, (row, heel_and_toe) in self._soles.items():
+            heel, toe = (bodies[row, :, :3] @ heel_and_toe + bodies[row, :, 3:]).T
             points[f"{side}_heel"] = heel
             points[f"{side}_toe"] = toe
         return points
@@ -203,23 +360,12 @@ def add_realism_audit(
     period,
     stride_time,
 ) -> RealismAudit:
-    """Adds the audit named `realism_audit`, wired to the world scene, the person and the
-    workpieces (when there are any)."""
-    inspector = scene_graph.model_inspector()
-    audit = builder.AddNamedSystem(
-        REALISM_AUDIT,
-        RealismAudit(
-            inspector,
-            human_plant,
-            human_instance,
-            static_geometry(mirror, inspector),
-            solids,
-            period,
-            stride_time,
-        ),
-    )
-    builder.Connect(scene_graph.get_query_output_port(), audit.GetInputPort("query_object"))
+    """Adds the audit named `realism_audit`, recording the person and the workpieces (when
+    there are any), and auditing them in the world scene's geometry."""
+    scene = AuditScene(scene_graph, mirror, human_plant, human_instance, workpieces, solids)
+    audit = builder.AddNamedSystem(REALISM_AUDIT, RealismAudit(scene, period, stride_time))
     builder.Connect(human.GetOutputPort("human_status"), audit.GetInputPort("human_status"))
+    builder.Connect(human.GetOutputPort("human_positions"), audit.GetInputPort("human_positions"))
     if workpieces is not None:
         builder.Connect(
             workpieces.GetOutputPort("workpieces_status"), audit.GetInputPort("workpieces_status")

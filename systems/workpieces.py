@@ -135,6 +135,10 @@ class Workpieces(LeafSystem):
         """All the workpieces' geometry (for collision filters)."""
         return GeometrySet(self.geometry_ids)
 
+    def parked_poses(self) -> list[tuple]:
+        """(frame id, pose) of every slot while it has no live object."""
+        return list(zip(self.frame_ids, self._parked, strict=True))
+
     def world(self, context: Context) -> World:
         return context.get_abstract_state(self._state).get_value()
 

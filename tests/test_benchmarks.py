@@ -1,8 +1,7 @@
 """The benchmark scripts still run against the library they measure: each is run once with
 the smallest work it accepts, and must finish with status 0 and print its figures. Nothing
-is timed here (the scripts print ratios; docs: benchmarks/). `falsify.py` and
-`realism_cost.py` are left out: their smallest runs take minutes (a search, the scenario
-tests' short runs)."""
+is timed here (the scripts print ratios; docs: benchmarks/). `falsify.py` is left out: its
+smallest run takes minutes (a search)."""
 
 import subprocess
 import sys
@@ -17,8 +16,10 @@ SMALLEST = {
     "ergonomics_cost.py": ["--duration", "0.5", "getting_started"],
     "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
+    "human_update.py": ["--duration", "0.5", "coexistence"],
     "layout.py": ["--scenario", "getting_started", "--samples", "2"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
+    "realism_cost.py": ["--duration", "0.5", "coexistence"],
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
@@ -31,7 +32,7 @@ SMALLEST = {
 
 def test_every_benchmark_is_exercised_or_named_as_too_long():
     scripts = {p.name for p in BENCHMARKS.glob("*.py")}
-    assert scripts == set(SMALLEST) | {"falsify.py", "realism_cost.py"}
+    assert scripts == set(SMALLEST) | {"falsify.py"}
 
 
 @pytest.mark.parametrize("script", SMALLEST)

@@ -91,7 +91,7 @@ class Activity:
         return arm_correction(
             performer.body,
             furniture,
-            lambda u: self._blended_pose(performer, u),
+            lambda u: self._blended_pose(performer, u, arms_only=True),
             t,
             end,
             lambda u: self._segment_at(u).holding(performer, u),
@@ -109,10 +109,12 @@ class Activity:
     def start(self) -> float:
         return self.segments[0].start
 
-    def planned_pose(self, performer: Performer, t: float) -> np.ndarray:
-        """The plan's pose; the joins between its segments fade the same way."""
+    def planned_pose(self, performer: Performer, t: float, arms_only: bool = False) -> np.ndarray:
+        """The plan's pose (`arms_only`: as far as the arms are concerned, the segments'
+        `arms_pose`); the joins between its segments fade the same way."""
         k = self._index_at(t)
-        q = self.segments[k].pose(performer, t)
+        segment = self.segments[k]
+        q = segment.arms_pose(performer, t) if arms_only else segment.pose(performer, t)
         join = self.segments[k].start
         if k > 0 and t < join + SEGMENT_BLEND:
             q = q + fade(t - join, SEGMENT_BLEND) * self.joins[k - 1]
@@ -122,8 +124,8 @@ class Activity:
         q = self._blended_pose(performer, t)
         return q if self.clear is None else self.clear.over(q, t)
 
-    def _blended_pose(self, performer: Performer, t: float) -> np.ndarray:
-        q = self.planned_pose(performer, t)
+    def _blended_pose(self, performer: Performer, t: float, arms_only: bool = False) -> np.ndarray:
+        q = self.planned_pose(performer, t, arms_only)
         if self.blend_offset is not None and t < self.blend_start + self.blend_time:
             q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset
         return q

@@ -16,7 +16,7 @@ an `ArmCorrection`: joint offsets at the checked instants, eased in and out.
 
 from bisect import bisect_right
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from pydrake.math import RollPitchYaw
@@ -68,14 +68,21 @@ class Points:
     points: tuple[np.ndarray, ...]
     radii: tuple[float, ...]
 
-    @property
+    @cached_property
     def starts(self) -> np.ndarray:
         """Where each shape's corners start among all of them."""
         return np.cumsum([0, *(len(p) for p in self.points[:-1])])
 
-    @property
+    @cached_property
     def radii_column(self) -> np.ndarray:
         return np.asarray(self.radii)[None, None, :]
+
+    @cached_property
+    def stacked(self) -> np.ndarray:
+        """All the corners, shape by shape (n × 3; read-only: checks hand out its rows)."""
+        stacked = np.vstack(self.points)
+        stacked.setflags(write=False)
+        return stacked
 
 
 @lru_cache(maxsize=16)
@@ -141,13 +148,7 @@ class Prisms:
         negative: apart by at least that much). Returns the depth, the shape, the direction
         that takes it out (the shortest way, or with `not_down` the shortest but down under
         the prism; a unit vector) and the index of the point that leads the way out."""
-        projections = np.einsum("kfj,nj->kfn", self.axes, points)
-        low = np.minimum.reduceat(projections, starts, axis=2) - radii
-        high = np.maximum.reduceat(projections, starts, axis=2) + radii
-        forward = self.ahead[:, :, None] - low
-        backward = high - self.behind[:, :, None]
-        along = np.minimum(forward, backward)
-        depth = along.min(axis=1)
+        projections, forward, backward, along, depth = self._depths(points, radii, starts)
         k, shape = np.unravel_index(np.argmax(depth), depth.shape)
         choice = along[k, :, shape].copy()
         if not_down:
@@ -160,6 +161,21 @@ class Prisms:
         else:
             lead, axis = int(np.argmax(run)), -self.axes[k, f]
         return float(depth[k, shape]), int(shape), axis, starts[shape] + lead
+
+    def deepest(self, points: np.ndarray, arm: Points) -> float:
+        """`overlap`'s depth alone, of an arm's hull corners at `points`."""
+        return float(self._depths(points, arm.radii_column, arm.starts)[-1].max())
+
+    def _depths(self, points, radii, starts):
+        """Projections on the axes, reaches past each face forward, backward and the lesser,
+        and per prism and shape the least over the faces (the separating-axis depth)."""
+        projections = np.einsum("kfj,nj->kfn", self.axes, points)
+        low = np.minimum.reduceat(projections, starts, axis=2) - radii
+        high = np.maximum.reduceat(projections, starts, axis=2) + radii
+        forward = self.ahead[:, :, None] - low
+        backward = high - self.behind[:, :, None]
+        along = np.minimum(forward, backward)
+        return projections, forward, backward, along, along.min(axis=1)
 
 
 def _faces(piece):
@@ -191,18 +207,31 @@ class ArmCheck:
     """Which way it gets out (a unit vector)."""
 
 
+@lru_cache(maxsize=16)
+def arm_frames(body: HumanBody, sides: tuple[str, ...]) -> tuple:
+    """The plant frames of the `sides` arms' bodies, side by side (as `arm_points` has them)."""
+    return tuple(body.plant.GetFrameByName(f) for s in sides for f in arm_points(body, s).frames)
+
+
+def arms_in_world(body: HumanBody, q: np.ndarray, sides: tuple[str, ...]) -> dict:
+    """The `sides` arms' hull corners in the world at q (n × 3), by one forward kinematics."""
+    poses = body.world_poses(arm_frames(body, sides), body.plant_positions(q))
+    world = {}
+    for k, side in enumerate(sides):
+        arm, points = poses[k * len(ARM) : (k + 1) * len(ARM)], arm_points(body, side).points
+        world[side] = np.hstack([X @ local.T for X, local in zip(arm, points, strict=True)]).T
+    return world
+
+
 def check_arm(
     body: HumanBody, prisms: Prisms, q: np.ndarray, side: str, not_down: bool = False
 ) -> ArmCheck:
     """How deep the `side` arm goes into the prisms at q (its deepest shape), where, and how
     it gets out (as `Prisms.overlap`)."""
     arm = arm_points(body, side)
-    frames = [body.plant.GetFrameByName(name) for name in arm.frames]
-    poses = body.world_poses(frames, body.plant_positions(q))
-    world = np.hstack([X @ local.T for X, local in zip(poses, arm.points, strict=True)]).T
+    world = arms_in_world(body, q, (side,))[side]
     depth, shape, out, k = prisms.overlap(world, arm.radii_column, arm.starts, not_down)
-    local = np.vstack(arm.points)[k]
-    return ArmCheck(depth, arm.frames[shape], local, world[k], out)
+    return ArmCheck(depth, arm.frames[shape], arm.stacked[k], world[k], out)
 
 
 def push_out(body: HumanBody, q: np.ndarray, side: str, check: ArmCheck, keep_hand: bool):
@@ -351,8 +380,9 @@ def _correction(moved: dict, start: float) -> ArmCorrection:
     return ArmCorrection(tuple(t for t, _ in keys), tuple(o for _, o in keys))
 
 
-def _clear(body, prisms, q, holding) -> bool:
-    return all(check_arm(body, prisms, q, side).depth <= TOLERANCE for side in SIDES)
+def _clear(body, prisms: Prisms, q, holding) -> bool:
+    arms = arms_in_world(body, q, SIDES)
+    return all(prisms.deepest(arms[s], arm_points(body, s)) <= TOLERANCE for s in SIDES)
 
 
 def _eased(corrected, start: float):

@@ -33,18 +33,15 @@ STRAIGHTEST_KNEE = 0.02
 
 
 def rotation_x(a: float) -> np.ndarray:
-    c, s = cos(a), sin(a)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    return np.array(_rows_x(a))
 
 
 def rotation_y(a: float) -> np.ndarray:
-    c, s = cos(a), sin(a)
-    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return np.array(_rows_y(a))
 
 
 def rotation_z(a: float) -> np.ndarray:
-    c, s = cos(a), sin(a)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return np.array(_rows_z(a))
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -53,9 +50,56 @@ def _unit(v: np.ndarray) -> np.ndarray:
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a x b of two 3-vectors (numpy's cross costs twenty times more for one pair)."""
-    return np.array(
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-    )
+    return np.array(_crossed(a, b))
+
+
+# The closed-form solve runs a few times per foot at every update of a walking person: its
+# 3-vectors and 3 × 3 rotations are plain tuples of floats (rows for a matrix), which
+# Python multiplies several times faster than numpy does arrays this small.
+
+
+def _crossed(a, b) -> tuple[float, float, float]:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _unit_of(v) -> tuple[float, float, float]:
+    x, y, z = v
+    length = sqrt(x * x + y * y + z * z)
+    return (x / length, y / length, z / length)
+
+
+def _times(R, v) -> tuple[float, float, float]:
+    """R @ v."""
+    (a, b, c), (d, e, f), (g, h, i) = R
+    x, y, z = v
+    return (a * x + b * y + c * z, d * x + e * y + f * z, g * x + h * y + i * z)
+
+
+def _transposed_times(R, v) -> tuple[float, float, float]:
+    """R.T @ v."""
+    (a, b, c), (d, e, f), (g, h, i) = R
+    x, y, z = v
+    return (a * x + d * y + g * z, b * x + e * y + h * z, c * x + f * y + i * z)
+
+
+def _product(A, B) -> tuple:
+    """A @ B, row by row."""
+    return tuple(_transposed_times(B, row) for row in A)
+
+
+def _rows_x(a: float) -> tuple:
+    c, s = cos(a), sin(a)
+    return ((1.0, 0.0, 0.0), (0.0, c, -s), (0.0, s, c))
+
+
+def _rows_y(a: float) -> tuple:
+    c, s = cos(a), sin(a)
+    return ((c, 0.0, s), (0.0, 1.0, 0.0), (-s, 0.0, c))
+
+
+def _rows_z(a: float) -> tuple:
+    c, s = cos(a), sin(a)
+    return ((c, -s, 0.0), (s, c, 0.0), (0.0, 0.0, 1.0))
 
 
 @dataclass(frozen=True)
@@ -84,6 +128,8 @@ class Legs:
         self.sole_offset = np.array(
             [sizes["foot"] / 2 - sizes["heel_back"], 0.0, -sizes["ankle_height"]]
         )
+        self._hips = {side: tuple(map(float, hip)) for side, hip in self.hip.items()}
+        """`hip` as tuples, for `solve`."""
         self.half_foot = sizes["foot"] / 2
         (foot,) = body.skeleton.body("left_foot").collisions
         self.half_foot_width = foot.shape.size[1] / 2
@@ -96,9 +142,14 @@ class Legs:
 
     def pelvis(self, q) -> tuple[np.ndarray, np.ndarray]:
         """World rotation and position of the pelvis frame (the hip joints' midpoint)."""
+        R, p = self._pelvis_rows(q)
+        return np.array(R), np.array(p)
+
+    def _pelvis_rows(self, q) -> tuple[tuple, tuple[float, float, float]]:
+        """`pelvis` as tuples: the rotation's rows, the position."""
         x, y, yaw, height = (float(q[i]) for i in self.root)
         tilt, tilt_list = (float(q[i]) for i in self.pelvis_angles)
-        return rotation_z(yaw) @ rotation_y(tilt) @ rotation_x(tilt_list), np.array([x, y, height])
+        return _product(_product(_rows_z(yaw), _rows_y(tilt)), _rows_x(tilt_list)), (x, y, height)
 
     @staticmethod
     def _hip_rotation(side: str, flexion: float, abduction: float, rotation: float):
@@ -157,16 +208,20 @@ class Legs:
         with the foot pointing along `forward` (a unit vector; its roll is what the leg
         gives). A target out of reach leaves the leg straight towards it."""
         q = np.array(q, dtype=float)
-        R_p, p = self.pelvis(q)
-        forward = _unit(np.asarray(forward, dtype=float))
-        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
-        hip = p + R_p @ self.hip[side]
-        f = R_p.T @ forward
-        along, down = self.sole_offset[0] * forward, self.sole_offset[2]
+        R_p, p = self._pelvis_rows(q)
+        forward = _unit_of([float(v) for v in forward])
+        up = _unit_of([-forward[2] * v for v in forward[:2]] + [1.0 - forward[2] * forward[2]])
+        hip = [a + b for a, b in zip(p, _times(R_p, self._hips[side]), strict=True)]
+        f = _transposed_times(R_p, forward)
+        along = [float(self.sole_offset[0]) * v for v in forward]
+        down = float(self.sole_offset[2])
+        target = [float(v) for v in position]
         for _ in range(passes):
-            d = R_p.T @ (np.asarray(position, dtype=float) - along - down * up - hip)
-            joints, up_in_pelvis = self._leg(side, d, f)
-            up = R_p @ up_in_pelvis
+            ankle = [
+                t - a - down * u - h for t, a, u, h in zip(target, along, up, hip, strict=True)
+            ]
+            joints, up_in_pelvis = self._leg(side, _transposed_times(R_p, ankle), f)
+            up = _times(R_p, up_in_pelvis)
         q[list(self.joints[side])] = np.clip(joints, self.lower[side], self.upper[side])
         return q
 
@@ -238,7 +293,7 @@ class Legs:
             u = np.array([0.0, 0.0, -L1]) + rotation_y(knee) @ w
             forward = h
             for _ in range(4):
-                R_hip = self._hip_frame(d, u, forward)
+                R_hip = np.array(self._hip_frame(d, u, forward))
                 rise = float(R_hip @ rotation_y(knee - ankle)[:, 0] @ up)
                 forward = sqrt(max(1.0 - rise * rise, 0.0)) * h + rise * up
             wrong_way = rise * along > ROLL_TOLERANCE * abs(along)  # the heel up or the toe
@@ -249,33 +304,37 @@ class Legs:
         return q
 
     @staticmethod
-    def _hip_frame(d: np.ndarray, u: np.ndarray, forward: np.ndarray) -> np.ndarray:
-        """The hip's rotation taking the thigh-frame vector u (in its x-z plane) onto d, with
-        the leg's plane holding `forward` (all in the pelvis frame)."""
-        u_hat, d_hat = _unit(u), _unit(d)
-        n = _unit(_cross(forward, d_hat))
-        into = np.array([u_hat, [0.0, 1.0, 0.0], [u_hat[2], 0.0, -u_hat[0]]])
-        return np.column_stack((d_hat, n, _cross(n, d_hat))) @ into
+    def _hip_frame(d, u, forward) -> tuple:
+        """The hip's rotation (rows) taking the thigh-frame vector u (in its x-z plane) onto
+        d, with the leg's plane holding `forward` (all in the pelvis frame)."""
+        u_hat, d_hat = _unit_of(u), _unit_of(d)
+        n = _unit_of(_crossed(forward, d_hat))
+        m = _crossed(n, d_hat)
+        ux, _, uz = u_hat
+        # (d_hat | n | m) @ (u_hat; (0, 1, 0); (uz, 0, -ux)), row by row
+        return tuple(
+            (d * ux + m * uz, n, d * uz - m * ux) for d, n, m in zip(d_hat, n, m, strict=True)
+        )
 
     @staticmethod
-    def _hip_angles(side: str, R_hip: np.ndarray) -> tuple[float, float, float]:
-        """Hip flexion, abduction and rotation of a hip rotation matrix."""
+    def _hip_angles(side: str, R_hip) -> tuple[float, float, float]:
+        """Hip flexion, abduction and rotation of a hip rotation matrix (rows)."""
         sign = 1.0 if side == "left" else -1.0
-        a = atan2(R_hip[0, 2], R_hip[2, 2])
-        b = asin(min(max(-R_hip[1, 2], -1.0), 1.0))
-        c = atan2(R_hip[1, 0], R_hip[1, 1])
+        a = atan2(R_hip[0][2], R_hip[2][2])
+        b = asin(min(max(-R_hip[1][2], -1.0), 1.0))
+        c = atan2(R_hip[1][0], R_hip[1][1])
         return -a, sign * b, -sign * c
 
-    def _leg(self, side: str, d: np.ndarray, f: np.ndarray):
+    def _leg(self, side: str, d, f):
         """Joint angles putting the ankle at d from the hip with the foot along f (both in
         the pelvis frame), and the foot's up axis they give (pelvis frame)."""
         L1, L2 = self.thigh, self.shank
-        reach = sqrt(float(d @ d))
+        reach = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
         c = (reach * reach - L1 * L1 - L2 * L2) / (2 * L1 * L2)
         knee = max(acos(min(max(c, -1.0), 1.0)), STRAIGHTEST_KNEE)
-        u = np.array([-L2 * sin(knee), 0.0, -L1 - L2 * cos(knee)])
+        u = (-L2 * sin(knee), 0.0, -L1 - L2 * cos(knee))
         R_hip = self._hip_frame(d, u, f)
-        g = R_hip.T @ f
+        g = _transposed_times(R_hip, f)
         pitch = atan2(-g[2], g[0])
-        joints = np.array([*self._hip_angles(side, R_hip), knee, knee - pitch])
-        return joints, R_hip @ np.array([sin(pitch), 0.0, cos(pitch)])
+        joints = (*self._hip_angles(side, R_hip), knee, knee - pitch)
+        return joints, _times(R_hip, (sin(pitch), 0.0, cos(pitch)))

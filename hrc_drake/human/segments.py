@@ -68,6 +68,9 @@ class ClipSegment:
             return self.aim.pose(placed, clip_time)
         return carried(placed, self.carry)
 
+    arms_pose = pose
+    """The pose as far as the arms are concerned (a WalkSegment's leaves its feet out)."""
+
 
 @dataclass(frozen=True, eq=False)
 class TurnSegment:
@@ -116,6 +119,8 @@ class TurnSegment:
         rest = self.yaw_to - self.yaw_from - authored
         q[performer.root[2]] = stepped + rest * minimum_jerk(clip_time / total if total else 1.0)
         return carried(place(performer, q, *self.position, self.yaw_from), self.carry)
+
+    arms_pose = pose
 
 
 @lru_cache(maxsize=256)

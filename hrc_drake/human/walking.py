@@ -243,6 +243,15 @@ class WalkSegment:
         return self.speed_at(t) / cruise
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
+        return self._pose(performer, t, feet=True)
+
+    def arms_pose(self, performer: Performer, t: float) -> np.ndarray:
+        """The pose as far as the arms are concerned: the legs as the clip has them, the
+        feet not placed (placing them moves the legs' joints only, and no arm hangs from
+        a leg), which the arms' check of a whole walk need not pay for."""
+        return self._pose(performer, t, feet=False)
+
+    def _pose(self, performer: Performer, t: float, feet: bool) -> np.ndarray:
         clip = performer.clips[self.clip]
         clip_time = self.clip_time(performer, t)
         gait = clip.sample(clip_time)
@@ -279,17 +288,18 @@ class WalkSegment:
             for s, (position, forward, slack) in targets.items()
         )
         q[iz] = min(q[iz], reach)
-        for side, (position, forward, slack) in targets.items():
-            if slack > 0.0:  # in the air: short of its place rather than a locked knee
-                position = performer.legs.within_reach(q, side, position, forward, STANCE_KNEE)
-            q = _above_the_floor(
-                performer.legs,
-                performer.legs.place_foot(q, side, position, forward),
-                side,
-                position,
-                forward,
-            )
-        return carried(q, self.carry)
+        return carried(_feet_placed(performer.legs, q, targets) if feet else q, self.carry)
+
+
+def _feet_placed(legs, q: np.ndarray, targets: dict) -> np.ndarray:
+    """q with each foot placed at its target (side: position, forward, slack)."""
+    for side, (position, forward, slack) in targets.items():
+        if slack > 0.0:  # in the air: short of its place rather than a locked knee
+            position = legs.within_reach(q, side, position, forward, STANCE_KNEE)
+        q = _above_the_floor(
+            legs, legs.place_foot(q, side, position, forward), side, position, forward
+        )
+    return q
 
 
 def _above_the_floor(legs, q, side: str, position, forward) -> np.ndarray:
