@@ -66,6 +66,9 @@ PASSAGE_KEYS = 4
 CARRY_SAMPLES = 8
 """Points of the way between the grasp and the carry posture at which the palms are put on
 the object's faces by IK."""
+HOLDING_SLIP = 0.02
+"""m: palms whose spacing strays further than this from the held object's are off its faces
+by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
 WAY_BEND = 0.05
 """m: how far the held object's way may pass beside the straight one between its ends (it
 runs in the chest's frame, which turns and leans with the trunk: coexistence seed 9's
@@ -303,8 +306,22 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms,
     the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
     arms are solved to hold the object, the rest of the body eases from the offset
     `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
-    it first, crosses at that height and lowers last (over what stands on the way)."""
-    offsets, solved = [], None
+    it first, crosses at that height and lowers last (over what stands on the way), if the
+    arms can hold the object up there: else it goes the straight way (lifted too high, a
+    carton in both hands was 5.3 cm off a palm: collaboration seed 15)."""
+    offsets, slipped = _held_way(
+        body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over
+    )
+    if over is not None and slipped > HOLDING_SLIP:
+        offsets, _ = _held_way(
+            body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms
+        )
+    return offsets
+
+
+def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
+    """`_way`'s offsets, and how far the palms' spacing strays from the object's on it."""
+    offsets, solved, slipped = [], None, 0.0
     for k, t in enumerate(times):
         s = k / (len(times) - 1)
         placed = placed_pose(clip.sample(t))
@@ -321,7 +338,17 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms,
         tasks = hand_tasks(targets, HOLDING_ORIENTATION)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
-    return offsets
+        slipped = max(slipped, _spacing_error(body, solved, targets))
+    return offsets, slipped
+
+
+def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
+    """How far the holding palms' spacing at q is from their targets' (0: one hand)."""
+    if len(targets) < 2:
+        return 0.0
+    at = [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in targets]
+    aimed = [p for p, _ in targets.values()]
+    return abs(float(np.linalg.norm(at[0] - at[1]) - np.linalg.norm(aimed[0] - aimed[1])))
 
 
 def _crossing(s: float) -> float:
