@@ -41,9 +41,15 @@ from hrc_drake.human.skeleton import SIDES
 APPROACH = (0.06, 0.06)
 """m: where the hands come to before they close on the target: this far outwards (palms
 on an object's faces; a reaching hand: back towards the body) and this far above it."""
-LEAVE_AT = (0.3, 0.6)
+LEAVE_AT = (0.3, 0.6, 0.8)
 """Fractions of the time from letting go to the clip's end at which hands leaving a surface
-are back above their target, and over the surface's edge again."""
+are back above their target, over the surface's edge again, and down below its top outside
+the edge (from there they swing back to the body's sides)."""
+LOWERED = 0.25
+"""m: how far hands leaving a surface go straight down outside its edge: below its top,
+before the clip's own arms take them back to the body's sides (on the way straight there,
+a hand over the edge swung forward and down into a box standing at it: coexistence seed 9,
+2 cm)."""
 CLEARANCE = 0.02
 """m: the hands' lowest edge passes this far above what they pass over."""
 EDGE_MARGIN = 0.015
@@ -60,6 +66,13 @@ PASSAGE_KEYS = 4
 CARRY_SAMPLES = 8
 """Points of the way between the grasp and the carry posture at which the palms are put on
 the object's faces by IK."""
+HOLDING_SLIP = 0.02
+"""m: palms whose spacing strays further than this from the held object's are off its faces
+by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
+WAY_BEND = 0.05
+"""m: how far the held object's way may pass beside the straight one between its ends (it
+runs in the chest's frame, which turns and leans with the trunk: coexistence seed 9's
+box passed 3 cm outside it, over a stack)."""
 CHEST = "chest"
 """The body the hands' way with a held object is laid out in."""
 HOLDING_ORIENTATION = 1.0
@@ -190,7 +203,7 @@ def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMo
     edge = over_the_edge(body, furniture, hands, up, base, heading)
     keys.reach(LEAVE_AT[0] * WITHDRAWAL, up)
     if edge is not None:
-        keys.passage(LEAVE_AT[1] * WITHDRAWAL, edge)
+        keys.off_the_edge(edge, WITHDRAWAL * np.array(LEAVE_AT[1:]))
     keys.add(WITHDRAWAL, np.zeros_like(q))
     return keys.motion(tuple(hands), (0.0, 0.0))
 
@@ -237,6 +250,14 @@ class Keys:
             key[arms] = a + s * (b - a) - self._pose(t, 0.0)[arms]
             self.add(t, key)
         self.paths.append((first, len(self.times) - 1))
+
+    def off_the_edge(self, edge: dict, times) -> None:
+        """Keys that take the hands over a surface's `edge` (its waypoints) and then straight
+        down outside it, at the two `times`."""
+        self.passage(times[0], edge)
+        self.reach(
+            times[1], {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
+        )
 
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset
@@ -285,8 +306,22 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms,
     the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
     arms are solved to hold the object, the rest of the body eases from the offset
     `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
-    it first, crosses at that height and lowers last (over what stands on the way)."""
-    offsets, solved = [], None
+    it first, crosses at that height and lowers last (over what stands on the way), if the
+    arms can hold the object up there: else it goes the straight way (lifted too high, a
+    carton in both hands was 5.3 cm off a palm: collaboration seed 15)."""
+    offsets, slipped = _held_way(
+        body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over
+    )
+    if over is not None and slipped > HOLDING_SLIP:
+        offsets, _ = _held_way(
+            body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms
+        )
+    return offsets
+
+
+def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
+    """`_way`'s offsets, and how far the palms' spacing strays from the object's on it."""
+    offsets, solved, slipped = [], None, 0.0
     for k, t in enumerate(times):
         s = k / (len(times) - 1)
         placed = placed_pose(clip.sample(t))
@@ -303,7 +338,17 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms,
         tasks = hand_tasks(targets, HOLDING_ORIENTATION)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
-    return offsets
+        slipped = max(slipped, _spacing_error(body, solved, targets))
+    return offsets, slipped
+
+
+def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
+    """How far the holding palms' spacing at q is from their targets' (0: one hand)."""
+    if len(targets) < 2:
+        return 0.0
+    at = [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in targets]
+    aimed = [p for p, _ in targets.values()]
+    return abs(float(np.linalg.norm(at[0] - at[1]) - np.linalg.norm(aimed[0] - aimed[1])))
 
 
 def _crossing(s: float) -> float:
@@ -340,7 +385,7 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
         for v in (-width / 2 - PALM_GAP - hand, width / 2 + PALM_GAP + hand)
     ]
     bottom = min(a[2], b[2]) - lowest
-    area = MultiPoint(corners).convex_hull
+    area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
     top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
     return None if top is None else top + CLEARANCE + lowest
 
@@ -417,6 +462,7 @@ def put_down(
         release_end, offset_to(body, placed_pose, clip, release_end, on_target, opened, on_target)
     )
     if edge is not None:
-        keys.passage(release_end + LEAVE_AT[1] * (clip.duration - release_end), edge)
+        rest = clip.duration - release_end
+        keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]))
     keys.add(clip.duration, zero)
     return keys.motion(sides, (0.0, release_end))

@@ -178,6 +178,6 @@ def aim_clip(
     if edge is not None:
         rest = clip.duration - hold_end
         keys.reach(hold_end + LEAVE_AT[0] * rest, near)
-        keys.passage(hold_end + LEAVE_AT[1] * rest, edge)
+        keys.off_the_edge(edge, hold_end + rest * np.array(LEAVE_AT[1:]))
     keys.add(clip.duration, np.zeros_like(on_target))
     return keys.motion(tuple(hands), (approach_time, hold_end))

@@ -190,6 +190,36 @@ def test_a_box_taken_from_beside_another_is_lifted_over_it_in_both_hands():
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
+def test_a_box_put_down_beside_a_stack_goes_over_the_stack_in_both_hands():
+    """Coexistence seed 9 at 64.8 s, as the person stood: material put down on the bench to
+    the right of a stack of three boxes that stands in front of the person, between the
+    carry posture and the target. The box goes over the stack held in both palms (it went
+    through the stack's top box, the arm pushed out of it carried a palm 2.2 cm off the
+    box's face) and lands a palm's room beside it."""
+    start = (0.0, -0.2, np.pi / 2)  # the pelvis 0.35 m from the bench's edge
+    stack = [((0.25, 0.27, 0.94), 0.0), ((0.232, 0.316, 1.02), 0.104), ((0.201, 0.333, 1.1), 0.0)]
+    nearby = tuple(Box(center, yaw, MATERIAL) for center, yaw in stack)
+    grasp = Grasp("both", (-0.25, 0.27, TOP + 0.04), 0.0, MATERIAL)
+    put_down = _duration("pick_table") + 0.3
+    place = AnimateCommand(
+        2,
+        "place_table",
+        target=(0.41, 0.249, TOP + 0.04),
+        hold=hold_of(grasp, start[2]),
+        nearby=nearby,
+    )
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp)), (put_down, place)]
+    boxes = [(MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(yaw), c)) for c, yaw in stack]
+    run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=boxes)
+    release = put_down + load_clips()["place_table"].events["release"]
+    for t in np.arange(put_down, release, 1.0 / 30.0):
+        run.record(t)
+        assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
+    run.record(put_down + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
 def _palms_off_the_faces(run: Run, width: float) -> float:
     """How far each palm is from the face it holds of a box `width` across that both hands
     hold: its centre lies midway between the palms (hrc_drake.workpieces)."""
