@@ -17,7 +17,8 @@ sets it down, and opens the hands outwards before they go back. The corrections 
 offsets at key times of the clip, blended smoothly in between (`AimedMotion`).
 
 The IK and the offsets' player are hrc_drake.human.aiming; the ways in and out (from above,
-over a surface's edge, taking, putting down, withdrawing) are hrc_drake.human.hand_ways.
+over a surface's edge, withdrawing) are hrc_drake.human.hand_ways, with an object held
+(taking, putting down) hrc_drake.human.held_ways.
 """
 
 import numpy as np
@@ -31,12 +32,11 @@ from hrc_drake.human.hand_ways import (
     LEAVE_AT,
     Keys,
     approached,
-    carried_off,
     clearing,
     over_the_edge,
-    put_down,
     room_beside,
 )
+from hrc_drake.human.held_ways import carried_off, put_down
 
 TARGETED = {
     "pick_floor": "grasp",

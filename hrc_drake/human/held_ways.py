@@ -1,0 +1,233 @@
+"""The ways of an object held in the hands: from taking it into the carry posture
+(`carried_off`) and from the carry posture to putting it down (`put_down`). The palms stay
+on its faces all the way, in the chest's frame so that the arms follow the trunk, and the
+object rises over whatever stands beside its way before it crosses (`crossing_height`).
+Each way is keys of the clip (hrc_drake.human.hand_ways.Keys) that
+hrc_drake.human.targeting lays out round the clip's event.
+"""
+
+import numpy as np
+from pydrake.math import RotationMatrix
+from shapely.geometry import MultiPoint
+
+from hrc_drake.human.aiming import offset_to
+from hrc_drake.human.body import HumanBody
+from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.grasp import (
+    PALM_GAP,
+    CarryArms,
+    arm_indices,
+    facing,
+    hand_below,
+    hand_extent,
+    hand_tasks,
+    object_center_in_holder,
+    outward,
+)
+from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys
+from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Hold
+
+CARRY_SAMPLES = 8
+"""Points of the way between the grasp and the carry posture at which the palms are put on
+the object's faces by IK."""
+HOLDING_SLIP = 0.02
+"""m: palms whose spacing strays further than this from the held object's are off its faces
+by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
+WAY_BEND = 0.05
+"""m: how far the held object's way may pass beside the straight one between its ends (it
+runs in the chest's frame, which turns and leans with the trunk: coexistence seed 9's
+box passed 3 cm outside it, over a stack)."""
+CHEST = "chest"
+"""The body the hands' way with a held object is laid out in."""
+HOLDING_ORIENTATION = 1.0
+"""Weight of the hands' orientation while they hold an object on its way: a palm that
+tilts pokes its fingers into the object."""
+
+
+def _between(start: dict, end: dict, s: float) -> dict:
+    """Targets of the holding hands a fraction s of the way from their grasp frames `start`
+    to `end` (in one frame): each hand turns about its palm's normal as the object turns, two
+    palms keep their spacing about their midpoint, which moves straight."""
+    sides = tuple(start)
+    turned = {side: _slerp(start[side].rotation(), end[side].rotation(), s) for side in sides}
+    if len(sides) == 1:
+        (side,) = sides
+        a, b = start[side].translation(), end[side].translation()
+        return {side: (a + s * (b - a), turned[side])}
+    a, b = (np.mean([X[side].translation() for side in sides], axis=0) for X in (start, end))
+    width = float(np.linalg.norm(start["left"].translation() - start["right"].translation()))
+    middle = a + s * (b - a)
+    return {side: (middle + outward(side, R) * width / 2, R) for side, R in turned.items()}
+
+
+def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
+    return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
+
+
+def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
+    """Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
+    `end` (grasp frames in the chest's frame at the first and last time): the way runs in
+    the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
+    arms are solved to hold the object, the rest of the body eases from the offset
+    `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
+    it first, crosses at that height and lowers last (over what stands on the way), if the
+    arms can hold the object up there: else it goes the straight way (lifted too high, a
+    carton in both hands was 5.3 cm off a palm: collaboration seed 15)."""
+    offsets, slipped = _held_way(
+        body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over
+    )
+    if over is not None and slipped > HOLDING_SLIP:
+        offsets, _ = _held_way(
+            body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms
+        )
+    return offsets
+
+
+def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
+    """`_way`'s offsets, and how far the palms' spacing strays from the object's on it."""
+    offsets, solved, slipped = [], None, 0.0
+    for k, t in enumerate(times):
+        s = k / (len(times) - 1)
+        placed = placed_pose(clip.sample(t))
+        q = placed + trunk_from + s * (trunk_to - trunk_from)
+        if solved is not None:  # each point starts from the last: the arms follow the way
+            q[arms] = solved[arms]
+        chest = body.frame_pose(CHEST, q)
+        local = _between(start, end, minimum_jerk(s if over is None else _crossing(s)))
+        targets = {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
+        if over is not None:
+            middle = np.mean([p for p, _ in targets.values()], axis=0)
+            rise = _plateau(s) * max(over - middle[2], 0.0)
+            targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION)
+        solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
+        offsets.append(solved - placed)
+        slipped = max(slipped, _spacing_error(body, solved, targets))
+    return offsets, slipped
+
+
+def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
+    """How far the holding palms' spacing at q is from their targets' (0: one hand)."""
+    if len(targets) < 2:
+        return 0.0
+    at = [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in targets]
+    aimed = [p for p, _ in targets.values()]
+    return abs(float(np.linalg.norm(at[0] - at[1]) - np.linalg.norm(aimed[0] - aimed[1])))
+
+
+def _crossing(s: float) -> float:
+    """How far across a way over something the hands are at s: in its middle half."""
+    return min(max(2.0 * s - 0.5, 0.0), 1.0)
+
+
+def _plateau(s: float) -> float:
+    """How far up to the crossing height the hands are at s: up in the first quarter of the
+    way, down in the last."""
+    return minimum_jerk(min(4.0 * s, 1.0)) * minimum_jerk(min(4.0 * (1.0 - s), 1.0))
+
+
+def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
+    """The height the holding palms' midpoint keeps while it carries the object from `a` to
+    `b` (the midpoint's world positions at the two ends): the object's bottom and the
+    hands' lowest edges CLEARANCE above whatever stands under its way higher than where the
+    object's bottom is at the lower end and lower than its top at the higher one (a stack
+    beside where a box is put down, the edge of a board it is taken off; not the board
+    above). None: nothing does."""
+    depth, width, height = carry.size
+    ahead, aside, below = object_center_in_holder(Hold(_hands_of(carry), carry.size))
+    R = facing(heading, "sides_fingers_forward")
+    hand = max(hand_extent(body, R, outward(side, R), side) for side in carry.hands)
+    lowest = max(-below + height / 2, *(hand_below(body, R, side) for side in carry.hands))
+    up = (0.0, 0.0, 1.0)
+    highest = max(below + height / 2, *(hand_extent(body, R, up, side) for side in carry.hands))
+    forward = np.array([np.cos(heading), np.sin(heading)])
+    left = np.array([-forward[1], forward[0]])
+    corners = [
+        np.asarray(end[:2]) + (ahead + u * depth / 2) * forward + (aside + v) * left
+        for end in (a, b)
+        for u in (-1.0, 1.0)
+        for v in (-width / 2 - PALM_GAP - hand, width / 2 + PALM_GAP + hand)
+    ]
+    bottom = min(a[2], b[2]) - lowest
+    area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
+    top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
+    return None if top is None else top + CLEARANCE + lowest
+
+
+def _over(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around) -> float | None:
+    """The crossing height of the way of the held object from pose a to pose b."""
+    furniture, heading = around
+    middle = [
+        np.mean([body.frame_pose(f"{s}_hand_grasp", q).translation() for s in carry.hands], axis=0)
+        for q in (a, b)
+    ]
+    return crossing_height(body, furniture, carry, *middle, heading)
+
+
+def _hands_of(carry: CarryArms) -> str:
+    return BOTH_HANDS if len(carry.hands) == 2 else ONE_HAND
+
+
+def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
+    """The hands' grasp frames in the chest's frame at q."""
+    chest = body.frame_pose(CHEST, q).inverse()
+    return {s: chest @ body.frame_pose(f"{s}_hand_grasp", q) for s in sides}
+
+
+def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "Keys", around):
+    """Offsets of a clip that takes an object and carries it off in the carry posture:
+    `keys` up to the grasp, then the way into the carry posture, over what stands on it
+    (`around`: the furniture and the person's heading)."""
+    approach_time, _, hold_end = marks
+    sides = tuple(hands)
+    grasped = placed_pose(clip.sample(hold_end)) + on_target
+    end_pose = placed_pose(clip.sample(clip.duration))
+    carried = carry.over(end_pose)
+    start, end = _in_chest(body, grasped, sides), _in_chest(body, carried, sides)
+    times = tuple(np.linspace(hold_end, clip.duration, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    over = _over(body, carry, grasped, carried, around)
+    arms = arm_indices(body, sides)
+    way = _way(body, clip, placed_pose, times, start, end, on_target, zero, arms, over)
+    way[0], way[-1] = on_target, carried - end_pose
+    first = len(keys.times)
+    for time, offset in zip(times, way, strict=True):
+        keys.add(time, offset)
+    keys.paths.append((first, len(keys.times) - 1))
+    return keys.motion(sides, (approach_time, clip.duration))
+
+
+def put_down(
+    body, clip, placed_pose, hands, carry, near_offset, on_target, marks, opened, edge, around
+):
+    """Offsets of a clip that starts in the carry posture and puts the object down over
+    what stands on its way (`around`: the furniture and the person's heading): the hands
+    open to `opened` and, over a surface, leave it over its `edge`."""
+    approach_time, event, hold_end = marks
+    sides = tuple(hands)
+    start_pose = placed_pose(clip.sample(0.0))
+    held = carry.over(start_pose)
+    above = placed_pose(clip.sample(approach_time)) + near_offset
+    start, end = _in_chest(body, held, sides), _in_chest(body, above, sides)
+    times = tuple(np.linspace(0.0, approach_time, CARRY_SAMPLES))
+    zero = np.zeros_like(on_target)
+    arms = arm_indices(body, sides)
+    over = _over(body, carry, held, above, around)
+    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over)
+    way[0], way[-1] = held - start_pose, near_offset
+    keys = Keys(body, clip, placed_pose)
+    for time, offset in zip(times, way, strict=True):
+        keys.add(time, offset)
+    keys.paths.append((0, CARRY_SAMPLES - 1))
+    keys.add(event, on_target)
+    keys.add(hold_end, on_target)
+    release_end = hold_end + 0.3 * (clip.duration - hold_end)
+    keys.add(
+        release_end, offset_to(body, placed_pose, clip, release_end, on_target, opened, on_target)
+    )
+    if edge is not None:
+        rest = clip.duration - release_end
+        keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]))
+    keys.add(clip.duration, zero)
+    return keys.motion(sides, (0.0, release_end))
