@@ -86,7 +86,7 @@ class RealismAudit(LeafSystem):
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self._positions = self.DeclareVectorInputPort("human_positions", scene.num_positions)
         self._objects = self.DeclareAbstractInputPort("workpieces_status", message_value())
-        self._record = self.DeclareAbstractState(AbstractValue.Make(None))
+        self._record = self.DeclareAbstractState(message_value())
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._sample)
         self.DeclareAbstractOutputPort(
             "realism",
@@ -101,7 +101,7 @@ class RealismAudit(LeafSystem):
             return EventStatus.DidNothing()
         objects = value_or_none(self._objects, context)
         record = Recorded(
-            earlier=context.get_abstract_state(self._record).get_value(),
+            earlier=self._recorded(context),
             time=context.get_time(),
             pose_time=status.time,
             pelvis=tuple(status.base_pose[:2]),
@@ -113,10 +113,16 @@ class RealismAudit(LeafSystem):
         state.get_mutable_abstract_state(self._record).set_value(record)
         return EventStatus.Succeeded()
 
+    def _recorded(self, context) -> "Recorded | None":
+        """The record so far (None before the first sample: the state starts as the message
+        model's placeholder, as `AbstractValue.Make(None)` does not construct in newer Drake)."""
+        value = context.get_abstract_state(self._record).get_value()
+        return value if isinstance(value, Recorded) else None
+
     def _calc_realism(self, context, output) -> None:
         """The audit of the record: the last audit read carried on over the samples since,
         when this record goes on from it (a run read as it goes is audited once)."""
-        record = context.get_abstract_state(self._record).get_value()
+        record = self._recorded(context)
         last, audit = self._last_audit
         if record is None or last is None or not record.holds(last):
             last, audit = None, AuditState()
