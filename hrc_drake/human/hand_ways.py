@@ -102,7 +102,7 @@ def room_for_the_palms(body: HumanBody, furniture: Furniture, hold: Hold, center
     palms = release_targets(hold, center, heading)
     left = np.array([-np.sin(heading), np.cos(heading), 0.0])
     half_height = hold.size[2] / 2
-    slack = {}
+    slack, breadth = {}, hand_half_breadth(body)
     for side, across in (("left", left), ("right", -left)):
         need, low, high, start = 0.0, center[2] - half_height, center[2] + half_height, center
         if side in palms:
@@ -110,7 +110,6 @@ def room_for_the_palms(body: HumanBody, furniture: Furniture, hold: Hold, center
             need = PALM_GAP + hand_extent(body, R, across, side) + EDGE_MARGIN
             low = min(low, position[2] - hand_below(body, R, side))
             start = position - across * (hold.size[1] / 2 + PALM_GAP)
-        breadth = hand_half_breadth(body)
         free = furniture.clear_way(start, across, breadth, low, high) - hold.size[1] / 2
         slack[side] = free - need
     short, other = sorted(slack, key=slack.get)

@@ -65,8 +65,9 @@ def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
     return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
 
 
-def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
-    """Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
+def _way(*way, over=None):
+    """`way` = (body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms).
+    Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
     `end` (grasp frames in the chest's frame at the first and last time): the way runs in
     the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
     arms are solved to hold the object, the rest of the body eases from the offset
@@ -74,13 +75,9 @@ def _way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms,
     it first, crosses at that height and lowers last (over what stands on the way), if the
     arms can hold the object up there: else it goes the straight way (lifted too high, a
     carton in both hands was 5.3 cm off a palm: collaboration seed 15)."""
-    offsets, slipped = _held_way(
-        body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over
-    )
+    offsets, slipped = _held_way(*way, over)
     if over is not None and slipped > HOLDING_SLIP:
-        offsets, _ = _held_way(
-            body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms
-        )
+        offsets, _ = _held_way(*way)
     return offsets
 
 
@@ -189,7 +186,7 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     zero = np.zeros_like(on_target)
     over = _over(body, carry, grasped, carried, around)
     arms = arm_indices(body, sides)
-    way = _way(body, clip, placed_pose, times, start, end, on_target, zero, arms, over)
+    way = _way(body, clip, placed_pose, times, start, end, on_target, zero, arms, over=over)
     way[0], way[-1] = on_target, carried - end_pose
     first = len(keys.times)
     for time, offset in zip(times, way, strict=True):
@@ -214,7 +211,7 @@ def put_down(
     zero = np.zeros_like(on_target)
     arms = arm_indices(body, sides)
     over = _over(body, carry, held, above, around)
-    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over)
+    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over=over)
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
     for time, offset in zip(times, way, strict=True):
