@@ -229,22 +229,38 @@ def test_a_box_taken_off_another_stays_between_the_palms():
     _picked_up_between_the_palms(run)
 
 
-def test_a_crate_taken_out_of_a_block_of_crates_has_the_palms_between_them():
-    """Collaboration seed 5 at 67.4 s, as the person stood: a crate taken from the floor out of
-    the 2 x 2 block on the pallet, 7 cm from its neighbour on the side of a palm. At the grasp
-    no palm or forearm is in the crate taken or in its neighbours (with 1 cm between crates a
-    palm went 4.4 cm into one; with room, the right arm pushed up off its neighbour went
-    1.7 cm into the crate it took)."""
-    crate = (0.28, 0.34, 0.24)
-    taken, others = (0.6, 0.05, 0.264), [(0.95, 0.05, 0.264), (0.6, 0.4, 0.264)]
-    grasp = Grasp("both", taken, 0.0, crate)
-    nearby = tuple(Box(center, 0.0, crate) for center in others)
+CRATE, PALLET_CARTON = (0.28, 0.34, 0.24), (0.26, 0.3, 0.2)
+"""Collaboration's boxes on the pallet: 0.35 m apart in a 2 x 2 block, cartons on crates."""
+CRATES = [((0.6, 0.05, 0.264), CRATE), ((0.95, 0.05, 0.264), CRATE), ((0.6, 0.4, 0.264), CRATE)]
+
+
+@pytest.mark.parametrize(
+    "taken, others",
+    [
+        (CRATES[0], CRATES[1:]),
+        (((0.6, 0.05, 0.484), PALLET_CARTON), [*CRATES, ((0.95, 0.05, 0.484), PALLET_CARTON)]),
+    ],
+    ids=["crate", "carton on a crate"],
+)
+def test_a_box_taken_out_of_the_pallets_block_has_each_palm_on_its_face(taken, others):
+    """Collaboration seed 5 at 67.4 s and 10.2 s, as the person stood: a box taken from the
+    floor out of the block on the pallet, its neighbour on the right palm's side 7 or 9 cm
+    away. At the grasp each palm is on its own face and no palm or forearm is in the box
+    taken or its neighbours (1 cm from the next crate a palm went 4.4 cm into it; pushed off
+    a carton 5 cm away, a forearm went 2.8 cm into the carton taken and its palm 2.4 cm)."""
+    (center, size) = taken
+    grasp = Grasp("both", center, 0.0, size)
+    nearby = tuple(Box(c, 0.0, s) for c, s in others)
     schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp, nearby=nearby))]
-    crates = [(crate, RigidTransform(center)) for center in [taken, *others]]
+    boxes = [(s, RigidTransform(c)) for c, s in [taken, *others]]
     pallet = furniture("euro_pallet", 0.9, 0.275)
-    run = Run(schedule, (0.55, -0.385, np.pi / 2), [FLOOR, pallet], ARMS, objects=crates)
+    run = Run(schedule, (0.55, -0.385, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
     run.record(0.1 + load_clips()["pick_floor"].events["grasp"] + 0.1)
-    assert _palms_off_the_faces(run, width=crate[0]) <= HAND_ON_OBJECT
+    q = run.positions()[run.body.plant_index]
+    for side in SIDES:
+        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
+        off = Solid("box", size).signed_distance_to(palm - np.asarray(center))
+        assert 0.0 <= off <= HAND_ON_OBJECT, (side, off)
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
