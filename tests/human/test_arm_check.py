@@ -4,8 +4,8 @@ stand exactly where the played walk has them and the check finds the same, for l
 
 import numpy as np
 
+from hrc_drake.human.arm_shapes import arms_in_world
 from hrc_drake.human.body import human_body
-from hrc_drake.human.clearance import arms_in_world
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.legs import LEG_JOINTS
 from hrc_drake.human.messages import MoveCommand
