@@ -33,6 +33,10 @@ TOLERANCE = -0.01
 """m: an arm this far into the furniture, or less, is left as it is: negative, an arm this
 close to it is moved off too (points on the shapes miss how deep two boxes that cross
 edge to edge overlap, by up to about a centimetre)."""
+HELD_TOLERANCE = 0.0
+"""m: the same for the arm of a hand that holds something or is aimed at it: moved only
+when it goes in. Its hand is where the grasp puts it, just over what the object stands on
+(hrc_drake.human.grasp.GRIP_ABOVE_SUPPORT); pushed off that, the palm leaves the object."""
 MARGIN = 0.02
 """m: an arm moved off the furniture ends this far clear of it."""
 SAMPLE = 1.0 / 30.0
@@ -260,7 +264,7 @@ def clear_of(body: HumanBody, near: Prisms, q: np.ndarray, holding=()) -> np.nda
         for _ in range(PUSHES):
             held = side in holding
             check = check_arm(body, near, moved, side, not_down=not held)
-            if check.depth <= TOLERANCE:
+            if check.depth <= _tolerance(side, holding):
                 break
             moved = push_out(body, moved, side, check, held)
     return None if moved is q else moved
@@ -382,7 +386,13 @@ def _correction(moved: dict, start: float) -> ArmCorrection:
 
 def _clear(body, prisms: Prisms, q, holding) -> bool:
     arms = arms_in_world(body, q, SIDES)
-    return all(prisms.deepest(arms[s], arm_points(body, s)) <= TOLERANCE for s in SIDES)
+    return all(
+        prisms.deepest(arms[s], arm_points(body, s)) <= _tolerance(s, holding) for s in SIDES
+    )
+
+
+def _tolerance(side: str, holding) -> float:
+    return HELD_TOLERANCE if side in holding else TOLERANCE
 
 
 def _eased(corrected, start: float):

@@ -181,13 +181,7 @@ def test_a_box_taken_from_beside_another_is_lifted_over_it_in_both_hands():
     schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby))]
     neighbour = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(0.102), beside))
     run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=[neighbour])
-    grasped = 0.1 + load_clips()["pick_table"].events["grasp"]
-    for t in np.arange(grasped + 0.05, 0.1 + _duration("pick_table"), 1.0 / 30.0):
-        run.record(t)
-        assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
-    run.record(0.1 + _duration("pick_table") + 0.2)
-    assert run.status().results.outcome_of(1) == "succeeded"
-    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+    _picked_up_between_the_palms(run)
 
 
 def test_a_box_put_down_beside_a_stack_goes_over_the_stack_in_both_hands():
@@ -217,6 +211,68 @@ def test_a_box_put_down_beside_a_stack_goes_over_the_stack_in_both_hands():
         assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
     run.record(put_down + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_box_taken_off_another_stays_between_the_palms():
+    """Coexistence seed 5 at 66.6 s, as the person stood: material taken off another box on
+    the bench. The palms close just over the box below (the grasp's height over what the
+    object stands on) and stay on the faces of the one they lift (the arm check pushed a
+    holding hand up off the box below, 2.4 cm off the face it held)."""
+    start = (0.0, -0.2, np.pi / 2)  # the pelvis 0.35 m from the bench's edge
+    below, taken = ((0.315, 0.314, TOP + 0.04), 0.1), (0.34, 0.308, TOP + 0.12)
+    grasp = Grasp("both", taken, -0.003, MATERIAL)
+    nearby = (Box(*below, MATERIAL),)
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby))]
+    box_below = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(below[1]), below[0]))
+    run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=[box_below])
+    _picked_up_between_the_palms(run)
+
+
+CRATE, PALLET_CARTON = (0.28, 0.34, 0.24), (0.26, 0.3, 0.2)
+"""Collaboration's boxes on the pallet: 0.35 m apart in a 2 x 2 block, cartons on crates."""
+CRATES = [((0.6, 0.05, 0.264), CRATE), ((0.95, 0.05, 0.264), CRATE), ((0.6, 0.4, 0.264), CRATE)]
+
+
+@pytest.mark.parametrize(
+    "taken, others",
+    [
+        (CRATES[0], CRATES[1:]),
+        (((0.6, 0.05, 0.484), PALLET_CARTON), [*CRATES, ((0.95, 0.05, 0.484), PALLET_CARTON)]),
+    ],
+    ids=["crate", "carton on a crate"],
+)
+def test_a_box_taken_out_of_the_pallets_block_has_each_palm_on_its_face(taken, others):
+    """Collaboration seed 5 at 67.4 s and 10.2 s, as the person stood: a box taken from the
+    floor out of the block on the pallet, its neighbour on the right palm's side 7 or 9 cm
+    away. At the grasp each palm is on its own face and no palm or forearm is in the box
+    taken or its neighbours (1 cm from the next crate a palm went 4.4 cm into it; pushed off
+    a carton 5 cm away, a forearm went 2.8 cm into the carton taken and its palm 2.4 cm)."""
+    (center, size) = taken
+    grasp = Grasp("both", center, 0.0, size)
+    nearby = tuple(Box(c, 0.0, s) for c, s in others)
+    schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp, nearby=nearby))]
+    boxes = [(s, RigidTransform(c)) for c, s in [taken, *others]]
+    pallet = furniture("euro_pallet", 0.9, 0.275)
+    run = Run(schedule, (0.55, -0.385, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
+    run.record(0.1 + load_clips()["pick_floor"].events["grasp"] + 0.1)
+    q = run.positions()[run.body.plant_index]
+    for side in SIDES:
+        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
+        off = Solid("box", size).signed_distance_to(palm - np.asarray(center))
+        assert 0.0 <= off <= HAND_ON_OBJECT, (side, off)
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def _picked_up_between_the_palms(run: Run) -> None:
+    """Material taken from the table at 0.1 s: from the grasp on, the palms stay on its faces,
+    and no arm goes into the furniture or the other objects."""
+    grasped = 0.1 + load_clips()["pick_table"].events["grasp"]
+    for t in np.arange(grasped + 0.05, 0.1 + _duration("pick_table"), 1.0 / 30.0):
+        run.record(t)
+        assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
+    run.record(0.1 + _duration("pick_table") + 0.2)
+    assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
