@@ -10,6 +10,7 @@ out round the clip's event.
 import numpy as np
 
 from hrc_drake.human.aiming import (
+    HAND_TOLERANCE,
     WAYPOINT_TOLERANCE,
     AimedMotion,
     Unreachable,
@@ -229,6 +230,23 @@ class Keys:
             self.add(t, key)
         self.paths.append((first, len(self.times) - 1))
 
+    def straight(self, time: float, start: dict, end: dict, fallback: np.ndarray) -> None:
+        """Keys from the last one to `time` that take the hands straight from `start` to
+        `end` (side: position, orientation), eased, as one movement; where they cannot get
+        to the end, `fallback` there. Letting go of a box, the clip's own arms and trunk
+        swung a palm back into it on its way out (coexistence seed 9 at 66.2 s, 1.2 cm)."""
+        first = len(self.times) - 1
+        times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
+        for k, t in enumerate(times, start=1):
+            s = minimum_jerk(k / len(times))
+            targets = {side: (p + s * (end[side][0] - p), R) for side, (p, R) in start.items()}
+            offset = self._solved(t, targets, self.offsets[-1], HAND_TOLERANCE)
+            if offset is not None:
+                self.add(t, offset)
+            elif k == len(times):
+                self.add(t, fallback)
+        self.paths.append((first, len(self.times) - 1))
+
     def off_the_edge(self, edge: dict, times) -> None:
         """Keys that take the hands over a surface's `edge` (its waypoints) and then straight
         down outside it, at the two `times`."""
@@ -240,16 +258,16 @@ class Keys:
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset
 
-    def _solved(self, time: float, targets: dict, start: np.ndarray):
-        """The offset at `time` with the hands on `targets`: the arms start from where the
-        last key has them, or else the whole body from the clip's pose (IK finds some
-        postures only from one of them); None when neither reaches."""
+    def _solved(self, time: float, targets: dict, start: np.ndarray, tolerance=WAYPOINT_TOLERANCE):
+        """The offset at `time` with the hands on `targets` (within `tolerance`): the arms
+        start from where the last key has them, or else the whole body from the clip's pose
+        (IK finds some postures only from one of them); None when neither reaches."""
         placed = self._pose(time, 0.0)
         following = placed + start
         following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
         for q in (following, placed):
             try:
-                return hands_on(self.body, q, targets, True, WAYPOINT_TOLERANCE) - placed
+                return hands_on(self.body, q, targets, True, tolerance) - placed
             except Unreachable:
                 continue
         return None

@@ -10,7 +10,6 @@ import numpy as np
 from pydrake.math import RotationMatrix
 from shapely.geometry import MultiPoint
 
-from hrc_drake.human.aiming import offset_to
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
@@ -220,9 +219,7 @@ def put_down(
     keys.add(event, on_target)
     keys.add(hold_end, on_target)
     release_end = hold_end + 0.3 * (clip.duration - hold_end)
-    keys.add(
-        release_end, offset_to(body, placed_pose, clip, release_end, on_target, opened, on_target)
-    )
+    keys.straight(release_end, hands, opened, on_target)
     if edge is not None:
         rest = clip.duration - release_end
         keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]))

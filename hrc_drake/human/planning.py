@@ -180,6 +180,7 @@ def plan_stop(
     way they came. `base` is where the person stands, `hold` what the hands hold."""
     stepping = _stepping_at(performer, activity, t)
     if stepping is None:
+        base = _feet_at(activity, base, t)
         withdrawing = _withdrawing(performer, activity, base, hold, t)
         if withdrawing is None:
             return plan_idle(performer, base, t, hold)
@@ -224,6 +225,14 @@ def _segment_at(activity: Activity | None, t: float):
         return None
     current = [s for s in activity.segments if s.start <= t]
     return current[-1] if current else None
+
+
+def _feet_at(activity: Activity | None, base, t: float):
+    """Where the person's feet stand at t, as a pose: a clip played in place stands where it
+    was placed, however its pelvis leans (a pick cut short 2 cm into a lean and idled from
+    there slid both feet 2 cm: coexistence seed 5 at 84.8 s); else `base`."""
+    segment = _segment_at(activity, t)
+    return segment.anchor if isinstance(segment, ClipSegment) else base
 
 
 def _withdrawing(performer: Performer, activity, base, hold, t: float) -> ClipSegment | None:

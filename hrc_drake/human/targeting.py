@@ -61,7 +61,9 @@ RESTING_PASSES = 4
 """Times a hand resting on a surface is moved by how far its lowest point is off."""
 
 
-def _hold_end(clip: Clip, event: str) -> float:
+def hold_end_of(clip: Clip, event: str) -> float:
+    """The clip time until which the hands stay on their targets after `event` (a grasp or
+    a release): the clip's next event, or HOLD_AFTER_EVENT later."""
     later = sorted(t for t in clip.events.values() if t > clip.events[event])
     return later[0] if later else min(clip.events[event] + HOLD_AFTER_EVENT, clip.duration)
 
@@ -128,7 +130,7 @@ def aim_clip(
     """
     event_name = TARGETED[clip.name]
     event = clip.events[event_name]
-    hold_end = _hold_end(clip, event_name)
+    hold_end = hold_end_of(clip, event_name)
     at_event = placed_pose(clip.sample(event))
     middle = np.mean([position for position, _ in hands.values()], axis=0)
     base = at_event[[body.index("base_x"), body.index("base_y")]]

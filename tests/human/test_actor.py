@@ -10,6 +10,7 @@ from hrc_drake.human.clip import load_clips
 from hrc_drake.human.messages import (
     AnimateCommand,
     CancelCommand,
+    Grasp,
     MoveCommand,
     SetCalledCommand,
 )
@@ -19,7 +20,7 @@ from hrc_drake.human.segments import TurnSegment
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.geometry import human_parts
 from hrc_drake.wiring import HUMAN_MODEL
-from tests.human.scene import FLOOR, SAMPLE, Run
+from tests.human.scene import FLOOR, SAMPLE, Run, furniture
 
 
 def test_setup_then_idle_at_the_start_pose():
@@ -190,6 +191,23 @@ def test_a_turn_cancelled_halfway_finishes_its_step_without_sliding_a_foot():
         [(0.1, MoveCommand(1, (0.0, 0.0, 0.0), _yaw(np.radians(170)))), (0.8, CancelCommand(2))]
     )
     statuses, poses = run.record(4.0)
+    assert statuses[-1].results.outcome_of(1) == "cancelled" and statuses[-1].state == "IDLE"
+    assert _stance_slip(run.body, poses) < STANCE_SLIP
+
+
+@pytest.mark.parametrize("cut_at", [0.5, 0.9], ids=["reaching out", "at the grasp"])
+def test_a_pick_cancelled_at_the_table_idles_where_its_feet_stand(cut_at):
+    """A pick leans the pelvis 2 cm towards the table; cancelled part way (the part it was
+    for is gone), the person idles where they stood, the lean fading out over still feet
+    (idled from the leaning pelvis, both feet slid 2 cm: coexistence seed 5 at 84.8 s)."""
+    grasp = Grasp("both", (0.1, 0.4, 0.94), np.pi / 2, (0.16, 0.12, 0.08))
+    schedule = [
+        (0.1, AnimateCommand(1, "pick_table", grasp=grasp)),
+        (0.1 + cut_at, CancelCommand(2)),
+    ]
+    table = furniture("work_table", 0.0, 0.55)
+    run = Run(schedule, start_pose=(0.0, 0.0, np.pi / 2), cell=[FLOOR, table])
+    statuses, poses = run.record(cut_at + 3.0)
     assert statuses[-1].results.outcome_of(1) == "cancelled" and statuses[-1].state == "IDLE"
     assert _stance_slip(run.body, poses) < STANCE_SLIP
 
