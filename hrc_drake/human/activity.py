@@ -10,6 +10,7 @@ import numpy as np
 from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.messages import Box
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import Segment
@@ -45,6 +46,9 @@ class Activity:
     furniture: Furniture | None = None
     """What the arms keep out of (None: the cell's furniture; an aimed clip adds the objects
     near its target)."""
+    reached_for: tuple[Box, float] | None = None
+    """What the hands are about to take and when they come to it: until then the arms keep
+    out of it too (pushed off a box beside it, a hand on its way went into it)."""
     clear: ArmCorrection | None = None
     """Keeps the arms out of the furniture (hrc_drake.human.clearance), worked out once the
     activity takes over (`blended_from`)."""
@@ -56,13 +60,14 @@ class Activity:
         segments,
         final_pose: tuple[float, float, float],
         furniture: Furniture | None = None,
+        reached_for: tuple[Box, float] | None = None,
     ) -> "Activity":
         """The activity of `segments`, ending at `final_pose`; its end time and the offsets at
         its joins are worked out here, once, rather than at every update that needs them."""
         segments = tuple(segments)
         joins = tuple(_join(performer, before, after) for before, after in pairwise(segments))
         end = segments[-1].end(performer)
-        return cls(segments, joins, end, final_pose, furniture=furniture)
+        return cls(segments, joins, end, final_pose, furniture=furniture, reached_for=reached_for)
 
     def furniture_of(self, performer: Performer) -> Furniture:
         """What the arms keep out of in this activity."""
@@ -88,6 +93,10 @@ class Activity:
         end = self.end
         if end == inf:
             end = max(last.start, t) + performer.clips[last.clip].duration
+        early = None
+        if self.reached_for is not None:
+            box, until = self.reached_for
+            early = (furniture.with_boxes((box,)), until)
         return arm_correction(
             performer.body,
             furniture,
@@ -95,6 +104,7 @@ class Activity:
             t,
             end,
             lambda u: self._segment_at(u).holding(performer, u),
+            early,
         )
 
     def _segment_at(self, t: float) -> Segment:

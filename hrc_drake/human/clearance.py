@@ -291,24 +291,30 @@ class ArmCorrection:
         return q if offset is None else q + offset
 
 
-def arm_correction(body, furniture, pose, start, end, held):
+def arm_correction(body, furniture, pose, start, end, held, early=None):
     """The correction that keeps the arms out of the furniture while `pose(t)` is played from
     `start` to `end` (None: they keep clear as they are); it is nothing at `start` (it eases
     in after it) unless the arms are in the furniture there. `held(t)`: the sides whose
-    hands must stay where they are (aimed or holding something).
+    hands must stay where they are (aimed or holding something). `early` (furniture, time):
+    what the arms keep out of before that time instead (with what the hands take).
 
     The poses are checked every SAMPLE in turn; a correction found at one check is tried
     first at the next (it usually still holds), so that it changes smoothly and the arm is
     moved by IK only where it would go in further. Then the corrected poses are checked
     twice as often near the corrections, and corrected again where they need it, until they
     need no more (at most VERIFICATIONS times)."""
-    prisms = Prisms.of(furniture)
-    if len(prisms.axes) == 0:
+    late = Prisms.of(furniture)
+    first = (Prisms.of(early[0]), early[1]) if early is not None else (late, start)
+    if len(first[0].axes) == 0 and len(late.axes) == 0:
         return None
+
+    def near_at(t, q) -> Prisms:
+        return (first[0] if t < first[1] else late).near(q[:2], NEAR)
+
     moved, offset = {}, None
     for t in np.arange(start, end + SAMPLE / 2, SAMPLE):
         q, holding = pose(float(t)), held(float(t))
-        near = prisms.near(q[:2], NEAR)
+        near = near_at(t, q)
         if len(near.axes) == 0 or _clear(body, near, q, holding):
             offset = None
             continue
@@ -324,7 +330,7 @@ def arm_correction(body, furniture, pose, start, end, held):
         correction, added = _correction(moved, start), False
         for t in _near(sorted(moved), start, end):
             q, holding = pose(t), held(t)
-            near = prisms.near(q[:2], NEAR)
+            near = near_at(t, q)
             eased = correction.over(q, t)
             corrected = _keeping_held_hands(body, near, q, eased, holding)
             if corrected is not eased or not _clear(body, near, corrected, holding):

@@ -21,13 +21,13 @@ from hrc_drake.human.grasp import (
     release_targets,
 )
 from hrc_drake.human.hand_ways import WITHDRAWAL, room_for_the_palms, withdrawal
-from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Hold, MoveCommand
+from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Box, Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import TARGETED, aim_clip
+from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
@@ -135,7 +135,17 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
             lowest,
         )
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
-    return Activity.plan(performer, (segment,), pose, furniture)
+    return Activity.plan(performer, (segment,), pose, furniture, _reached_for(clip, command, t))
+
+
+def _reached_for(clip: Clip, command: AnimateCommand, t: float):
+    """What the hands take and when they reach its approach point, where they slow down
+    to close on it (None: the clip takes nothing)."""
+    if command.grasp is None:
+        return None
+    grasp = command.grasp
+    approach = APPROACH_AT * clip.events[TARGETED[clip.name]] / command.animation_speed
+    return Box(grasp.center, grasp.yaw, grasp.size), t + approach
 
 
 def _aimed_hands(

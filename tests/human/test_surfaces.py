@@ -10,7 +10,7 @@ from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
 from hrc_drake.human.skeleton import SIDES
-from hrc_drake.human.targeting import hold_end_of
+from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.scene import FLOOR, Run, furniture
 
@@ -247,6 +247,24 @@ def test_palms_letting_go_of_a_box_leave_it_straight():
         along = way[-1] / np.linalg.norm(way[-1])
         off = np.linalg.norm(way - np.outer(way @ along, along), axis=1)
         assert off.max() <= OFF_THE_WAY, (side, off.max())
+
+
+def test_hands_on_their_way_to_a_box_beside_another_keep_out_of_it():
+    """Coexistence seed 6 at 44.6 s, as the person stood: material taken from beside another
+    box 5 cm away. The right hand, coming down between them, is kept clear of the neighbour
+    and of the box it is about to take, until it closes on it (moved off the neighbour, it
+    went 0.8 cm into the box it came for here, and 1.0 cm in the scenario)."""
+    taken, beside = (0.25, 0.27, TOP + 0.04), ((0.467, 0.278, TOP + 0.04), 0.093)
+    grasp = Grasp("both", taken, 0.0, MATERIAL)
+    nearby = (Box(*beside, MATERIAL),)
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby))]
+    boxes = [
+        (MATERIAL, RigidTransform(taken)),
+        (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(beside[1]), beside[0])),
+    ]
+    run = Run(schedule, (0.0, -0.2, np.pi / 2), [FLOOR, TABLE], ARMS, objects=boxes)
+    run.record(0.1 + APPROACH_AT * load_clips()["pick_table"].events["grasp"])
+    assert run.overlap[0] <= 0.001, run.overlap
 
 
 def test_a_box_taken_off_another_stays_between_the_palms():
