@@ -18,7 +18,7 @@ import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.symbolic import MakeVectorVariable, Variable
 from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
-from pydrake.systems.primitives import Demultiplexer, SymbolicVectorSystem
+from pydrake.systems.primitives import Demultiplexer, MatrixGain, SymbolicVectorSystem
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import NO_COMMANDS
@@ -31,6 +31,7 @@ from hrc_drake.station import StationSpec
 from hrc_drake.wiring import (
     GRIPPER_ISSUER,
     ROBOT,
+    ROBOT_DESIRED_DIFFERENCES,
     ROBOT_DESIRED_MOTION,
     ROBOT_DESIRED_SPLIT,
     ROBOT_MOTION,
@@ -48,7 +49,7 @@ class RobotMotion(LeafSystem):
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
     Outputs: `desired_segment` (the time of the last update, then per joint the coefficients of
-    the desired motion's quintic in the time since: `desired_motion_system` evaluates it),
+    the desired motion's quintic in the time since: `add_desired_motion` evaluates it),
     `path_rate` (the fraction of
     full speed it moves along its path now, for the safety monitor), `robot_status`,
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
@@ -220,40 +221,54 @@ def add_robot_motion(
 
 def add_desired_motion(builder, motion: RobotMotion, time_step: float) -> Demultiplexer:
     """Adds the C++ evaluation of `motion`'s desired segment for a plant stepping every
-    `time_step` (ROBOT_DESIRED_MOTION) and its split (ROBOT_DESIRED_SPLIT) into the desired
+    `time_step`: its samples around each step (ROBOT_DESIRED_MOTION), their differences
+    (ROBOT_DESIRED_DIFFERENCES) and their split (ROBOT_DESIRED_SPLIT) into the desired
     state (q, v: output 0) and acceleration (output 1): what the controller reads at every
     plant step."""
     joints = (motion.GetOutputPort("desired_segment").size() - 1) // SEGMENT_COEFFICIENTS
-    evaluator = desired_motion_system(joints, time_step)
-    desired = builder.AddNamedSystem(ROBOT_DESIRED_MOTION, evaluator)
-    builder.Connect(motion.GetOutputPort("desired_segment"), desired.get_input_port())
+    samples = builder.AddNamedSystem(
+        ROBOT_DESIRED_MOTION, desired_samples_system(joints, time_step)
+    )
+    builder.Connect(motion.GetOutputPort("desired_segment"), samples.get_input_port())
+    differences = builder.AddNamedSystem(
+        ROBOT_DESIRED_DIFFERENCES, MatrixGain(desired_differences(joints, time_step))
+    )
+    builder.Connect(samples.get_output_port(), differences.get_input_port())
     split = builder.AddNamedSystem(ROBOT_DESIRED_SPLIT, Demultiplexer([2 * joints, joints]))
-    builder.Connect(desired.get_output_port(), split.get_input_port())
+    builder.Connect(differences.get_output_port(), split.get_input_port())
     return split
 
 
-def desired_motion_system(joints: int, time_step: float) -> SymbolicVectorSystem:
-    """q, v and vdot (stacked) at the context's time t from a `desired_segment` input,
-    evaluated in C++ (each joint's quintic in Horner form), as a plant stepping every
-    `time_step` h can follow them exactly: v is the backward difference
+def desired_samples_system(joints: int, time_step: float) -> SymbolicVectorSystem:
+    """q(t - h), q(t) and q(t + h) (stacked) at the context's time t from a `desired_segment`
+    input, evaluated in C++ (each joint's quintic in Horner form) for a plant stepping every
+    `time_step` h: each sample once, as `desired_differences` takes them further."""
+    t = Variable("t")
+    segment = MakeVectorVariable(1 + joints * SEGMENT_COEFFICIENTS, "segment")
+    since = t - segment[0]
+    rows = np.array(segment[1:]).reshape(joints, SEGMENT_COEFFICIENTS).tolist()
+    h = time_step
+    samples = [_horner(row, since + k * h) for k in (-1, 0, 1) for row in rows]
+    return SymbolicVectorSystem(time=t, input=segment, output=samples)
+
+
+def desired_differences(joints: int, time_step: float) -> np.ndarray:
+    """The matrix taking the samples (q(t - h), q(t), q(t + h)) to q, v and vdot (stacked) as
+    a plant stepping every `time_step` h can follow them exactly: v is the backward difference
     (q(t) - q(t - h)) / h and vdot the central one (q(t + h) - 2 q(t) + q(t - h)) / h².
 
     A discrete plant steps v' = v + h vdot, q' = q + h v' (semi-implicit Euler, as SAP
     does), so with these references and exact inverse dynamics q stays on q(t) at every
     step; with v(t) and vdot(t) instead the velocity would lag half a step and the PD hold
     a steady error of about Kd h vdot / (2 Kp), twice as large at 2 ms as at 1 ms."""
-    t = Variable("t")
-    segment = MakeVectorVariable(1 + joints * SEGMENT_COEFFICIENTS, "segment")
-    since = t - segment[0]
-    rows = np.array(segment[1:]).reshape(joints, SEGMENT_COEFFICIENTS).tolist()
-    h = time_step
-    before, now, after = ([_horner(row, since + k * h) for row in rows] for k in (-1, 0, 1))
-    velocities = [(q - q_before) / h for q, q_before in zip(now, before, strict=True)]
-    accelerations = [
-        (q_after - 2.0 * q + q_before) / (h * h)
-        for q_before, q, q_after in zip(before, now, after, strict=True)
-    ]
-    return SymbolicVectorSystem(time=t, input=segment, output=now + velocities + accelerations)
+    one, none, h = np.eye(joints), np.zeros((joints, joints)), time_step
+    return np.block(
+        [
+            [none, one, none],
+            [-one / h, one / h, none],
+            [one / h**2, -2.0 * one / h**2, one / h**2],
+        ]
+    )
 
 
 def _horner(coefficients, x):

@@ -19,6 +19,7 @@ SMALLEST = {
     "human_update.py": ["--duration", "0.5", "coexistence"],
     "layout.py": ["--scenario", "getting_started", "--samples", "2"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
+    "python_systems.py": ["--duration", "0.5", "--systems", "0", "2"],
     "realism_cost.py": ["--duration", "0.5", "coexistence"],
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],

@@ -100,7 +100,7 @@ class ToolTargetSolver:
 
     def _apart(self, q: np.ndarray) -> bool:
         """The robot at q touches neither the cell nor itself (no clearance kept)."""
-        return self.model.clearance(q) > 0.0
+        return self.model.apart(q)
 
     def kinematic_solution(
         self, pose: RigidTransform, q_start: np.ndarray, free_rotation: bool, rng, attempts: int

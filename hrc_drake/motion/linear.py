@@ -55,7 +55,7 @@ def _check_path(model, waypoints, start, goal, tolerance) -> None:
         q = path.value(s).ravel()
         if _distance_to_segment(model.tool_pose(q).translation(), p0, p1) > tolerance:
             raise PlanningFailed("linear move cannot stay on the line (near a singularity)")
-        if model.clearance(q) <= 0.0 or not model.within_limits(q):
+        if not model.apart(q) or not model.within_limits(q):
             raise PlanningFailed("linear move collides with the cell or leaves the joint limits")
 
 

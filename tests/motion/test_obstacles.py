@@ -45,3 +45,19 @@ def test_target_behind_box_is_reached_around_it():
     assert min(closest) > 0.0
     assert max(closest) - min(closest) > 0.01  # the queried scene follows the moving robot
     assert np.linalg.norm(station.tool_pose().translation() - BEHIND_THE_BOX.translation()) < 2e-3
+
+
+def test_apart_answers_as_every_pair_measured_does():
+    """`apart` measures only the nearest pairs; near contact and in it, it answers as the
+    nearest of every pair of the robot and the cell (and itself) within a metre does."""
+    model = build_station(make_scenario(box_at=BOX_AT)).motion.planner.model
+    rng = np.random.default_rng(3)
+    start = np.asarray(make_scenario(box_at=BOX_AT).station.initial_positions)
+    found = []
+    for _ in range(400):
+        q = np.clip(start + rng.normal(scale=0.6, size=start.size), model.lower, model.upper)
+        distances = model.checker.CalcRobotClearance(q, 1.0).distances()
+        nearest = distances.min() if distances.size else np.inf
+        found.append(model.apart(q))
+        assert found[-1] == (nearest > 0.0), nearest
+    assert 20 < sum(found) < len(found) - 20, "both answers are tried"
