@@ -222,9 +222,7 @@ class Keys:
         start_time, start = self.times[-1], self.offsets[-1]
         a = self._pose(start_time, start)[arms]
         b = self._pose(time, offset)[arms]
-        times = np.linspace(start_time, time, PASSAGE_KEYS + 1)[1:]
-        for k, t in enumerate(times, start=1):
-            s = minimum_jerk(k / len(times))
+        for t, s in self._eased_to(time):
             key = start + s * (offset - start)
             key[arms] = a + s * (b - a) - self._pose(t, 0.0)[arms]
             self.add(t, key)
@@ -236,16 +234,20 @@ class Keys:
         to the end, `fallback` there. Letting go of a box, the clip's own arms and trunk
         swung a palm back into it on its way out (coexistence seed 9 at 66.2 s, 1.2 cm)."""
         first = len(self.times) - 1
-        times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
-        for k, t in enumerate(times, start=1):
-            s = minimum_jerk(k / len(times))
+        for t, s in self._eased_to(time):
             targets = {side: (p + s * (end[side][0] - p), R) for side, (p, R) in start.items()}
             offset = self._solved(t, targets, self.offsets[-1], HAND_TOLERANCE)
             if offset is not None:
                 self.add(t, offset)
-            elif k == len(times):
+            elif t == time:
                 self.add(t, fallback)
         self.paths.append((first, len(self.times) - 1))
+
+    def _eased_to(self, time: float):
+        """PASSAGE_KEYS (time, fraction of the way) from the last key to `time`, the fractions
+        easing in and out (minimum jerk) over evenly spaced times."""
+        times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
+        return [(float(t), minimum_jerk(k / PASSAGE_KEYS)) for k, t in enumerate(times, start=1)]
 
     def off_the_edge(self, edge: dict, times) -> None:
         """Keys that take the hands over a surface's `edge` (its waypoints) and then straight

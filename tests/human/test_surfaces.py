@@ -109,13 +109,18 @@ def _taken(schedule, cell, grasp) -> Run:
     on the faces of what it takes."""
     run = Run(schedule, start_pose=STANDING, cell=[FLOOR, cell], segments=ARMS)
     run.record(0.1 + load_clips()[schedule[0][1].animation_name].events["grasp"])
+    for side, off in _palms_from_faces(run, grasp).items():
+        assert abs(off) <= HAND_ON_OBJECT, side
+    return run
+
+
+def _palms_from_faces(run: Run, grasp: Grasp) -> dict:
+    """Per side, how far the palm is outside the object `grasp` takes (negative: inside)."""
     q = run.positions()[run.body.plant_index]
     box = Solid("box", grasp.size)
     X_OW = RigidTransform(RotationMatrix.MakeZRotation(grasp.yaw), grasp.center).inverse()
-    for side in ("left", "right"):
-        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
-        assert abs(box.signed_distance_to(X_OW @ palm)) <= HAND_ON_OBJECT, side
-    return run
+    palms = {side: run.body.frame_pose(f"{side}_hand_grasp", q).translation() for side in SIDES}
+    return {side: box.signed_distance_to(X_OW @ palm) for side, palm in palms.items()}
 
 
 def test_the_hands_keep_out_of_the_box_next_to_the_one_they_take():
@@ -309,10 +314,7 @@ def test_a_box_taken_out_of_the_pallets_block_has_each_palm_on_its_face(taken, o
     pallet = furniture("euro_pallet", 0.9, 0.275)
     run = Run(schedule, (0.55, -0.385, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
     run.record(0.1 + load_clips()["pick_floor"].events["grasp"] + 0.1)
-    q = run.positions()[run.body.plant_index]
-    for side in SIDES:
-        palm = run.body.frame_pose(f"{side}_hand_grasp", q).translation()
-        off = Solid("box", size).signed_distance_to(palm - np.asarray(center))
+    for side, off in _palms_from_faces(run, grasp).items():
         assert 0.0 <= off <= HAND_ON_OBJECT, (side, off)
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
