@@ -11,6 +11,7 @@ import pytest
 
 BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 SMALLEST = {
+    "arm_check.py": ["--duration", "0.5", "--repeats", "1", "coexistence"],
     "base_scenario.py": ["--duration", "0.5", "--repeats", "1"],
     "bt_tick.py": [],
     "ergonomics_cost.py": ["--duration", "0.5", "getting_started"],
@@ -18,6 +19,7 @@ SMALLEST = {
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "human_update.py": ["--duration", "0.5", "coexistence"],
     "layout.py": ["--scenario", "getting_started", "--samples", "2"],
+    "plant_step.py": ["--duration", "0.5", "cooperation"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
     "python_systems.py": ["--duration", "0.5", "--systems", "0", "2"],
     "realism_cost.py": ["--duration", "0.5", "coexistence"],

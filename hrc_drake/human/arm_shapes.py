@@ -26,13 +26,14 @@ class Points:
     radii: tuple[float, ...]
 
     @cached_property
-    def starts(self) -> np.ndarray:
-        """Where each shape's corners start among all of them."""
-        return np.cumsum([0, *(len(p) for p in self.points[:-1])])
+    def shapes(self) -> np.ndarray:
+        """Each shape's corners (rows of `stacked`), padded to the same count by repeating
+        its last one (which changes no shape's extent): shapes × most corners."""
+        return padded_shapes([len(p) for p in self.points])
 
     @cached_property
-    def radii_column(self) -> np.ndarray:
-        return np.asarray(self.radii)[None, None, :]
+    def radii_row(self) -> np.ndarray:
+        return np.asarray(self.radii)
 
     @cached_property
     def stacked(self) -> np.ndarray:
@@ -40,6 +41,11 @@ class Points:
         stacked = np.vstack(self.points)
         stacked.setflags(write=False)
         return stacked
+
+    @cached_property
+    def owners(self) -> np.ndarray:
+        """Which of the arm's bodies each corner (a row of `stacked`) is on."""
+        return np.repeat(np.arange(len(self.points)), [len(p) for p in self.points])
 
 
 @lru_cache(maxsize=16)
@@ -92,47 +98,81 @@ class Prisms:
 
     def near(self, xy, reach: float) -> "Prisms":
         """The prisms within `reach` of a floor point (the rest cannot be touched)."""
+        return self.subset(self.near_masks(np.reshape(xy, (1, 2)), reach)[0])
+
+    def near_masks(self, xy: np.ndarray, reach: float) -> np.ndarray:
+        """Which prisms `near` keeps, for each of the floor points `xy` (points × 2):
+        points × pieces."""
+        count, faces = self.axes.shape[:2]
+        along = (xy @ self.axes[:, :, :2].reshape(-1, 2).T).reshape(len(xy), count, faces)
+        sideways = self.axes[:, :, 2] == 0.0
+        return np.where(sideways, along - self.ahead, -np.inf).max(axis=-1) <= reach
+
+    def subset(self, keep: np.ndarray) -> "Prisms":
+        """The prisms flagged in `keep`."""
+        return Prisms(self.axes[keep], self.ahead[keep], self.behind[keep])
+
+    def near_mask(self, xy, reach: float) -> np.ndarray:
+        """Which prisms `near` keeps (one flag per piece)."""
         point = np.array([xy[0], xy[1], 0.0])
         sideways = self.axes[:, :, 2] == 0.0
         distance = np.where(sideways, self.axes @ point - self.ahead, -np.inf).max(axis=1)
-        keep = distance <= reach
-        return Prisms(self.axes[keep], self.ahead[keep], self.behind[keep])
+        return distance <= reach
 
-    def overlap(self, points: np.ndarray, radii: np.ndarray, starts: np.ndarray, not_down=False):
-        """How deep the convex shapes (each the hull of its run of `points`, from `starts`,
-        grown by its radius) go into the prisms: the deepest shape and prism by the
-        separating-axis test on the prisms' faces (at least as deep as they overlap;
-        negative: apart by at least that much). Returns the depth, the shape, the direction
-        that takes it out (the shortest way, or with `not_down` the shortest but down under
-        the prism; a unit vector) and the index of the point that leads the way out."""
-        projections, forward, backward, along, depth = self._depths(points, radii, starts)
+    def overlap(self, points: np.ndarray, radii: np.ndarray, shapes: np.ndarray, not_down=False):
+        """How deep the convex shapes (each the hull of its row of `points` by the indices in
+        `shapes`, as `padded_shapes` has them, grown by its radius) go into the prisms: the
+        deepest shape and prism by the separating-axis test on the prisms' faces (at least as
+        deep as they overlap; negative: apart by at least that much). Returns the depth, the
+        shape, the direction that takes it out (the shortest way, or with `not_down` the
+        shortest but down under the prism; a unit vector) and the index of the point that
+        leads the way out."""
+        forward, backward, along, depth = self._depths(points, radii, shapes)
         k, shape = np.unravel_index(np.argmax(depth), depth.shape)
         choice = along[k, :, shape].copy()
         if not_down:
             choice[self.axes[k, :, 2] < 0.0] = np.inf
         f = int(np.argmin(choice))
-        stop = starts[shape + 1] if shape + 1 < len(starts) else len(points)
-        run = projections[k, f, starts[shape] : stop]
+        run = points[shapes[shape]] @ self.axes[k, f]
         if forward[k, f, shape] <= backward[k, f, shape]:
             lead, axis = int(np.argmin(run)), self.axes[k, f]
         else:
             lead, axis = int(np.argmax(run)), -self.axes[k, f]
-        return float(depth[k, shape]), int(shape), axis, starts[shape] + lead
+        return float(depth[k, shape]), int(shape), axis, int(shapes[shape][lead])
 
-    def deepest(self, points: np.ndarray, arm: Points) -> float:
-        """`overlap`'s depth alone, of an arm's hull corners at `points`."""
-        return float(self._depths(points, arm.radii_column, arm.starts)[-1].max())
+    def shape_depths(self, points: np.ndarray, radii, shapes) -> np.ndarray:
+        """`overlap`'s depth of each shape in each prism, for many sets of shapes at once:
+        `points` (sets × corners × 3) -> (sets × prisms × shapes)."""
+        return self._depths(points, radii, shapes)[-1]
 
-    def _depths(self, points, radii, starts):
-        """Projections on the axes, reaches past each face forward, backward and the lesser,
-        and per prism and shape the least over the faces (the separating-axis depth)."""
-        projections = np.einsum("kfj,nj->kfn", self.axes, points)
-        low = np.minimum.reduceat(projections, starts, axis=2) - radii
-        high = np.maximum.reduceat(projections, starts, axis=2) + radii
+    def _depths(self, points, radii, shapes):
+        """Reaches past each face forward, backward and the lesser (... × prisms × faces ×
+        shapes), and per prism and shape the least over the faces (the separating-axis
+        depth); `points` corners × 3 or sets of them (... × corners × 3). One product
+        projects every shape's padded corners on every axis; the extents are the least and
+        greatest over the corners of each shape."""
+        count, faces = self.axes.shape[:2]
+        projected = points[..., shapes.ravel(), :] @ self.axes.reshape(-1, 3).T
+        projected = projected.reshape(*points.shape[:-2], *shapes.shape, count, faces)
+        low = np.moveaxis(projected.min(axis=-3), -3, -1) - radii
+        high = np.moveaxis(projected.max(axis=-3), -3, -1) + radii
         forward = self.ahead[:, :, None] - low
         backward = high - self.behind[:, :, None]
         along = np.minimum(forward, backward)
-        return projections, forward, backward, along, along.min(axis=1)
+        return forward, backward, along, along.min(axis=-2)
+
+
+def padded_shapes(sizes) -> np.ndarray:
+    """The corner indices of shapes with `sizes` corners each, one after the other: shapes ×
+    the most corners, each row padded with its last corner."""
+    starts = np.cumsum([0, *sizes[:-1]])
+    most = max(sizes)
+    return np.array(
+        [
+            [start + min(i, size - 1) for i in range(most)]
+            for start, size in zip(starts, sizes, strict=True)
+        ]
+    )
 
 
 def _faces(piece):
@@ -172,12 +212,27 @@ def arm_frames(body: HumanBody, sides: tuple[str, ...]) -> tuple:
 
 def arms_in_world(body: HumanBody, q: np.ndarray, sides: tuple[str, ...]) -> dict:
     """The `sides` arms' hull corners in the world at q (n × 3), by one forward kinematics."""
-    poses = body.world_poses(arm_frames(body, sides), body.plant_positions(q))
-    world = {}
-    for k, side in enumerate(sides):
-        arm, points = poses[k * len(ARM) : (k + 1) * len(ARM)], arm_points(body, side).points
-        world[side] = np.hstack([X @ local.T for X, local in zip(arm, points, strict=True)]).T
-    return world
+    corners = corners_in_world(body, [q], sides)[0]
+    starts = np.cumsum([0, *(len(arm_points(body, s).stacked) for s in sides)])
+    return {side: corners[starts[k] : starts[k + 1]] for k, side in enumerate(sides)}
+
+
+def corners_in_world(body: HumanBody, poses, sides: tuple[str, ...]) -> np.ndarray:
+    """The `sides` arms' hull corners in the world at each of `poses` (poses × corners × 3,
+    the sides' corners one after the other): one forward kinematics per pose, the corners
+    of all poses moved at once."""
+    frames = arm_frames(body, sides)
+    X = np.array(
+        [
+            [X.GetAsMatrix34() for X in body.world_poses(frames, body.plant_positions(q))]
+            for q in poses
+        ]
+    ).reshape(len(poses), len(frames), 3, 4)
+    arms = [arm_points(body, side) for side in sides]
+    owners = np.concatenate([arm.owners + k * len(ARM) for k, arm in enumerate(arms)])
+    local = np.vstack([arm.stacked for arm in arms])
+    placed = X[:, owners]
+    return np.einsum("pnij,nj->pni", placed[..., :3], local) + placed[..., 3]
 
 
 def check_arm(
@@ -187,5 +242,5 @@ def check_arm(
     it gets out (as `Prisms.overlap`)."""
     arm = arm_points(body, side)
     world = arms_in_world(body, q, (side,))[side]
-    depth, shape, out, k = prisms.overlap(world, arm.radii_column, arm.starts, not_down)
+    depth, shape, out, k = prisms.overlap(world, arm.radii_row, arm.shapes, not_down)
     return ArmCheck(depth, arm.frames[shape], arm.stacked[k], world[k], out)

@@ -17,10 +17,18 @@ an `ArmCorrection`: joint offsets at the checked instants, eased in and out.
 
 from bisect import bisect_right
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
-from hrc_drake.human.arm_shapes import ArmCheck, Prisms, arm_points, arms_in_world, check_arm
+from hrc_drake.human.arm_shapes import (
+    ArmCheck,
+    Prisms,
+    arm_points,
+    check_arm,
+    corners_in_world,
+    padded_shapes,
+)
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.grasp import arm_indices
 from hrc_drake.human.keyed_clips import minimum_jerk
@@ -124,43 +132,96 @@ def arm_correction(body, furniture, pose, start, end, held, early=None):
     first at the next (it usually still holds), so that it changes smoothly and the arm is
     moved by IK only where it would go in further. Then the corrected poses are checked
     twice as often near the corrections, and corrected again where they need it, until they
-    need no more (at most VERIFICATIONS times)."""
-    late = Prisms.of(furniture)
-    first = (Prisms.of(early[0]), early[1]) if early is not None else (late, start)
-    if len(first[0].axes) == 0 and len(late.axes) == 0:
+    need no more (at most VERIFICATIONS times). The poses of each pass are checked all at
+    once (`_Keep.clear`) and only those that go in are taken in turn."""
+    keep = _Keep.of(furniture, start, early)
+    if keep is None:
         return None
-
-    def near_at(t, q) -> Prisms:
-        return (first[0] if t < first[1] else late).near(q[:2], NEAR)
-
+    times = [float(t) for t in np.arange(start, end + SAMPLE / 2, SAMPLE)]
+    poses, holdings = [pose(t) for t in times], [held(t) for t in times]
     moved, offset = {}, None
-    for t in np.arange(start, end + SAMPLE / 2, SAMPLE):
-        q, holding = pose(float(t)), held(float(t))
-        near = near_at(t, q)
-        if len(near.axes) == 0 or _clear(body, near, q, holding):
+    for t, q, holding, clear in zip(
+        times, poses, holdings, keep.clear(body, times, poses, holdings), strict=True
+    ):
+        if clear:
             offset = None
             continue
+        near = keep.near(t, q)
         tried = q if offset is None else _keeping_held_hands(body, near, q, q + offset, holding)
-        if tried is q or not _clear(body, near, tried, holding):
+        if tried is q or not keep.clear(body, [t], [q], [holding], [tried])[0]:
             cleared = clear_of(body, near, tried, holding)
             tried = cleared if cleared is not None else tried
         offset = tried - q
-        moved[float(t)] = offset
+        moved[t] = offset
     if not moved:
         return None
     for _ in range(VERIFICATIONS):
-        correction, added = _correction(moved, start), False
-        for t in _near(sorted(moved), start, end):
-            q, holding = pose(t), held(t)
-            near = near_at(t, q)
-            eased = correction.over(q, t)
-            corrected = _keeping_held_hands(body, near, q, eased, holding)
-            if corrected is not eased or not _clear(body, near, corrected, holding):
-                cleared = clear_of(body, near, corrected, holding)
-                moved[t], added = (cleared if cleared is not None else corrected) - q, True
+        correction = _correction(moved, start)
+        times = _near(sorted(moved), start, end)
+        poses, holdings = [pose(t) for t in times], [held(t) for t in times]
+        eased = [correction.over(q, t) for t, q in zip(times, poses, strict=True)]
+        kept = [
+            _keeping_held_hands(body, keep.near(t, q), q, e, h) if h else e
+            for t, q, e, h in zip(times, poses, eased, holdings, strict=True)
+        ]
+        clear = keep.clear(body, times, poses, holdings, kept)
+        added = False
+        for t, q, e, k, holding, ok in zip(times, poses, eased, kept, holdings, clear, strict=True):
+            if k is not e or not ok:
+                cleared = clear_of(body, keep.near(t, q), k, holding)
+                moved[t], added = (cleared if cleared is not None else k) - q, True
         if not added:
             return correction
     return _correction(moved, start)
+
+
+@dataclass(frozen=True)
+class _Keep:
+    """What the arms keep out of: the `early` prisms before `until`, the `late` ones after."""
+
+    early: Prisms
+    until: float
+    late: Prisms
+
+    @classmethod
+    def of(cls, furniture, start: float, early) -> "_Keep | None":
+        """For `arm_correction`'s arguments (None: there is nothing to keep out of)."""
+        late = Prisms.of(furniture)
+        keep = (
+            cls(Prisms.of(early[0]), early[1], late)
+            if early is not None
+            else cls(late, start, late)
+        )
+        return None if len(keep.early.axes) == 0 and len(keep.late.axes) == 0 else keep
+
+    def at(self, t: float) -> Prisms:
+        return self.early if t < self.until else self.late
+
+    def near(self, t: float, q: np.ndarray) -> Prisms:
+        """The prisms at t within NEAR of the pelvis of q."""
+        return self.at(t).near(q[:2], NEAR)
+
+    def clear(self, body, times, poses, holdings, arms=None) -> np.ndarray:
+        """Whether the arms are out of the prisms near each pose (within TOLERANCE of them,
+        or HELD_TOLERANCE for a hand that holds), with the arms of `arms` (poses with the
+        same pelvis; default `poses`): one forward kinematics per pose, the depths of all
+        at once."""
+        corners = corners_in_world(body, poses if arms is None else arms, SIDES)
+        radii, shapes, sides = _both_arms(body)
+        tolerances = np.array([[_tolerance(s, holding) for s in SIDES] for holding in holdings])
+        clear = np.ones(len(times), dtype=bool)
+        early = np.array(times) < self.until
+        for prisms, chosen in ((self.early, early), (self.late, ~early)):
+            near = prisms.near_masks(np.array(poses)[chosen, :2], NEAR)
+            some = near.any(axis=0)
+            if not some.any():
+                continue
+            near, prisms = near[:, some], prisms.subset(some)
+            depths = prisms.shape_depths(corners[chosen], radii, shapes)
+            deepest = np.where(near[:, :, None], depths, -np.inf).max(axis=1)
+            per_side = np.maximum.reduceat(deepest, sides, axis=1)
+            clear[chosen] = (per_side <= tolerances[chosen]).all(axis=1)
+        return clear
 
 
 def _keeping_held_hands(body, near, q, corrected, holding):
@@ -212,11 +273,16 @@ def _correction(moved: dict, start: float) -> ArmCorrection:
     return ArmCorrection(tuple(t for t, _ in keys), tuple(o for _, o in keys))
 
 
-def _clear(body, prisms: Prisms, q, holding) -> bool:
-    arms = arms_in_world(body, q, SIDES)
-    return all(
-        prisms.deepest(arms[s], arm_points(body, s)) <= _tolerance(s, holding) for s in SIDES
-    )
+@lru_cache(maxsize=4)
+def _both_arms(body):
+    """The radii and corner indices of both arms' shapes (SIDES in turn, as
+    `corners_in_world` has their corners: `Prisms.shape_depths`' arguments) and where each
+    side's shapes start among them."""
+    arms = [arm_points(body, s) for s in SIDES]
+    sizes = [len(p) for arm in arms for p in arm.points]
+    radii = np.concatenate([arm.radii_row for arm in arms])
+    sides = np.cumsum([0, *(len(arm.radii) for arm in arms[:-1])])
+    return radii, padded_shapes(sizes), sides
 
 
 def _tolerance(side: str, holding) -> float:
