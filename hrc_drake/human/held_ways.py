@@ -10,6 +10,7 @@ import numpy as np
 from pydrake.math import RotationMatrix
 from shapely.geometry import MultiPoint
 
+from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
@@ -33,6 +34,11 @@ the object's faces by IK."""
 HOLDING_SLIP = 0.02
 """m: palms whose spacing strays further than this from the held object's are off its faces
 by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
+LOSING_HOLD = 2 * HOLDING_SLIP
+"""m: palms whose spacing strays further than this on the straight way are each off the
+object by more than the audit allows: the person cannot carry it off from where they stand
+(a 95th-percentile man moved 0.7 m along a pallet for room to turn lifted a carton with his
+palms 12 cm off it)."""
 WAY_BEND = 0.05
 """m: how far the held object's way may pass beside the straight one between its ends (it
 runs in the chest's frame, which turns and leans with the trunk: coexistence seed 9's
@@ -73,10 +79,16 @@ def _way(*way, over=None):
     `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
     it first, crosses at that height and lowers last (over what stands on the way), if the
     arms can hold the object up there: else it goes the straight way (lifted too high, a
-    carton in both hands was 5.3 cm off a palm: collaboration seed 15)."""
+    carton in both hands was 5.3 cm off a palm: collaboration seed 15). Unreachable where
+    the arms cannot hold it even on the straight way."""
     offsets, slipped = _held_way(*way, over)
     if over is not None and slipped > HOLDING_SLIP:
-        offsets, _ = _held_way(*way)
+        offsets, slipped = _held_way(*way)
+    if slipped > LOSING_HOLD:
+        raise Unreachable(
+            f"the hands cannot keep hold of the object on its way from where the person "
+            f"stands (their spacing strays {slipped * 100:.0f} cm from its width)"
+        )
     return offsets
 
 

@@ -319,6 +319,27 @@ def test_a_box_taken_out_of_the_pallets_block_has_each_palm_on_its_face(taken, o
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
+def test_a_box_the_arms_cannot_carry_off_from_where_the_person_stands_is_refused():
+    """Collaboration seed 15, a 95th-percentile man: with no room to turn between the pallet
+    and the belt his place to stand moved 0.7 m along the pallet, and he lifted the carton
+    from there with his palms 12 cm off it. From 0.67 m beside the carton the arms cannot
+    hold it on its way into the carry posture: the pick fails, saying why, and the person
+    takes nothing (in front of it, the same pick works)."""
+    (center, size), others = ((0.6, 0.05, 0.484), PALLET_CARTON), CRATES
+    grasp = Grasp("both", center, 0.0, size)
+    nearby = tuple(Box(c, 0.0, s) for c, s in others)
+    schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp, nearby=nearby))]
+    boxes = [(s, RigidTransform(c)) for c, s in [(center, size), *others]]
+    pallet = furniture("euro_pallet", 0.9, 0.275)
+    outcomes = {}
+    for x in (0.55, 1.27):
+        run = Run(schedule, (x, -0.4, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
+        run.record(0.5)
+        outcomes[x] = run.status().results.last
+    assert outcomes[0.55].outcome == "running", outcomes[0.55]
+    assert outcomes[1.27].outcome == "failed" and "keep hold" in outcomes[1.27].reason
+
+
 def _picked_up_between_the_palms(run: Run) -> None:
     """Material taken from the table at 0.1 s: from the grasp on, the palms stay on its faces,
     and no arm goes into the furniture or the other objects."""
