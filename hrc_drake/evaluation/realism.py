@@ -27,9 +27,9 @@ CONTACT_HEIGHT = 0.003
 STEADY_SPEED_CHANGE = 0.05
 """A stride is steady walking when it starts and ends at walking speed, the two differing
 by less than this fraction of its mean, and its mean speed differs by less than this from
-the stride's before (speeding up, slowing down, and a short walk from standing to standing
-are not strides of a gait: a 1.8 m walk, collaboration seed 8 at 91.2 s, had a stride from
-its speeding up into its slowing down, 1.02 m/s at both ends, 1.45 between)."""
+the stride's before or after (speeding up, slowing down, and a short walk from standing to
+standing are not strides of a gait: a 1.8 m walk, collaboration seed 8 at 91.2 s, had a
+stride from its speeding up into its slowing down, 1.02 m/s at both ends, 1.45 between)."""
 WALKING_SPEED = 0.5
 """m/s: a stride that starts or ends slower is not walking at a normal speed."""
 
@@ -93,8 +93,10 @@ class AuditState:
     pelvis: tuple[float, float, float] | None = None
     stride: tuple[tuple[float, float], ...] = ()
     """(time, pelvis speed) since the current stride began."""
-    stride_mean: float = 0.0
-    """The mean pelvis speed of the stride before the current one (0: none since standing)."""
+    last_stride: tuple[float, float | None] | None = None
+    """The stride before the current one: its mean speed, and its swing while it waits for
+    a neighbour of the same pace to count it as steady (None: counted, or not steady; the
+    whole: none since the person stood)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -142,7 +144,7 @@ def _walked(state: AuditState, sample: Sample, stride_time: float) -> AuditState
     if pelvis is None or (state.pelvis is not None and pelvis[0] <= state.pelvis[0]):
         return state
     if state.pelvis is None or not sample.walking:
-        return replace(state, pelvis=pelvis, stride=(), stride_mean=0.0)
+        return replace(state, pelvis=pelvis, stride=(), last_stride=None)
     t0, x0, y0 = state.pelvis
     speed = math.hypot(pelvis[1] - x0, pelvis[2] - y0) / (pelvis[0] - t0)
     stride = (*state.stride, (pelvis[0], speed))
@@ -150,17 +152,22 @@ def _walked(state: AuditState, sample: Sample, stride_time: float) -> AuditState
         return replace(state, pelvis=pelvis, stride=stride)
     speeds = np.array([v for _, v in stride])
     mean = float(speeds.mean())
-    before = state.stride_mean
-    state = replace(state, pelvis=pelvis, stride=(stride[-1],), stride_mean=mean)
-    ends = min(speeds[0], speeds[-1])
-    changes = (abs(speeds[-1] - speeds[0]), abs(mean - before))
-    if ends < WALKING_SPEED or max(changes) > STEADY_SPEED_CHANGE * mean:
-        return state
     variation = float(speeds.max() - speeds.min()) / 2 / mean
+    ends_at_pace = min(speeds[0], speeds[-1]) >= WALKING_SPEED
+    ends_at_pace &= abs(speeds[-1] - speeds[0]) <= STEADY_SPEED_CHANGE * mean
+    last = state.last_stride
+    paced = last is not None and abs(mean - last[0]) <= STEADY_SPEED_CHANGE * mean
+    counted = [(last[1], last[0])] if paced and last[1] is not None else []
+    if ends_at_pace and paced:
+        counted.append((variation, mean))
+    waiting = variation if ends_at_pace and not paced else None
     return replace(
         state,
-        stride_variations=(*state.stride_variations, variation),
-        stride_speeds=(*state.stride_speeds, mean),
+        pelvis=pelvis,
+        stride=(stride[-1],),
+        last_stride=(mean, waiting),
+        stride_variations=(*state.stride_variations, *(v for v, _ in counted)),
+        stride_speeds=(*state.stride_speeds, *(m for _, m in counted)),
     )
 
 

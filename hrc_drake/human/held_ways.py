@@ -7,7 +7,7 @@ hrc_drake.human.targeting lays out round the clip's event.
 """
 
 import numpy as np
-from pydrake.math import RotationMatrix
+from pydrake.math import RigidTransform, RotationMatrix
 from shapely.geometry import MultiPoint
 
 from hrc_drake.human.aiming import Unreachable
@@ -39,6 +39,10 @@ LOSING_HOLD = 2 * HOLDING_SLIP
 object by more than the audit allows: the person cannot carry it off from where they stand
 (a 95th-percentile man moved 0.7 m along a pallet for room to turn lifted a carton with his
 palms 12 cm off it)."""
+OUT_SHARE = 0.4
+"""Share of the way into the carry posture spent drawing an object out from under a board."""
+OUT_STEP, OUT_MOST = 0.02, 0.5
+"""m: an object is drawn out from under a board in these steps, this far at most."""
 WAY_BEND = 0.05
 """m: how far the held object's way may pass beside the straight one between its ends (it
 runs in the chest's frame, which turns and leans with the trunk: coexistence seed 9's
@@ -142,6 +146,17 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     object's bottom is at the lower end and lower than its top at the higher one (a stack
     beside where a box is put down, the edge of a board it is taken off; not the board
     above). None: nothing does."""
+    around, lowest, highest = _held_outline(body, carry, heading)
+    corners = [np.asarray(end[:2]) + c for end in (a, b) for c in around]
+    bottom = min(a[2], b[2]) - lowest
+    area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
+    top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
+    return None if top is None else top + CLEARANCE + lowest
+
+
+def _held_outline(body, carry: CarryArms, heading: float):
+    """The held object with the hands at its sides, round the palms' midpoint: the corners
+    of its outline on the floor (offsets), and how far it reaches below and above."""
     depth, width, height = carry.size
     ahead, aside, below = object_center_in_holder(Hold(_hands_of(carry), carry.size))
     R = facing(heading, "sides_fingers_forward")
@@ -152,24 +167,39 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     forward = np.array([np.cos(heading), np.sin(heading)])
     left = np.array([-forward[1], forward[0]])
     corners = [
-        np.asarray(end[:2]) + (ahead + u * depth / 2) * forward + (aside + v) * left
-        for end in (a, b)
+        (ahead + u * depth / 2) * forward + (aside + v) * left
         for u in (-1.0, 1.0)
         for v in (-width / 2 - PALM_GAP - hand, width / 2 + PALM_GAP + hand)
     ]
-    bottom = min(a[2], b[2]) - lowest
-    area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
-    top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
-    return None if top is None else top + CLEARANCE + lowest
+    return corners, lowest, highest
+
+
+def _out_from_under(body, carry: CarryArms, grasped, carried, around) -> np.ndarray | None:
+    """How far (a world vector) the object taken at `grasped` must be drawn out towards the
+    person, level, before it can rise into the carry posture at `carried`: out from under
+    what stands over it lower than it rises (the board above it in a shelf; lifted straight
+    up there, a forearm went 11 cm into it). None: nothing stands over it."""
+    furniture, heading = around
+    a, b = (_palms_midpoint(body, carry, q) for q in (grasped, carried))
+    around_it, _, highest = _held_outline(body, carry, heading)
+    low, high = a[2] + highest + CLEARANCE / 2, b[2] + highest
+    back = -np.array([np.cos(heading), np.sin(heading)])
+    for distance in np.arange(0.0, OUT_MOST, OUT_STEP):
+        corners = [a[:2] + c + distance * back for c in around_it]
+        if furniture.highest_between(MultiPoint(corners).convex_hull, low, high) is None:
+            return None if distance == 0.0 else np.array([*((distance + CLEARANCE) * back), 0.0])
+    return None
+
+
+def _palms_midpoint(body, carry: CarryArms, q: np.ndarray) -> np.ndarray:
+    hands = [body.frame_pose(f"{s}_hand_grasp", q).translation() for s in carry.hands]
+    return np.mean(hands, axis=0)
 
 
 def _over(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around) -> float | None:
     """The crossing height of the way of the held object from pose a to pose b."""
     furniture, heading = around
-    middle = [
-        np.mean([body.frame_pose(f"{s}_hand_grasp", q).translation() for s in carry.hands], axis=0)
-        for q in (a, b)
-    ]
+    middle = [_palms_midpoint(body, carry, q) for q in (a, b)]
     return crossing_height(body, furniture, carry, *middle, heading)
 
 
@@ -186,24 +216,68 @@ def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:
 def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "Keys", around):
     """Offsets of a clip that takes an object and carries it off in the carry posture:
     `keys` up to the grasp, then the way into the carry posture, over what stands on it
-    (`around`: the furniture and the person's heading)."""
+    (`around`: the furniture and the person's heading). From under a board (a shelf's) the
+    object is first drawn out, level, the body still bent as it took it."""
     approach_time, _, hold_end = marks
     sides = tuple(hands)
     grasped = placed_pose(clip.sample(hold_end)) + on_target
     end_pose = placed_pose(clip.sample(clip.duration))
     carried = carry.over(end_pose)
-    start, end = _in_chest(body, grasped, sides), _in_chest(body, carried, sides)
-    times = tuple(np.linspace(hold_end, clip.duration, CARRY_SAMPLES))
-    zero = np.zeros_like(on_target)
-    over = _over(body, carry, grasped, carried, around)
     arms = arm_indices(body, sides)
-    way = _way(body, clip, placed_pose, times, start, end, on_target, zero, arms, over=over)
-    way[0], way[-1] = on_target, carried - end_pose
-    first = len(keys.times)
+    start, offset, out = hold_end, on_target, _out_from_under(body, carry, grasped, carried, around)
+    if out is not None:
+        start = hold_end + OUT_SHARE * (clip.duration - hold_end)
+        times = tuple(np.linspace(hold_end, start, CARRY_SAMPLES))
+        way = _drawn_out(body, clip, placed_pose, times, grasped, out, sides)
+        way[0] = on_target
+        _add_way(keys, times, way)
+        offset = way[-1]
+    held = placed_pose(clip.sample(start)) + offset
+    times = tuple(np.linspace(start, clip.duration, CARRY_SAMPLES))
+    way_from, way_to = _in_chest(body, held, sides), _in_chest(body, carried, sides)
+    over = _over(body, carry, held, carried, around)
+    zero = np.zeros_like(on_target)
+    way = _way(body, clip, placed_pose, times, way_from, way_to, offset, zero, arms, over=over)
+    way[0], way[-1] = offset, carried - end_pose
+    if out is None:
+        _add_way(keys, times, way)
+    else:
+        _add_way(keys, times[1:], way[1:], joined=True)
+    return keys.motion(sides, (approach_time, clip.duration))
+
+
+def _add_way(keys: "Keys", times, way, joined: bool = False) -> None:
+    """The way's offsets as keys played straight through (`joined`: on from the last key,
+    which is its first point)."""
+    first = len(keys.times) - 1 if joined else len(keys.times)
     for time, offset in zip(times, way, strict=True):
         keys.add(time, offset)
     keys.paths.append((first, len(keys.times) - 1))
-    return keys.motion(sides, (approach_time, clip.duration))
+
+
+def _drawn_out(body, clip, placed_pose, times, grasped, out, sides) -> list:
+    """Offsets at `times` that draw the held object out by the world vector `out`, level,
+    the rest of the body held as it was at the grasp (`grasped`)."""
+    arms = arm_indices(body, sides)
+    chest = body.frame_pose(CHEST, grasped)
+    start = _in_chest(body, grasped, sides)
+    shift = chest.rotation().inverse() @ np.asarray(out)
+    end = {s: RigidTransform(X.rotation(), X.translation() + shift) for s, X in start.items()}
+    zero = np.zeros_like(grasped)
+    way = _way(body, _Still(grasped), lambda q: q, times, start, end, zero, zero, arms)
+    return [
+        offset + grasped - placed_pose(clip.sample(t)) for t, offset in zip(times, way, strict=True)
+    ]
+
+
+class _Still:
+    """A clip that holds one pose (the body as it took the object)."""
+
+    def __init__(self, pose: np.ndarray):
+        self.pose = pose
+
+    def sample(self, _time: float) -> np.ndarray:
+        return self.pose
 
 
 def put_down(

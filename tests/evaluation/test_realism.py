@@ -92,6 +92,16 @@ def test_a_stride_from_speeding_up_into_slowing_down_is_not_steady():
     assert state.stride_variations == ()
 
 
+def test_every_stride_at_walking_pace_counts_from_the_first():
+    """A 4.5 m walk from standing to standing (1.34 m/s, 0.6 s ramps): its two strides at
+    pace count, the first one after the speeding up too."""
+    walk = _travel_speed(4.5, 1.34)
+    surge = lambda t: 1 + 0.085 * math.sin(4 * math.pi * t / STRIDE)  # noqa: E731
+    state = _run(_walk(lambda t: walk(t) * surge(t), 4.2))
+    assert len(state.stride_variations) == 2
+    assert max(state.stride_variations) == pytest.approx(0.085, abs=0.01)
+
+
 def _travel_speed(distance: float, speed: float):
     """The pelvis speed along a walk of `distance` from standing to standing (of its time)."""
 
