@@ -14,6 +14,7 @@ from hrc_drake.evaluation.realism import (
     realism_metrics,
     realism_rows,
 )
+from hrc_drake.human.walking import travel
 from hrc_drake.scenario import HumanConfig, load_scenario, overridden
 from hrc_drake.workpieces.geometry import Solid
 
@@ -78,6 +79,36 @@ def test_speeding_up_and_standing_are_no_strides():
     assert standing.stride_variations == ()
     short_walk = _run(_walk(lambda t: 1.4 * math.sin(math.pi * min(t / STRIDE, 1)) ** 2, 1.5))
     assert short_walk.stride_variations == ()  # from standing to standing in one stride
+
+
+def test_a_stride_from_speeding_up_into_slowing_down_is_not_steady():
+    """Collaboration seed 8 at 91.2 s: a 1.8 m walk between two turns on the spot (1.34 m/s,
+    0.6 s ramps, the pelvis surging ±8.5 % per stride). The stride that began 0.43 s into it
+    ran from 1.02 m/s speeding up to 1.08 slowing down, 1.45 between: its ends agree, but
+    it is no stride of steady walking."""
+    turn, walk = STRIDE - 0.43, _travel_speed(1.772, 1.337)
+    surge = lambda t: 1 + 0.085 * math.sin(4 * math.pi * (t - turn) / STRIDE)  # noqa: E731
+    state = _run(_walk(lambda t: walk(t - turn) * surge(t), turn + 2.0))
+    assert state.stride_variations == ()
+
+
+def test_every_stride_at_walking_pace_counts_from_the_first():
+    """A 4.5 m walk from standing to standing (1.34 m/s, 0.6 s ramps): its two strides at
+    pace count, the first one after the speeding up too."""
+    walk = _travel_speed(4.5, 1.34)
+    surge = lambda t: 1 + 0.085 * math.sin(4 * math.pi * t / STRIDE)  # noqa: E731
+    state = _run(_walk(lambda t: walk(t) * surge(t), 4.2))
+    assert len(state.stride_variations) == 2
+    assert max(state.stride_variations) == pytest.approx(0.085, abs=0.01)
+
+
+def _travel_speed(distance: float, speed: float):
+    """The pelvis speed along a walk of `distance` from standing to standing (of its time)."""
+
+    def at(t: float) -> float:
+        return (travel(t + 1e-4, distance, speed)[0] - travel(t - 1e-4, distance, speed)[0]) / 2e-4
+
+    return at
 
 
 def test_the_worst_of_each_measure_is_kept_with_when_and_where():
