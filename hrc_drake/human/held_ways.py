@@ -239,10 +239,8 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     zero = np.zeros_like(on_target)
     way = _way(body, clip, placed_pose, times, way_from, way_to, offset, zero, arms, over=over)
     way[0], way[-1] = offset, carried - end_pose
-    if out is None:
-        _add_way(keys, times, way)
-    else:
-        _add_way(keys, times[1:], way[1:], joined=True)
+    joined = int(out is not None)  # the drawn-out way's last key is this way's first
+    _add_way(keys, times[joined:], way[joined:], joined=bool(joined))
     return keys.motion(sides, (approach_time, clip.duration))
 
 
@@ -299,9 +297,7 @@ def put_down(
     way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over=over)
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
-    for time, offset in zip(times, way, strict=True):
-        keys.add(time, offset)
-    keys.paths.append((0, CARRY_SAMPLES - 1))
+    _add_way(keys, times, way)
     keys.add(event, on_target)
     keys.add(hold_end, on_target)
     release_end = hold_end + 0.3 * (clip.duration - hold_end)
