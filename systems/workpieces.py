@@ -164,7 +164,7 @@ class Workpieces(LeafSystem):
             moving = []
             for slot, frame_id in enumerate(self.frame_ids):
                 piece = by_slot.get(slot)
-                if piece is not None and piece.velocity.get_coeffs().any():
+                if piece is not None and piece.moving:
                     moving.append((frame_id, piece.drift))
                 elif piece is not self._written[slot]:
                     self._poses.set_value(frame_id, self._slot_pose(slot, piece, world))
@@ -195,8 +195,7 @@ class Workpieces(LeafSystem):
             output.set_value(dataclasses.replace(self._still_status[1], time=time))
             return
         status = self.cell.status(world, time, self.geometry_ids)
-        still = not any(p.velocity.get_coeffs().any() for p in world.pieces.values())
-        self._still_status = (world if still else None, status)
+        self._still_status = (world if world.none_moving else None, status)
         output.set_value(status)
 
 

@@ -29,7 +29,9 @@ SMALLEST = {
     "scenarios.py": ["--duration", "0.5", "cooperation"],
     "sensing_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "sweep.py": ["base", "--runs", "2", "--duration", "0.5", "--repeats", "1"],
+    "system_updates.py": ["--duration", "0.5", "getting_started"],
     "tracking.py": ["--duration", "0.5", "cooperation"],
+    "update_events.py": ["--duration", "0.5"],
 }
 
 

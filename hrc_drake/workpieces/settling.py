@@ -57,7 +57,7 @@ def settle(step: Step, instantly: bool) -> None:
 
 
 def _moving(piece: Piece) -> bool:
-    return piece.support is None or bool(piece.velocity.get_coeffs().any())
+    return piece.support is None or piece.moving
 
 
 def _support(step: Step, piece: Piece, others: list[Surface], instantly: bool) -> Surface:

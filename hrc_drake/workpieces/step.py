@@ -57,7 +57,7 @@ class Step:
     def _followed(self, piece: Piece, dt: float) -> Piece:
         """The piece at `now`: moved on as planned, or carried by its holder."""
         if piece.holder is None:
-            if not piece.velocity.get_coeffs().any():
+            if not piece.moving:
                 return piece
             return dataclasses.replace(piece, pose=moved(piece.pose, piece.velocity, dt))
         X_WH = self.holder_pose(piece.holder)

@@ -62,13 +62,7 @@ def still(
     first sample after the pause has no velocity (`hrc_drake.workpieces.step.PAUSE`)."""
     if any(newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers):
         return False
-    return all(_resting(piece) for piece in world.pieces.values())
-
-
-def _resting(piece) -> bool:
-    if piece.holder is not None or piece.support is None:
-        return False
-    return not piece.velocity.get_coeffs().any()
+    return world.at_rest
 
 
 def _empty_world() -> World:

@@ -78,6 +78,11 @@ class Piece:
         return footprint(self.solid, self.pose)
 
     @cached_property
+    def moving(self) -> bool:
+        """Whether the piece has a velocity planned (asked at every update and evaluation)."""
+        return bool(self.velocity.get_coeffs().any())
+
+    @cached_property
     def drift(self) -> Drift:
         """The piece moving on from its pose at the world's time (see `since`)."""
         return Drift(self.pose, self.velocity)
@@ -126,6 +131,20 @@ class World:
     def __deepcopy__(self, memo):
         """Never modified after construction, so copies can share it (Drake clones state)."""
         return self
+
+    @cached_property
+    def at_rest(self) -> bool:
+        """Whether every object rests on something, free and without a planned velocity (a
+        belt's queue included): found once per world, which lasts many updates."""
+        return all(
+            piece.holder is None and piece.support is not None and not piece.moving
+            for piece in self.pieces.values()
+        )
+
+    @cached_property
+    def none_moving(self) -> bool:
+        """Whether no object has a planned velocity (held ones move only with their holder)."""
+        return not any(piece.moving for piece in self.pieces.values())
 
 
 def since(world: World, time: float) -> float:
