@@ -1,8 +1,8 @@
 """A station's models are the same whichever way they are parsed: the bundled models read
 from their text (hrc_drake.station, the fast way) give the plant Drake's own
 ProcessModelDirectives gives from the files: the same model instances, bodies (masses,
-inertias, poses), joints, frames, and geometry (names, shapes, poses, every property of
-every role), for every bundled scenario's cell."""
+inertias, poses), joints, frames, geometry (names, shapes, poses, every property of every
+role) and the collision filters, for every bundled scenario's cell."""
 
 import pytest
 from pydrake.geometry import Role
@@ -69,6 +69,11 @@ def described(add, spec) -> list:
                 [_properties(inspector.GetProperties(geometry, role)) for role in ROLES],
             )
         )
+    touching = [g for g in inspector.GetAllGeometryIds() if inspector.GetProximityProperties(g)]
+    filtered = [
+        (a, b) for a in touching for b in touching if a < b and inspector.CollisionFiltered(a, b)
+    ]
+    items.append([(inspector.GetName(a), inspector.GetName(b)) for a, b in filtered])
     return items
 
 
