@@ -9,6 +9,7 @@ import numpy as np
 
 from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.head_room import head_correction
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.messages import Box
 from hrc_drake.human.performer import Performer
@@ -49,9 +50,10 @@ class Activity:
     reached_for: tuple[Box, float] | None = None
     """What the hands are about to take and when they come to it: until then the arms keep
     out of it too (pushed off a box beside it, a hand on its way went into it)."""
-    clear: ArmCorrection | None = None
-    """Keeps the arms out of the furniture (hrc_drake.human.clearance), worked out once the
-    activity takes over (`blended_from`)."""
+    clear: tuple[ArmCorrection, ...] = ()
+    """Keep the head (hrc_drake.human.head_room), then the arms
+    (hrc_drake.human.clearance) out of the furniture, each laid over the pose before it;
+    worked out once the activity takes over (`blended_from`)."""
 
     @classmethod
     def plan(
@@ -83,12 +85,12 @@ class Activity:
         blended = replace(self, blend_offset=offset, blend_start=t, blend_time=duration)
         return replace(blended, clear=blended._arms_clear(performer, t))
 
-    def _arms_clear(self, performer: Performer, t: float) -> ArmCorrection | None:
-        """The correction that keeps the arms out of the furniture from t to the end (of
-        one loop of a clip that loops for ever)."""
+    def _arms_clear(self, performer: Performer, t: float) -> tuple[ArmCorrection, ...]:
+        """The corrections that keep the head, then the arms, out of the furniture from t to
+        the end (of one loop of a clip that loops for ever)."""
         furniture = self.furniture_of(performer)
         if not furniture.pieces:
-            return None
+            return ()
         last = self.segments[-1]
         end = self.end
         if end == inf:
@@ -97,15 +99,21 @@ class Activity:
         if self.reached_for is not None:
             box, until = self.reached_for
             early = (furniture.with_boxes((box,)), until)
-        return arm_correction(
-            performer.body,
+        body = performer.body
+        head = head_correction(
+            body, furniture, lambda u: self._blended_pose(performer, u, arms_only=True), t, end
+        )
+        heads = () if head is None else (head,)
+        arms = arm_correction(
+            body,
             furniture,
-            lambda u: self._blended_pose(performer, u, arms_only=True),
+            lambda u: _corrected(heads, self._blended_pose(performer, u, arms_only=True), u),
             t,
             end,
             lambda u: self._segment_at(u).holding(performer, u),
             early,
         )
+        return heads if arms is None else (*heads, arms)
 
     def _segment_at(self, t: float) -> Segment:
         return self.segments[self._index_at(t)]
@@ -131,14 +139,20 @@ class Activity:
         return q
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
-        q = self._blended_pose(performer, t)
-        return q if self.clear is None else self.clear.over(q, t)
+        return _corrected(self.clear, self._blended_pose(performer, t), t)
 
     def _blended_pose(self, performer: Performer, t: float, arms_only: bool = False) -> np.ndarray:
         q = self.planned_pose(performer, t, arms_only)
         if self.blend_offset is not None and t < self.blend_start + self.blend_time:
             q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset
         return q
+
+
+def _corrected(corrections, q: np.ndarray, t: float) -> np.ndarray:
+    """q with each of `corrections` laid over it in turn."""
+    for correction in corrections:
+        q = correction.over(q, t)
+    return q
 
 
 def fade(elapsed: float, duration: float) -> float:

@@ -1,7 +1,8 @@
-"""The arms' collision shapes against the cell's prisms: how deep an arm goes into the
-furniture (the separating-axis test on the prisms' faces and the hulls of the upper arm and
-forearm capsules and the hand's box), where, and which way is the shortest out. The arm
-check (hrc_drake.human.clearance) moves the arms by these measures."""
+"""The collision shapes of the arms and the head against the cell's prisms: how deep an arm
+or the head goes into the furniture (the separating-axis test on the prisms' faces and the
+hulls of the upper arm and forearm capsules, the hand's box, and the neck, skull and face),
+where, and which way is the shortest out. The upper-body check (hrc_drake.human.clearance)
+moves the arms and the trunk by these measures."""
 
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
@@ -14,12 +15,14 @@ from hrc_drake.human.furniture import Furniture
 
 ARM = ("upper_arm", "forearm", "hand")
 """The arm's bodies, from the shoulder out."""
+HEAD = "head"
+"""The part that is the head and neck (one body: neck, skull and face shapes)."""
 
 
 @dataclass(frozen=True)
 class Points:
-    """One arm's collision shapes: per body of the arm, the corners of its shape's hull (in
-    the body's frame) and the radius round them."""
+    """One part's collision shapes (an arm's or the head's): per shape, the body frame it is
+    on, the corners of its hull (in that frame) and the radius round them."""
 
     frames: tuple[str, ...]
     points: tuple[np.ndarray, ...]
@@ -44,31 +47,43 @@ class Points:
 
     @cached_property
     def owners(self) -> np.ndarray:
-        """Which of the arm's bodies each corner (a row of `stacked`) is on."""
+        """Which of the part's shapes each corner (a row of `stacked`) is on."""
         return np.repeat(np.arange(len(self.points)), [len(p) for p in self.points])
 
 
+def part_bodies(part: str) -> tuple[str, ...]:
+    """The bodies of a part: `left` or `right` (that arm) or HEAD."""
+    return (HEAD,) if part == HEAD else tuple(f"{part}_{b}" for b in ARM)
+
+
 @lru_cache(maxsize=16)
-def arm_points(body: HumanBody, side: str) -> Points:
-    """The shapes of the upper arm, forearm and hand as the corners of their hulls: a
-    capsule's two axis ends (with its radius), the hand box's eight corners."""
+def arm_points(body: HumanBody, part: str) -> Points:
+    """The shapes of a part (an arm: upper arm, forearm and hand; or the head: neck, skull
+    and face) as the corners of their hulls: a capsule's two axis ends and a sphere's centre
+    (with their radius), a box's eight corners."""
     frames, points, radii = [], [], []
-    for part in ARM:
-        name = f"{side}_{part}"
-        (collision,) = body.skeleton.body(name).collisions
-        shape = collision.shape
-        R = RollPitchYaw(*shape.rpy).ToRotationMatrix().matrix()
-        if shape.kind == "capsule":
-            radius, length = shape.size
-            local = np.array([[0.0, 0.0, -length / 2], [0.0, 0.0, length / 2]])
-        else:  # the hand's box
-            radius = 0.0
-            half = np.asarray(shape.size) / 2
-            local = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * half
-        frames.append(name)
-        points.append(np.asarray(shape.xyz, dtype=float) + local @ R.T)
-        radii.append(radius)
+    for name in part_bodies(part):
+        for collision in body.skeleton.body(name).collisions:
+            corners, radius = _hull(collision.shape)
+            frames.append(name)
+            points.append(corners)
+            radii.append(radius)
     return Points(tuple(frames), tuple(points), tuple(radii))
+
+
+def _hull(shape):
+    """A shape's hull corners in its body's frame and the radius round them."""
+    R = RollPitchYaw(*shape.rpy).ToRotationMatrix().matrix()
+    if shape.kind == "capsule":
+        radius, length = shape.size
+        local = np.array([[0.0, 0.0, -length / 2], [0.0, 0.0, length / 2]])
+    elif shape.kind == "sphere":
+        radius, local = shape.size[0], np.zeros((1, 3))
+    else:  # a box
+        radius = 0.0
+        half = np.asarray(shape.size) / 2
+        local = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * half
+    return np.asarray(shape.xyz, dtype=float) + local @ R.T, radius
 
 
 @dataclass(frozen=True)
@@ -126,9 +141,13 @@ class Prisms:
         deep as they overlap; negative: apart by at least that much). Returns the depth, the
         shape, the direction that takes it out (the shortest way, or with `not_down` the
         shortest but down under the prism; a unit vector) and the index of the point that
-        leads the way out."""
+        leads the way out. A sphere (a shape of one corner) gets out away from the prism's
+        nearest point (`_away`)."""
         forward, backward, along, depth = self._depths(points, radii, shapes)
         k, shape = np.unravel_index(np.argmax(depth), depth.shape)
+        if radii[shape] > 0.0 and np.ptp(points[shapes[shape]], axis=0).max() == 0.0:
+            centre = points[shapes[shape][0]]
+            return float(depth[k, shape]), int(shape), self._away(k, centre), int(shapes[shape][0])
         choice = along[k, :, shape].copy()
         if not_down:
             choice[self.axes[k, :, 2] < 0.0] = np.inf
@@ -139,6 +158,28 @@ class Prisms:
         else:
             lead, axis = int(np.argmax(run)), -self.axes[k, f]
         return float(depth[k, shape]), int(shape), axis, int(shapes[shape][lead])
+
+    def _away(self, k: int, centre: np.ndarray) -> np.ndarray:
+        """The way out of prism k for a sphere at `centre`: along the faces whose planes it is
+        beyond, each as far as it is beyond it (away from the prism's nearest point where
+        the faces meet square, as a shelf board's front and underside do), so that it turns
+        smoothly as the sphere passes an edge; from inside, out of the nearest face."""
+        beyond = self.axes[k] @ centre - self.ahead[k]
+        if (beyond > 0.0).any():
+            away = np.where(beyond > 0.0, beyond, 0.0) @ self.axes[k]
+            return away / np.linalg.norm(away)
+        return self.axes[k][int(np.argmax(beyond))]
+
+    def deepest_near(self, xy, reach: float, corners, radii, shapes) -> np.ndarray:
+        """How deep each shape goes into the prisms within `reach` of its pose's floor point
+        (`xy`: poses × 2; `corners`: poses × corners × 3): poses × shapes, -inf where no
+        prism is near. Only the prisms near some pose are measured."""
+        near = self.near_masks(xy, reach)
+        some = near.any(axis=0)
+        if not some.any():
+            return np.full((len(xy), len(shapes)), -np.inf)
+        depths = self.subset(some).shape_depths(corners, radii, shapes)
+        return np.where(near[:, some, None], depths, -np.inf).max(axis=1)
 
     def shape_depths(self, points: np.ndarray, radii, shapes) -> np.ndarray:
         """`overlap`'s depth of each shape in each prism, for many sets of shapes at once:
@@ -192,7 +233,7 @@ def _faces(piece):
 
 @dataclass(frozen=True)
 class ArmCheck:
-    """One arm's points in the world at a pose, and how deep they go into the furniture."""
+    """One part's points in the world at a pose, and how deep they go into the furniture."""
 
     depth: float
     frame: str
@@ -205,42 +246,43 @@ class ArmCheck:
 
 
 @lru_cache(maxsize=16)
-def arm_frames(body: HumanBody, sides: tuple[str, ...]) -> tuple:
-    """The plant frames of the `sides` arms' bodies, side by side (as `arm_points` has them)."""
-    return tuple(body.plant.GetFrameByName(f) for s in sides for f in arm_points(body, s).frames)
+def arm_frames(body: HumanBody, parts: tuple[str, ...]) -> tuple:
+    """The plant frames of the `parts`' shapes, part by part (as `arm_points` has them)."""
+    return tuple(body.plant.GetFrameByName(f) for p in parts for f in arm_points(body, p).frames)
 
 
-def arms_in_world(body: HumanBody, q: np.ndarray, sides: tuple[str, ...]) -> dict:
-    """The `sides` arms' hull corners in the world at q (n × 3), by one forward kinematics."""
-    corners = corners_in_world(body, [q], sides)[0]
-    starts = np.cumsum([0, *(len(arm_points(body, s).stacked) for s in sides)])
-    return {side: corners[starts[k] : starts[k + 1]] for k, side in enumerate(sides)}
+def arms_in_world(body: HumanBody, q: np.ndarray, parts: tuple[str, ...]) -> dict:
+    """The `parts`' hull corners in the world at q (n × 3), by one forward kinematics."""
+    corners = corners_in_world(body, [q], parts)[0]
+    starts = np.cumsum([0, *(len(arm_points(body, p).stacked) for p in parts)])
+    return {part: corners[starts[k] : starts[k + 1]] for k, part in enumerate(parts)}
 
 
-def corners_in_world(body: HumanBody, poses, sides: tuple[str, ...]) -> np.ndarray:
-    """The `sides` arms' hull corners in the world at each of `poses` (poses × corners × 3,
-    the sides' corners one after the other): one forward kinematics per pose, the corners
-    of all poses moved at once."""
-    frames = arm_frames(body, sides)
+def corners_in_world(body: HumanBody, poses, parts: tuple[str, ...]) -> np.ndarray:
+    """The `parts`' hull corners in the world at each of `poses` (poses × corners × 3, the
+    parts' corners one after the other): one forward kinematics per pose, the corners of
+    all poses moved at once."""
+    frames = arm_frames(body, parts)
     X = np.array(
         [
             [X.GetAsMatrix34() for X in body.world_poses(frames, body.plant_positions(q))]
             for q in poses
         ]
     ).reshape(len(poses), len(frames), 3, 4)
-    arms = [arm_points(body, side) for side in sides]
-    owners = np.concatenate([arm.owners + k * len(ARM) for k, arm in enumerate(arms)])
-    local = np.vstack([arm.stacked for arm in arms])
+    shapes = [arm_points(body, part) for part in parts]
+    first = np.cumsum([0, *(len(p.points) for p in shapes[:-1])])
+    owners = np.concatenate([p.owners + k for p, k in zip(shapes, first, strict=True)])
+    local = np.vstack([p.stacked for p in shapes])
     placed = X[:, owners]
     return np.einsum("pnij,nj->pni", placed[..., :3], local) + placed[..., 3]
 
 
 def check_arm(
-    body: HumanBody, prisms: Prisms, q: np.ndarray, side: str, not_down: bool = False
+    body: HumanBody, prisms: Prisms, q: np.ndarray, part: str, not_down: bool = False
 ) -> ArmCheck:
-    """How deep the `side` arm goes into the prisms at q (its deepest shape), where, and how
-    it gets out (as `Prisms.overlap`)."""
-    arm = arm_points(body, side)
-    world = arms_in_world(body, q, (side,))[side]
+    """How deep the `part` (an arm's side or HEAD) goes into the prisms at q (its deepest
+    shape), where, and how it gets out (as `Prisms.overlap`)."""
+    arm = arm_points(body, part)
+    world = arms_in_world(body, q, (part,))[part]
     depth, shape, out, k = prisms.overlap(world, arm.radii_row, arm.shapes, not_down)
     return ArmCheck(depth, arm.frames[shape], arm.stacked[k], world[k], out)

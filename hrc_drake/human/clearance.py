@@ -212,13 +212,8 @@ class _Keep:
         clear = np.ones(len(times), dtype=bool)
         early = np.array(times) < self.until
         for prisms, chosen in ((self.early, early), (self.late, ~early)):
-            near = prisms.near_masks(np.array(poses)[chosen, :2], NEAR)
-            some = near.any(axis=0)
-            if not some.any():
-                continue
-            near, prisms = near[:, some], prisms.subset(some)
-            depths = prisms.shape_depths(corners[chosen], radii, shapes)
-            deepest = np.where(near[:, :, None], depths, -np.inf).max(axis=1)
+            xy = np.array(poses)[chosen, :2]
+            deepest = prisms.deepest_near(xy, NEAR, corners[chosen], radii, shapes)
             per_side = np.maximum.reduceat(deepest, sides, axis=1)
             clear[chosen] = (per_side <= tolerances[chosen]).all(axis=1)
         return clear

@@ -7,6 +7,8 @@ put on waypoints by IK there (hrc_drake.human.aiming); hrc_drake.human.targeting
 out round the clip's event.
 """
 
+from functools import lru_cache
+
 import numpy as np
 
 from hrc_drake.human.aiming import (
@@ -165,6 +167,25 @@ def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, hea
     return clear if moved else None
 
 
+def below_the_top(body: HumanBody, furniture: Furniture, hands: dict) -> bool:
+    """Whether hands leaving the surfaces under `hands` (side: target) go down outside
+    their edge (LOWERED) before they swing back to the body's sides: only where a surface's
+    top stands above the fingertips of hands hanging at the sides. Over a lower top they
+    swing back above it anyway; lowered there, they bent a person who had put a tote into a
+    shelf's middle compartment so low that the face went into the board above, and the
+    body rose back in the last tenth of a second."""
+    tops = [furniture.support(target[0]) for target in hands.values()]
+    highest = max((top.high for top in tops if top is not None), default=-np.inf)
+    return highest > min(_hanging_fingertips(body, side) for side in hands)
+
+
+@lru_cache(maxsize=16)
+def _hanging_fingertips(body: HumanBody, side: str) -> float:
+    """How high the `side` hand's lowest point is when the person stands, arms hanging."""
+    X = body.frame_pose(f"{side}_hand_grasp", body.standing_pose())
+    return float(X.translation()[2]) - hand_below(body, X.rotation(), side)
+
+
 def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMotion | None:
     """Offsets that take hands cut short on a surface (a cancelled reach) off it the way
     they came, over WITHDRAWAL seconds of `clip` (idle) from the pose `q`: up, over the
@@ -182,7 +203,8 @@ def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMo
     edge = over_the_edge(body, furniture, hands, up, base, heading)
     keys.reach(LEAVE_AT[0] * WITHDRAWAL, up)
     if edge is not None:
-        keys.off_the_edge(edge, WITHDRAWAL * np.array(LEAVE_AT[1:]))
+        lowered = below_the_top(body, furniture, hands)
+        keys.off_the_edge(edge, WITHDRAWAL * np.array(LEAVE_AT[1:]), lowered)
     keys.add(WITHDRAWAL, np.zeros_like(q))
     return keys.motion(tuple(hands), (0.0, 0.0))
 
@@ -249,13 +271,14 @@ class Keys:
         times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
         return [(float(t), minimum_jerk(k / PASSAGE_KEYS)) for k, t in enumerate(times, start=1)]
 
-    def off_the_edge(self, edge: dict, times) -> None:
-        """Keys that take the hands over a surface's `edge` (its waypoints) and then straight
-        down outside it, at the two `times`."""
+    def off_the_edge(self, edge: dict, times, lowered: bool) -> None:
+        """Keys that take the hands over a surface's `edge` (its waypoints) and then, if
+        `lowered` (`below_the_top`), straight down outside it, at the two `times`."""
         self.passage(times[0], edge)
-        self.reach(
-            times[1], {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
-        )
+        if lowered:
+            self.reach(
+                times[1], {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
+            )
 
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset

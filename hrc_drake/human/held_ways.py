@@ -24,7 +24,7 @@ from hrc_drake.human.grasp import (
     object_center_in_holder,
     outward,
 )
-from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys
+from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys, below_the_top
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Hold
 
@@ -304,6 +304,7 @@ def put_down(
     keys.straight(release_end, hands, opened, on_target)
     if edge is not None:
         rest = clip.duration - release_end
-        keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]))
+        lowered = below_the_top(body, around[0], hands)
+        keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]), lowered)
     keys.add(clip.duration, zero)
     return keys.motion(sides, (0.0, release_end))

@@ -32,6 +32,7 @@ from hrc_drake.human.hand_ways import (
     LEAVE_AT,
     Keys,
     approached,
+    below_the_top,
     clearing,
     over_the_edge,
     room_beside,
@@ -180,6 +181,7 @@ def aim_clip(
     if edge is not None:
         rest = clip.duration - hold_end
         keys.reach(hold_end + LEAVE_AT[0] * rest, near)
-        keys.off_the_edge(edge, hold_end + rest * np.array(LEAVE_AT[1:]))
+        lowered = below_the_top(body, furniture, hands)
+        keys.off_the_edge(edge, hold_end + rest * np.array(LEAVE_AT[1:]), lowered)
     keys.add(clip.duration, np.zeros_like(on_target))
     return keys.motion(tuple(hands), (approach_time, hold_end))

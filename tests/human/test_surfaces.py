@@ -8,11 +8,11 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, hold_of
-from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, MoveCommand
+from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, Hold, MoveCommand
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
-from tests.human.scene import FLOOR, Run, furniture
+from tests.human.scene import FLOOR, SAMPLE, Run, furniture
 
 INTO_FURNITURE = 0.01
 """m: how far a body segment may go into the cell's geometry (the audit's limit)."""
@@ -354,6 +354,40 @@ def test_a_box_taken_out_of_a_shelf_is_drawn_out_before_it_rises():
     shelf = furniture("shelf", 0.0, 0.55)
     run = Run(schedule, STANDING, [FLOOR, shelf], ARMS, objects=[(TOTE, RigidTransform(center))])
     _picked_up_between_the_palms(run, width=TOTE[0])
+
+
+def test_leaning_into_a_shelf_the_person_ducks_under_the_board_above():
+    """A cell of our own: leaning in to take a tote from a shelf's middle board, the forehead
+    passed 1.9 cm into the edge of the top board (1.6 m) on its way down. The person ducks:
+    nothing of the body goes into the shelf, and the palms still take the tote."""
+    center = (0.0, 0.55, 0.601 + TOTE[2] / 2)
+    grasp = Grasp("both", center, 0.0, TOTE)
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp))]
+    shelf = furniture("shelf", 0.0, 0.55)
+    run = Run(schedule, STANDING, [FLOOR, shelf], ("",), objects=[(TOTE, RigidTransform(center))])
+    _picked_up_between_the_palms(run, width=TOTE[0])
+
+
+HEAD_SPEED = 1.5
+"""m/s: faster than the head of a person straightening up from a put-down moves (about
+1 m/s at its peak in the smooth ones here)."""
+
+
+def test_a_tote_put_into_a_shelf_compartment_is_left_without_bending_lower():
+    """A cell of our own: a tote put on a shelf's middle board, the next board 0.49 m above.
+    Leaving it, the hands went 0.25 m down outside the board's edge as off a table top: the
+    person bent so low that the face went 2.6 cm into the board above, then rose 0.2 m in a
+    thirtieth of a second. Over a top lower than hanging fingertips the hands swing back to
+    the sides above it: nothing goes into the shelf, the head rises at a person's pace."""
+    center = (0.0, 0.55, 0.601 + TOTE[2] / 2)
+    hold = Hold("both", (TOTE[1], TOTE[0], TOTE[2]))
+    schedule = [(0.1, AnimateCommand(1, "place_table", target=center, hold=hold))]
+    run = Run(schedule, STANDING, [FLOOR, furniture("shelf", 0.0, 0.55)], ("",))
+    _, poses = run.record(0.1 + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+    heads = np.array([run.body.frame_pose("head", q).translation() for q in poses])
+    assert np.linalg.norm(np.diff(heads, axis=0), axis=1).max() / SAMPLE <= HEAD_SPEED
 
 
 def _picked_up_between_the_palms(run: Run, width: float = MATERIAL[0]) -> None:
