@@ -13,7 +13,7 @@ from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from hrc_drake.paths import MODEL_PACKAGE, add_model_package
+from hrc_drake.paths import MODEL_PACKAGE, add_bundled_model, add_model_package, bundled_model_file
 
 JOINT_NAMES = ("A1", "A2", "A3", "A4", "A5", "A6")
 LINK_NAMES = ("base_link", "link_1", "link_2", "link_3", "link_4", "link_5", "link_6")
@@ -139,8 +139,7 @@ VARIANTS: dict[str, RobotVariant] = {
 def add_iisy(plant: MultibodyPlant, variant_name: str, parser: Parser) -> ModelInstanceIndex:
     """Parse one iisy variant into `plant`; the caller welds its `base_link` frame."""
     add_model_package(parser.package_map())
-    (instance,) = parser.AddModels(url=VARIANTS[variant_name].model_url)
-    return instance
+    return add_bundled_model(parser, bundled_model_file(VARIANTS[variant_name].model_url))
 
 
 def add_tool(
@@ -148,7 +147,7 @@ def add_tool(
 ) -> ModelInstanceIndex:
     """Parse the vacuum gripper and weld it to the robot's flange (tool z = flange z)."""
     add_model_package(parser.package_map())
-    (tool,) = parser.AddModels(url=TOOL_URL)
+    tool = add_bundled_model(parser, bundled_model_file(TOOL_URL))
     plant.WeldFrames(
         plant.GetFrameByName(FLANGE_FRAME, robot),
         plant.GetBodyByName(TOOL_BODY, tool).body_frame(),

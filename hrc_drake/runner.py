@@ -28,7 +28,6 @@ from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import Station, build_diagram
 from hrc_drake.evaluation.record import Fault, Footprint, PersonRecord, RunRecord, RunSetup
 from hrc_drake.evaluation.report import Report, evaluate, write_run_directory
-from hrc_drake.layout import layout_of, write_layout
 from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.state_changes import StateChanges, add_state_changes
@@ -84,6 +83,8 @@ def run(
     record = simulate(scenario, meshcat, out_dir, progress, serve)
     report = Report(evaluate(record), out_dir, record.wall_time)
     if out_dir is not None:
+        from hrc_drake.layout import layout_of, write_layout  # pyplot: only runs that draw
+
         layout = {
             "layout": write_layout(layout_of(scenario, scenario_file), out_dir / "layout.png")
         }

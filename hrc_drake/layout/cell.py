@@ -15,8 +15,7 @@ from shapely.ops import unary_union
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.navigation import FLOOR_LEVEL, NavigationMap, Obstacle
 from hrc_drake.known_values import known_inputs
-from hrc_drake.layout.reach_map import ReachMap, ReachMapper
-from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.layout.reach_map import ReachMap, base_centre, reach_maps
 from hrc_drake.nodes.robot import RobotMove, RobotMoveLinear, tool_pose
 from hrc_drake.safety.sensors import SensorsConfig
 from hrc_drake.scenario.cell_findings import CellScene
@@ -110,23 +109,18 @@ def cell_layout(scenario: Scenario, path: Path | None) -> CellLayout:
     scene = CellScene(scenario)
     targets = robot_targets(scenario)
     objects = starting_objects(scene)
-    planner = MotionPlanner(
-        scenario.station, scenario.robot.motion, stream(scenario.seed, ROBOT_MOTION)
-    )
-    mapper = ReachMapper(planner)
+    heights = reach_heights(targets + [o.picked for o in objects])
+    seed = stream(scenario.seed, ROBOT_MOTION)
     human = scenario.human
     return CellLayout(
         name=scenario.name,
         variant=scenario.robot.variant,
-        robot_xy=mapper.centre,
+        robot_xy=base_centre(scenario.station),
         furniture=furniture(scene.navigation.obstacles),
         blocked=scene.navigation.blocked,
         keep_out=scene.navigation.keep_out,
         no_room=no_room_to_turn(scene.navigation),
-        reach=[
-            mapper.reach_map(z, linear)
-            for z, linear in reach_heights(targets + [o.picked for o in objects])
-        ],
+        reach=reach_maps(scenario.station, scenario.robot.motion, seed, heights),
         targets=targets,
         places=places(scenario),
         areas={name: Polygon(points) for name, points in scenario.areas.items()},

@@ -26,7 +26,9 @@ from pydrake.common import Parallelism
 from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.motion.model import PlanningModel
+from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.station import StationSpec
 
 TILT = math.radians(30.0)
 """How far the tilted tool directions lean from straight down."""
@@ -76,6 +78,44 @@ class ReachMap:
         return float(self.share[cell]) if cell is not None else 0.0
 
 
+def reach_maps(
+    station: StationSpec,
+    options: MotionOptions,
+    seed: np.random.SeedSequence,
+    heights: list[tuple[float, bool]],
+) -> list[ReachMap]:
+    """The reach maps at `heights` ((height, linear) each) of the planner that `station`,
+    `options` and `seed` make. Kept per process: a map takes about 2 s of inverse kinematics
+    and collision checks, and the same scenario and seed are laid out again by every run
+    directory and `layout` of them."""
+    key = repr(
+        (
+            station.variant,
+            station.tool,
+            station.cell,
+            station.base_pose.GetAsMatrix34().tolist(),
+            station.initial_positions.tolist(),
+            options,
+            seed.entropy,
+            seed.spawn_key,
+        )
+    )
+    missing = [height for height in heights if (key, height) not in _REACH_MAPS]
+    if missing:
+        mapper = ReachMapper(MotionPlanner(station, options, seed))
+        for height, linear in missing:
+            _REACH_MAPS[key, (height, linear)] = mapper.reach_map(height, linear)
+    return [_REACH_MAPS[key, height] for height in heights]
+
+
+_REACH_MAPS: dict[tuple[str, tuple[float, bool]], ReachMap] = {}
+
+
+def base_centre(station: StationSpec) -> tuple[float, float]:
+    """x, y (m) of the robot's base axis on the floor."""
+    return tuple(float(v) for v in station.base_pose.translation()[:2])
+
+
 class ReachMapper:
     """Reach maps of one station at any heights, from one planner's inverse kinematics."""
 
@@ -83,7 +123,7 @@ class ReachMapper:
         self.planner = planner
         self.station = planner.station
         base = self.station.base_pose
-        self.centre = tuple(float(v) for v in base.translation()[:2])
+        self.centre = base_centre(self.station)
         x_axis = base.rotation().col(0)
         self.heading = math.atan2(x_axis[1], x_axis[0])
         """Azimuth of the base's x axis, along which the distances are solved."""

@@ -15,6 +15,7 @@ model takes the worst measured case at each tabulated speed (over axes and exten
 
 import bisect
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 import yaml
@@ -46,8 +47,11 @@ class Stop:
 
 def load_stops(variant: str) -> tuple[Stop, ...]:
     """The stored stopping data of `variant`."""
-    entries = yaml.safe_load(stopping_file(variant).read_text())["stops"]
-    return tuple(Stop(**entry) for entry in entries)
+    return _parsed_stops(stopping_file(variant).read_text())
+
+
+def _parsed_stops(text: str) -> tuple[Stop, ...]:
+    return tuple(Stop(**entry) for entry in yaml.safe_load(text)["stops"])
 
 
 def stopping_file(variant: str, models_dir: Path | None = None) -> Path:
@@ -76,7 +80,7 @@ class StopModel:
 
     @classmethod
     def of_variant(cls, variant: str) -> "StopModel":
-        return cls.from_stops(load_stops(variant))
+        return _stop_model(stopping_file(variant).read_text())
 
     def time(self, speed_fraction: float) -> float:
         """T_s from `speed_fraction` of full speed (0 at rest; the top speed's beyond it).
@@ -93,3 +97,10 @@ class StopModel:
     def distance(self, speed_fraction: float, point_speed: float) -> float:
         """S_s of the fastest point, moving at `point_speed` now."""
         return self.distance_factor * point_speed * self.time(speed_fraction)
+
+
+@lru_cache(maxsize=8)
+def _stop_model(text: str) -> StopModel:
+    """The model of one stopping file's text: parsing its YAML takes 70 ms, and every
+    scenario check (each falsify range end again) and safety monitor asks for it."""
+    return StopModel.from_stops(_parsed_stops(text))
