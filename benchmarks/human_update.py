@@ -67,10 +67,11 @@ class Clocks:
 
 
 def _same(a, b) -> bool:
-    if a is None or b is None:
-        return a is b
-    return a.times == b.times and all(
-        np.array_equal(x, y) for x, y in zip(a.offsets, b.offsets, strict=True)
+    """Whether two activities' corrections (head, then arms) are the same, key for key."""
+    return len(a) == len(b) and all(
+        x.times == y.times
+        and all(np.array_equal(u, v) for u, v in zip(x.offsets, y.offsets, strict=True))
+        for x, y in zip(a, b, strict=True)
     )
 
 
