@@ -6,6 +6,8 @@ Each way is keys of the clip (hrc_drake.human.hand_ways.Keys) that
 hrc_drake.human.targeting lays out round the clip's event.
 """
 
+from itertools import pairwise
+
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 from shapely.geometry import MultiPoint
@@ -26,11 +28,16 @@ from hrc_drake.human.grasp import (
 )
 from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys, below_the_top
 from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.legs import legs_of
 from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Hold
 
 CARRY_SAMPLES = 8
 """Points of the way between the grasp and the carry posture at which the palms are put on
-the object's faces by IK."""
+the object's faces by IK, at first; between them the joints run straight."""
+MOST_SAMPLES = 29
+"""Where the palms' spacing strays by more than HOLDING_SLIP between two points, the way is
+solved again at twice as many, up to this many (rising from a squat with a carton, the
+palms came 3.2 cm off it between two of 8 points)."""
 HOLDING_SLIP = 0.02
 """m: palms whose spacing strays further than this from the held object's are off its faces
 by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
@@ -74,35 +81,63 @@ def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
     return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
 
 
-def _way(*way, over=None):
-    """`way` = (body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms).
-    Offsets at `times` (evenly spaced) on the way of the holding hands from `start` to
+def _way(body, clip, placed_pose, span, *way, over=None):
+    """`way` = (start, end, trunk_from, trunk_to, arms). Times evenly spaced over `span` (the
+    first and last), CARRY_SAMPLES of them or more (MOST_SAMPLES), and the offsets there on
+    the way of the holding hands from `start` to
     `end` (grasp frames in the chest's frame at the first and last time): the way runs in
     the chest's frame, which rises and turns with the trunk, so the arms can follow it; the
     arms are solved to hold the object, the rest of the body eases from the offset
-    `trunk_from` to `trunk_to`. With `over` (a world height), the palms' midpoint rises to
+    `trunk_from` to `trunk_to`, the feet kept where the clip has them (a squat eased out
+    linearly in the joints sank the feet 3.6 cm into the floor, rising with a carton from a
+    shelf's bottom board). With `over` (a world height), the palms' midpoint rises to
     it first, crosses at that height and lowers last (over what stands on the way), if the
     arms can hold the object up there: else it goes the straight way (lifted too high, a
     carton in both hands was 5.3 cm off a palm: collaboration seed 15). Unreachable where
     the arms cannot hold it even on the straight way."""
-    offsets, slipped = _held_way(*way, over)
-    if over is not None and slipped > HOLDING_SLIP:
-        offsets, slipped = _held_way(*way)
-    if slipped > LOSING_HOLD:
-        raise Unreachable(
-            f"the hands cannot keep hold of the object on its way from where the person "
-            f"stands (their spacing strays {slipped * 100:.0f} cm from its width)"
-        )
-    return offsets
+    count = CARRY_SAMPLES
+    while True:
+        times = tuple(np.linspace(*span, count))
+        offsets, slipped = _held_way(body, clip, placed_pose, times, *way, over)
+        if over is not None and slipped > HOLDING_SLIP:
+            offsets, slipped = _held_way(body, clip, placed_pose, times, *way)
+        if slipped > LOSING_HOLD:
+            raise Unreachable(
+                f"the hands cannot keep hold of the object on its way from where the person "
+                f"stands (their spacing strays {slipped * 100:.0f} cm from its width)"
+            )
+        strays = _strays_between(body, clip, placed_pose, times, offsets, tuple(way[0]))
+        if count >= MOST_SAMPLES or strays <= HOLDING_SLIP:
+            return times, offsets
+        count = 2 * count - 1
+
+
+def _strays_between(body, clip, placed_pose, times, offsets, sides) -> float:
+    """How far the holding palms' spacing strays between two points of a way, the joints
+    halfway (as they run straight), from its mean at the two (0: one hand holds)."""
+    if len(sides) < 2:
+        return 0.0
+
+    def spacing(t, offset):
+        q = placed_pose(clip.sample(t)) + offset
+        left, right = (body.frame_pose(f"{side}_hand_grasp", q).translation() for side in sides)
+        return float(np.linalg.norm(left - right))
+
+    at = [spacing(t, offset) for t, offset in zip(times, offsets, strict=True)]
+    halfway = zip(pairwise(times), pairwise(offsets), pairwise(at), strict=True)
+    return max(
+        abs(spacing((a + b) / 2, (p + q) / 2) - (x + y) / 2) for (a, b), (p, q), (x, y) in halfway
+    )
 
 
 def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
-    """`_way`'s offsets, and how far the palms' spacing strays from the object's on it."""
+    """`_way`'s offsets at `times`, and how far the palms' spacing strays from the
+    object's on it."""
     offsets, solved, slipped = [], None, 0.0
     for k, t in enumerate(times):
         s = k / (len(times) - 1)
         placed = placed_pose(clip.sample(t))
-        q = placed + trunk_from + s * (trunk_to - trunk_from)
+        q = legs_of(body).planted(placed + trunk_from + s * (trunk_to - trunk_from), placed)
         if solved is not None:  # each point starts from the last: the arms follow the way
             q[arms] = solved[arms]
         chest = body.frame_pose(CHEST, q)
@@ -178,7 +213,9 @@ def _out_from_under(body, carry: CarryArms, grasped, carried, around) -> np.ndar
     """How far (a world vector) the object taken at `grasped` must be drawn out towards the
     person, level, before it can rise into the carry posture at `carried`: out from under
     what stands over it lower than it rises (the board above it in a shelf; lifted straight
-    up there, a forearm went 11 cm into it). None: nothing stands over it."""
+    up there, a forearm went 11 cm into it), and by WAY_BEND further, which the way up may
+    pass beside the straight one (a hand rising from a shelf's bottom board went 2.3 cm into
+    the board above). None: nothing stands over it."""
     furniture, heading = around
     a, b = (_palms_midpoint(body, carry, q) for q in (grasped, carried))
     around_it, _, highest = _held_outline(body, carry, heading)
@@ -187,7 +224,8 @@ def _out_from_under(body, carry: CarryArms, grasped, carried, around) -> np.ndar
     for distance in np.arange(0.0, OUT_MOST, OUT_STEP):
         corners = [a[:2] + c + distance * back for c in around_it]
         if furniture.highest_between(MultiPoint(corners).convex_hull, low, high) is None:
-            return None if distance == 0.0 else np.array([*((distance + CLEARANCE) * back), 0.0])
+            drawn = distance + CLEARANCE + WAY_BEND
+            return None if distance == 0.0 else np.array([*(drawn * back), 0.0])
     return None
 
 
@@ -227,17 +265,18 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     start, offset, out = hold_end, on_target, _out_from_under(body, carry, grasped, carried, around)
     if out is not None:
         start = hold_end + OUT_SHARE * (clip.duration - hold_end)
-        times = tuple(np.linspace(hold_end, start, CARRY_SAMPLES))
-        way = _drawn_out(body, clip, placed_pose, times, grasped, out, sides)
+        times, way = _drawn_out(body, clip, placed_pose, (hold_end, start), grasped, out, sides)
         way[0] = on_target
         _add_way(keys, times, way)
         offset = way[-1]
     held = placed_pose(clip.sample(start)) + offset
-    times = tuple(np.linspace(start, clip.duration, CARRY_SAMPLES))
     way_from, way_to = _in_chest(body, held, sides), _in_chest(body, carried, sides)
     over = _over(body, carry, held, carried, around)
     zero = np.zeros_like(on_target)
-    way = _way(body, clip, placed_pose, times, way_from, way_to, offset, zero, arms, over=over)
+    span = (start, clip.duration)
+    times, way = _way(
+        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, over=over
+    )
     way[0], way[-1] = offset, carried - end_pose
     joined = int(out is not None)  # the drawn-out way's last key is this way's first
     _add_way(keys, times[joined:], way[joined:], joined=bool(joined))
@@ -253,17 +292,17 @@ def _add_way(keys: "Keys", times, way, joined: bool = False) -> None:
     keys.paths.append((first, len(keys.times) - 1))
 
 
-def _drawn_out(body, clip, placed_pose, times, grasped, out, sides) -> list:
-    """Offsets at `times` that draw the held object out by the world vector `out`, level,
-    the rest of the body held as it was at the grasp (`grasped`)."""
+def _drawn_out(body, clip, placed_pose, span, grasped, out, sides):
+    """Times over `span` and the offsets there that draw the held object out by the world
+    vector `out`, level, the rest of the body held as it was at the grasp (`grasped`)."""
     arms = arm_indices(body, sides)
     chest = body.frame_pose(CHEST, grasped)
     start = _in_chest(body, grasped, sides)
     shift = chest.rotation().inverse() @ np.asarray(out)
     end = {s: RigidTransform(X.rotation(), X.translation() + shift) for s, X in start.items()}
     zero = np.zeros_like(grasped)
-    way = _way(body, _Still(grasped), lambda q: q, times, start, end, zero, zero, arms)
-    return [
+    times, way = _way(body, _Still(grasped), lambda q: q, span, start, end, zero, zero, arms)
+    return times, [
         offset + grasped - placed_pose(clip.sample(t)) for t, offset in zip(times, way, strict=True)
     ]
 
@@ -290,11 +329,11 @@ def put_down(
     held = carry.over(start_pose)
     above = placed_pose(clip.sample(approach_time)) + near_offset
     start, end = _in_chest(body, held, sides), _in_chest(body, above, sides)
-    times = tuple(np.linspace(0.0, approach_time, CARRY_SAMPLES))
     zero = np.zeros_like(on_target)
     arms = arm_indices(body, sides)
     over = _over(body, carry, held, above, around)
-    way = _way(body, clip, placed_pose, times, start, end, zero, near_offset, arms, over=over)
+    span = (0.0, approach_time)
+    times, way = _way(body, clip, placed_pose, span, start, end, zero, near_offset, arms, over=over)
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
     _add_way(keys, times, way)

@@ -15,6 +15,7 @@ about y, the ankle about -y.
 """
 
 from dataclasses import dataclass
+from functools import lru_cache
 from math import acos, asin, atan2, cos, pi, sin, sqrt
 
 import numpy as np
@@ -203,6 +204,14 @@ class Legs:
         across_squared = (p[0] + hip[0] - ankle[0]) ** 2 + (p[1] + hip[1] - ankle[1]) ** 2
         return float(ankle[2] - hip[2] + sqrt(max(longest_squared - across_squared, 0.0)))
 
+    def planted(self, q, stance) -> np.ndarray:
+        """q with both soles put back where the pose `stance` has them: the pelvis moved by
+        a correction (a trunk tipped back, an eased squat), the feet stay where they stand."""
+        for side in SIDES:
+            sole = self.sole(stance, side)
+            q = self.solve(q, side, sole.position, sole.forward)
+        return q
+
     def solve(self, q, side: str, position, forward, passes: int = 3) -> np.ndarray:
         """q with the `side` leg's joints set so its sole frame is at `position` (world)
         with the foot pointing along `forward` (a unit vector; its roll is what the leg
@@ -338,3 +347,9 @@ class Legs:
         pitch = atan2(-g[2], g[0])
         joints = (*self._hip_angles(side, R_hip), knee, knee - pitch)
         return joints, _times(R_hip, (sin(pitch), 0.0, cos(pitch)))
+
+
+@lru_cache(maxsize=4)
+def legs_of(body) -> Legs:
+    """The legs of `body`, worked out once per body."""
+    return Legs(body)
