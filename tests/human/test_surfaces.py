@@ -372,8 +372,9 @@ def test_rising_with_a_carton_from_a_shelfs_bottom_board_keeps_the_feet_on_the_f
     """A cell of our own: a carton taken off the bottom board of our shelf, the next board
     0.5 m above it. Drawn out from under that board the person still squats; rising, the
     squat eased out joint by joint sank the feet 3.6 cm into the floor, and the palms came
-    3.2 cm off the carton between the way's points. The feet stay on the floor and the palms
-    on the carton."""
+    3.2 cm off the carton between the way's points, and a hand went 2.3 cm into the board
+    above. The feet stay on the floor, the palms on the carton and the hands out of the
+    board. (The head still goes into the 1.1 m board stooping to it: docs/realism.md.)"""
     size = (0.3, 0.25, 0.2)
     center = (0.0, 0.55, 0.101 + size[2] / 2)
     grasp = Grasp("both", center, 0.0, size)
