@@ -245,7 +245,7 @@ def _check_mapping(filename, node, schema, fields, path):
     items = _expect(filename, node, yaml.MappingNode, path, "a mapping")
     for key, value in items:
         if key.value not in fields:
-            hint = did_you_mean(key.value, fields)
+            hint = did_you_mean(key.value, fields) or f" (known: {', '.join(sorted(fields))})"
             raise located_error(
                 filename, key, field_path((*path, key.value)), f"unknown field{hint}"
             )

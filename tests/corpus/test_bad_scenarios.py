@@ -42,6 +42,13 @@ CASES = {
         S, "duration: 0.2", "duration: five", ("duration: 'five' is not a float",), "five"
     ),
     "unknown field": Case(S, "duration:", "durration:", ("did you mean 'duration'?",), "durration"),
+    "unknown field, none close": Case(
+        S,
+        "workpieces:\n",
+        "workpieces:\n  initial: []\n",
+        ("workpieces.initial: unknown field (known: conveyors, derive_surfaces, grids, ",),
+        "initial",
+    ),
     "unknown field of a Drake struct": Case(
         S, "{time_step:", "{timestep:", ("plant.timestep: unknown field",), "timestep"
     ),
