@@ -37,6 +37,13 @@ class Furniture:
             return self
         return Furniture((*self.pieces, *(_piece(box) for box in boxes)))
 
+    def not_over(self, area: Polygon, height: float) -> "Furniture":
+        """The furniture but the pieces that stand over a floor area wholly above `height`
+        (the board above what lies there)."""
+        return Furniture(
+            tuple(p for p in self.pieces if p.low < height or not p.outline.intersects(area))
+        )
+
     def support(self, point) -> Obstacle | None:
         """The piece a point (x, y, z) is over, with the highest top at or below it (a hand
         or an object on a table: the table's top); None when only the floor is below."""

@@ -179,13 +179,19 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     `b` (the midpoint's world positions at the two ends): the object's bottom and the
     hands' lowest edges CLEARANCE above whatever stands under its way higher than where the
     object's bottom is at the lower end and lower than its top at the higher one (a stack
-    beside where a box is put down, the edge of a board it is taken off; not the board
-    above). None: nothing does."""
+    beside where a box is put down, the edge of a board it is taken off), but not what
+    stands over the lower end (the board above a shelf's compartment a box is put into:
+    carried in at chest height, a tote's top was above that board's underside, the way rose
+    over the board and came down through it, the arms 10.8 cm in). None: nothing does."""
     around, lowest, highest = _held_outline(body, carry, heading)
     corners = [np.asarray(end[:2]) + c for end in (a, b) for c in around]
     bottom = min(a[2], b[2]) - lowest
     area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
-    top = furniture.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
+    low_end = a if a[2] <= b[2] else b
+    beside = furniture.not_over(
+        MultiPoint([np.asarray(low_end[:2]) + c for c in around]).convex_hull, low_end[2] + highest
+    )
+    top = beside.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
     return None if top is None else top + CLEARANCE + lowest
 
 

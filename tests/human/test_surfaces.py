@@ -408,6 +408,36 @@ def test_a_tote_put_into_a_shelf_compartment_is_left_without_bending_lower():
     assert np.linalg.norm(np.diff(heads, axis=0), axis=1).max() / SAMPLE <= HEAD_SPEED
 
 
+def test_a_tote_carried_to_a_shelf_goes_in_under_the_board_above_onto_another():
+    """A cell of our own: a tote 0.4 m deep carried 0.9 m to our shelf and put onto another
+    on its middle board. Carried in at chest height, its top was above the next board's
+    underside: the way rose over that board as over a stack beside it and came down through
+    it (a forearm 10.9 cm in). Nothing of the arms goes into the shelf."""
+    tote = (0.3, 0.4, 0.15)
+    below = (0.0, 0.59, 0.601 + tote[2] / 2)
+    on_top = (0.0, 0.59, below[2] + tote[2])
+    hold = Hold("both", (tote[1], tote[0], tote[2]))
+    facing_the_shelf = (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4))
+
+    def carried_in(put_down_at=None) -> Run:
+        schedule = [(0.1, MoveCommand(1, (0.0, 0.0), facing_the_shelf, "carry", hold=hold))]
+        if put_down_at is not None:
+            nearby = (Box(below, 0.0, tote),)
+            put = AnimateCommand(2, "place_table", target=on_top, hold=hold, nearby=nearby)
+            schedule.append((put_down_at, put))
+        start = (0.0, -0.9, np.pi / 2)
+        return Run(schedule, start, [FLOOR, SHELF], ARMS, objects=[(tote, RigidTransform(below))])
+
+    walk, t = carried_in(), 0.1
+    while walk.status().results.outcome_of(1) != "succeeded":
+        t += SAMPLE
+        walk.advance(t)
+    run = carried_in(put_down_at=t + SAMPLE)
+    run.record(t + SAMPLE + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
 def _picked_up_between_the_palms(
     run: Run, width: float = MATERIAL[0], clip: str = "pick_table"
 ) -> None:
