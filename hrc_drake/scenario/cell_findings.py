@@ -58,6 +58,7 @@ class InitialObject:
 
     names: tuple
     label: str
+    type: str
     solid: Solid
     pose: RigidTransform
 
@@ -69,9 +70,8 @@ def initial_objects(config: WorkpiecesConfig, skip_types=()) -> list[InitialObje
         if placed.type not in skip_types:
             names = ("workpieces", "objects", i, "pose")
             solid = Solid.of(config.types[placed.type])
-            found.append(
-                InitialObject(names, placed.type, solid, placed.pose.GetDeterministicValue())
-            )
+            pose = placed.pose.GetDeterministicValue()
+            found.append(InitialObject(names, placed.type, placed.type, solid, pose))
     for i, grid in enumerate(config.grids):
         if grid.type in skip_types:
             continue
@@ -79,9 +79,8 @@ def initial_objects(config: WorkpiecesConfig, skip_types=()) -> list[InitialObje
         full = dataclasses.replace(grid, occupancy=1.0, attribute_counts={})
         for k, place in enumerate(grid_placements(full, kind, np.random.default_rng(0))):
             names = ("workpieces", "grids", i, "origin")
-            found.append(
-                InitialObject(names, f"{grid.type} {k + 1} of the grid", Solid.of(kind), place.pose)
-            )
+            label = f"{grid.type} {k + 1} of the grid"
+            found.append(InitialObject(names, label, grid.type, Solid.of(kind), place.pose))
     return found
 
 

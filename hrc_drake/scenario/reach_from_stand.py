@@ -1,7 +1,9 @@
 """Where the person's hand goes against where the tree has them stand: a place or reach
 target farther from the last walk's end (or the person's start) than a hand reaches
 without walking fails the node at run time ("out of reach without walking"), so validate
-says it first.
+says it first. So does a pick of an object that a NextObject finds in an area, for the
+objects that lie there at the start (a pallet's far row: "hand stays 0.27 m from the
+target", every time the person tried).
 
 Where the person stands is known statically only along the tree's certain paths: the last
 walk among the earlier children of the Sequences above the node. A Fallback's earlier
@@ -21,7 +23,7 @@ from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.targeting import MAX_HORIZONTAL_REACH, TARGETED
 from hrc_drake.known_values import Known
 from hrc_drake.nodes.person import ActorMovement
-from hrc_drake.nodes.targeted import ActorPlace, ActorReach
+from hrc_drake.nodes.targeted import ActorPick, ActorPlace, ActorReach
 from hrc_drake.scenario.located import Finding, Locator
 
 UNKNOWN = object()
@@ -29,6 +31,8 @@ UNKNOWN = object()
 
 Resolve = Callable[[Known], np.ndarray | None]
 """A known pose value to its point in the world (None: not resolvable)."""
+Taken = Callable[[TreeNode], list[tuple[str, np.ndarray]]]
+"""The objects (label and centre) a pick node may take, as far as known before the run."""
 
 
 def clip_step_back(clips: dict) -> float:
@@ -49,14 +53,22 @@ def reach_findings(
     resolve: Resolve,
     start: np.ndarray,
     clips: dict | None = None,
+    taken: Taken | None = None,
 ) -> Iterator[Finding]:
-    """A Finding at each ActorPlace/ActorReach whose known target is farther from every
-    place the person can stand there than a hand reaches (`known`: the known values by
-    (id(node), port); `start`: the person's start on the floor)."""
+    """A Finding at each ActorPlace/ActorReach whose known target, and each ActorPick whose
+    `taken` object, is farther from every place the person can stand there than a hand
+    reaches (`known`: the known values by (id(node), port); `start`: the person's start on
+    the floor)."""
     limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
     parents = {id(child): node for node in nodes for child in node.children_nodes()}
     for node in nodes:
-        if not isinstance(node, ActorPlace | ActorReach):
+        if isinstance(node, ActorPlace | ActorReach):
+            port = "target"
+            targets = [(value, resolve(value)) for value in known.get((id(node), port), ())]
+        elif isinstance(node, ActorPick) and taken is not None:
+            port = "object_id"
+            targets = taken(node)
+        else:
             continue
         stand = _stand_before(node, parents)
         if stand is UNKNOWN:
@@ -64,14 +76,13 @@ def reach_findings(
         stands = _stand_points(stand, known, resolve, start)
         if not stands:
             continue
-        for value in known.get((id(node), "target"), ()):
-            target = resolve(value)
+        for what, target in targets:
             if target is None:
                 continue
             distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _ in stands)
             if distance > limit:
                 yield Locator.node(
-                    node, "target", _too_far(value, target, distance, stands, limit), target
+                    node, port, _too_far(what, target, distance, stands, limit), target
                 )
 
 
@@ -90,7 +101,7 @@ def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str]]:
     return points
 
 
-def _too_far(value: Known, target, distance: float, stands, limit: float) -> str:
+def _too_far(value, target, distance: float, stands, limit: float) -> str:
     where = "(" + ", ".join(f"{v:.2f}" for v in target) + ")"
     nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
     return (

@@ -28,7 +28,7 @@ from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
-from hrc_drake.tree_types import Pose
+from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
 from hrc_drake.yaml_check import unknown
 
@@ -105,8 +105,41 @@ class _Checks:
             pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
             return None if pose is None else np.asarray(pose.position)
 
+        def taken(pick) -> list[tuple[str, np.ndarray]]:
+            return self._taken(tree.node_list, known, pick)
+
         start = self.scenario.human.start[:2]
-        return reach_findings(tree.node_list, known, point, start, self.clips)
+        return reach_findings(tree.node_list, known, point, start, self.clips, taken)
+
+    def _taken(self, nodes, known, pick) -> list[tuple[str, np.ndarray]]:
+        """The objects at the start that a pick may take: those of the type a NextObject
+        filters for (by type alone) in its area, where it writes the entry the pick reads."""
+        entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
+        found = []
+        for finder in nodes:
+            written = finder.config.outputs.get("object_id")
+            if not isinstance(finder, NextObject) or getattr(written, "entry", None) is not entry:
+                continue
+            for area in known.get((id(finder), "area"), ()):
+                for wanted in known.get((id(finder), "filter"), ()):
+                    found += self._lying_in(area, wanted.value, finder)
+        return found
+
+    def _lying_in(self, area: Known, wanted: str, finder) -> list[tuple[str, np.ndarray]]:
+        """The initial objects in a known area that a filter of their type alone takes."""
+        condition = parse_filter(wanted)
+        if set(condition) - {"type"} or not isinstance(area.value, AreaRef):
+            return []
+        if area.value.name not in self.scenario.areas:
+            return []
+        region = self.scenario.area(area.value.name)
+        where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
+        return [
+            (f"{obj.label} in area '{area.value.name}' ({where})", obj.pose.translation())
+            for obj in self.scene.objects
+            if condition.get("type", obj.type) == obj.type
+            and region.contains(obj.pose.translation()[:2])
+        ]
 
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value

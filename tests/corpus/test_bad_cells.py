@@ -403,6 +403,19 @@ CASES = {
         ),
         "ActorPlace",
     ),
+    "a pick of what lies in an area out of reach from where the walk ends": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>'
+        '<ActorPick object_id="{p}"/>',
+        (
+            "port 'object_id': part in area 'table' (NextObject at ",
+            "at (0.00, 0.60, 0.93) is 3.12 m from where the person stands (location 'door', "
+            "ActorMovement at ",
+            "walk closer first",
+        ),
+        "ActorPick",
+        changes=[("safety:\n", f"{OBJECTS}{PART_ON_TABLE}safety:\n")],
+    ),
     "a reach out of reach from the person's start": person(
         '<ActorMovement target="door"/>',
         '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',
