@@ -50,8 +50,13 @@ def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
 
 def box_of(obj: wp.ObjectStatus):
     """An object's centre, heading and box extents (a cylinder: the box around it)."""
-    size = obj.size if obj.shape == "box" else (2 * obj.size[0], 2 * obj.size[0], obj.size[1])
-    return tuple(obj.pose.translation()), yaw_of(obj.pose.rotation()), tuple(size)
+    return box_at(obj.pose, obj.shape, obj.size)
+
+
+def box_at(pose, shape: str, size):
+    """The centre, heading and box extents of an object of `shape` and `size` at `pose`."""
+    size = size if shape == "box" else (2 * size[0], 2 * size[0], size[1])
+    return tuple(pose.translation()), yaw_of(pose.rotation()), tuple(size)
 
 
 class ActorAnimation(PersonCommandNode):

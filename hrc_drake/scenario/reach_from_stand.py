@@ -31,8 +31,10 @@ UNKNOWN = object()
 
 Resolve = Callable[[Known], np.ndarray | None]
 """A known pose value to its point in the world (None: not resolvable)."""
-Taken = Callable[[TreeNode], list[tuple[str, np.ndarray]]]
-"""The objects (label and centre) a pick node may take, as far as known before the run."""
+Taken = Callable[[TreeNode], list[tuple[str, np.ndarray, Callable]]]
+"""The objects a pick node may take, as far as known before the run: a label, the centre,
+and what keeps the person from taking it from a place to stand (the walk's known target,
+None: the person's start): why the hands cannot get there, or ""."""
 
 
 def clip_step_back(clips: dict) -> float:
@@ -64,7 +66,7 @@ def reach_findings(
     for node in nodes:
         if isinstance(node, ActorPlace | ActorReach):
             port = "target"
-            targets = [(value, resolve(value)) for value in known.get((id(node), port), ())]
+            targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
         elif isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
             targets = taken(node)
@@ -76,28 +78,38 @@ def reach_findings(
         stands = _stand_points(stand, known, resolve, start)
         if not stands:
             continue
-        for what, target in targets:
+        for what, target, hindrance in targets:
             if target is None:
                 continue
-            distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _ in stands)
+            distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _, _ in stands)
             if distance > limit:
                 yield Locator.node(
                     node, port, _too_far(what, target, distance, stands, limit), target
                 )
+            elif hindrance is not None:
+                problems = [(hindrance(value), said) for _, said, value in stands]
+                if all(problem for problem, _ in problems):
+                    where = "(" + ", ".join(f"{v:.2f}" for v in target) + ")"
+                    problem, said = problems[0]
+                    message = (
+                        f"{what} at {where}, taken where the person stands ({said}): {problem}"
+                    )
+                    yield Locator.node(node, port, message, target)
 
 
-def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str]]:
-    """The points the person can stand at (with what says so): the walk's known targets,
-    or the start when no walk comes before."""
+def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str, Known | None]]:
+    """The points the person can stand at (with what says so, and the walk's known target
+    there): the walk's known targets, or the start when no walk comes before."""
     if stand is None:
-        return [(np.asarray(start, dtype=float), "the person's start")]
+        return [(np.asarray(start, dtype=float), "the person's start", None)]
     points = []
     for value in known.get((id(stand), "target"), ()):
         point = resolve(value)
         if point is None:
             return []
         config = stand.config
-        points.append((point, f"{value}, {config.registration_id} at {config.file}:{config.line}"))
+        said = f"{value}, {config.registration_id} at {config.file}:{config.line}"
+        points.append((point, said, value))
     return points
 
 

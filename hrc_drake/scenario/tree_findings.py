@@ -9,20 +9,26 @@ against the scenario.
 
 import math
 from collections.abc import Iterator
-from functools import cached_property
+from functools import cached_property, partial
 
 import numpy as np
 
 from hrc_drake.agent_trees import sections
+from hrc_drake.human.aiming import Unreachable
+from hrc_drake.human.body import human_body
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
+from hrc_drake.human.grasp import grasp_hands
+from hrc_drake.human.messages import AnimateCommand, Grasp
 from hrc_drake.human.navigation import FLOOR_LEVEL
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.planning import plan_animation
 from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
-from hrc_drake.nodes.person import ActorAnimation, ActorMovement
+from hrc_drake.nodes.person import ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.nodes.targeted import ActorPlace, ActorReach
+from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
@@ -105,13 +111,13 @@ class _Checks:
             pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
             return None if pose is None else np.asarray(pose.position)
 
-        def taken(pick) -> list[tuple[str, np.ndarray]]:
-            return self._taken(tree.node_list, known, pick)
+        def taken(pick):
+            return self._taken(tree.node_list, known, pick, agent)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken)
 
-    def _taken(self, nodes, known, pick) -> list[tuple[str, np.ndarray]]:
+    def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
         """The objects at the start that a pick may take: those of the type a NextObject
         filters for (by type alone) in its area, where it writes the entry the pick reads."""
         entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
@@ -122,10 +128,10 @@ class _Checks:
                 continue
             for area in known.get((id(finder), "area"), ()):
                 for wanted in known.get((id(finder), "filter"), ()):
-                    found += self._lying_in(area, wanted.value, finder)
+                    found += self._lying_in(area, wanted.value, finder, agent)
         return found
 
-    def _lying_in(self, area: Known, wanted: str, finder) -> list[tuple[str, np.ndarray]]:
+    def _lying_in(self, area: Known, wanted: str, finder, agent) -> list[tuple]:
         """The initial objects in a known area that a filter of their type alone takes."""
         condition = parse_filter(wanted)
         if set(condition) - {"type"} or not isinstance(area.value, AreaRef):
@@ -135,11 +141,49 @@ class _Checks:
         region = self.scenario.area(area.value.name)
         where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
         return [
-            (f"{obj.label} in area '{area.value.name}' ({where})", obj.pose.translation())
+            (
+                f"{obj.label} in area '{area.value.name}' ({where})",
+                obj.pose.translation(),
+                partial(self._pick_problem, obj, agent),
+            )
             for obj in self.scene.objects
             if condition.get("type", obj.type) == obj.type
             and region.contains(obj.pose.translation()[:2])
         ]
+
+    def _pick_problem(self, obj, agent, stand: Known | None) -> str:
+        """Why the person standing at `stand` (a walk's known target, facing as it says or
+        the object; None: their start) cannot take `obj` there, as the run would plan the
+        pick; "" when they can."""
+        x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
+        kind = self.scenario.workpieces.types[obj.type]
+        center, heading, size = box_at(obj.pose, kind.shape, kind.size)
+        hands = grasp_hands(size, kind.mass, {})
+        clip = "pick_table" if center[2] >= TABLE_HEIGHT else "pick_floor"
+        command = AnimateCommand(0, clip, grasp=Grasp(hands, center, heading, size))
+        try:
+            plan_animation(self.performer, command, (x, y, yaw), 0.0)
+        except Unreachable as error:
+            return str(error)
+        return ""
+
+    def _standing_at(self, agent, stand: Known | None, facing) -> tuple[float, float, float]:
+        """Where the person stands and which way they face: the walk's target, facing as it
+        says or towards what they take (None: their start)."""
+        if stand is None:
+            x, y, yaw_deg = self.scenario.human.start
+            return x, y, math.radians(yaw_deg)
+        pose = _resolved(agent, stand.value)
+        x, y, _ = pose.position
+        if pose.quaternion is None:
+            return x, y, math.atan2(facing[1] - y, facing[0] - x)
+        R = pose.to_transform().rotation().matrix()
+        return x, y, math.atan2(R[1, 0], R[0, 0])
+
+    @cached_property
+    def performer(self) -> Performer:
+        """The person as the run has them: their body, clips and the cell's walkable floor."""
+        return Performer(human_body(*self.scenario.human.size()), self.clips, self.scene.navigation)
 
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value

@@ -416,6 +416,27 @@ CASES = {
         "ActorPick",
         changes=[("safety:\n", f"{OBJECTS}{PART_ON_TABLE}safety:\n")],
     ),
+    "a pick of what lies in an area the hands cannot get to from where the walk ends": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="across"/>'
+        '<NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>'
+        '<ActorPick object_id="{p}"/>',
+        (
+            "port 'object_id': part in area 'table' (NextObject at ",
+            "at (0.00, 0.60, 0.93), taken where the person stands (location 'across', "
+            "ActorMovement at ",
+            "): target 1.22 m away, out of reach without walking",
+        ),
+        "ActorPick",
+        changes=[
+            ("safety:\n", f"{OBJECTS}{PART_ON_TABLE}safety:\n"),
+            (
+                "locations:\n",
+                "locations:\n  across: {translation: [0.0, 1.8, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+            ),
+        ],
+    ),
     "a reach out of reach from the person's start": person(
         '<ActorMovement target="door"/>',
         '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',
