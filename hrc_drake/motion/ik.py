@@ -78,10 +78,14 @@ class ArmLength:
         """Whether no joint positions put the tool at `pose` (its axis within the solver's
         tolerances): the wrist would lie beyond the arm's length from every shoulder
         position."""
+        return self.wrist_distance(pose) > self.length + self.slack
+
+    def wrist_distance(self, pose: RigidTransform) -> float:
+        """How far from the shoulder's circle the wrist of the tool at `pose` lies (its
+        centre, when the wrist lies off the tool's axis)."""
         wrist = pose.translation() + self.wrist_along * pose.rotation().col(2)
         radial, along = self._cylindrical(wrist)
-        distance = math.hypot(radial - self.shoulder[0], along - self.shoulder[1])
-        return distance > self.length + self.slack
+        return math.hypot(radial - self.shoulder[0], along - self.shoulder[1])
 
 
 class ToolTargetSolver:
