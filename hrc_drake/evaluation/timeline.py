@@ -63,7 +63,7 @@ def timeline_figure(times, signals, states=None, events=None):
     for ax in axes[:3]:
         ax.tick_params(labelbottom=False)
     axes[3].set_xlabel("time (s)")
-    fig.canvas.draw()  # lays the panels out, so label widths can be measured against bars
+    fig.get_layout_engine().execute(fig)  # the panels laid out (not drawn): labels measured
     _activity_panel(axes[3], axes[4], states or {}, events or [], end)
     return fig
 

@@ -391,6 +391,17 @@ class NavigationMap:
         ]
         return unary_union(grown) if grown else Polygon()
 
+    def no_room_to_turn(self, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+        """(len(ys), len(xs)): where `stand_problem(x, y, None)` finds a problem (turning on
+        the spot reaches an obstacle deeper than STAND_TOLERANCE), all points at once."""
+        x, y = np.meshgrid(xs, ys)
+        found = np.zeros(x.shape, dtype=bool)
+        for outline, body in zip(self._outlines, self._reach, strict=True):
+            near = _within_box(x, y, outline.bounds, body.turning - STAND_TOLERANCE) & ~found
+            distances = shapely.distance(outline, shapely.points(x[near], y[near]))
+            found[near] = body.turning - distances > STAND_TOLERANCE
+        return found
+
     def stand_problem(self, x: float, y: float, yaw: float | None) -> StandProblem | None:
         """Why a person cannot stand at (x, y) facing `yaw` (radians; None: only stepping
         round on the spot is checked) and step round there to face any other way: the
@@ -412,6 +423,13 @@ class NavigationMap:
 
 
 FLOOR_LEVEL = 1e-6
+
+
+def _within_box(x: np.ndarray, y: np.ndarray, bounds, margin: float) -> np.ndarray:
+    """Which points lie within `margin` of the box `bounds` (x0, y0, x1, y1): the only ones
+    that can lie within it of what the box holds."""
+    x0, y0, x1, y1 = bounds
+    return (x >= x0 - margin) & (x <= x1 + margin) & (y >= y0 - margin) & (y <= y1 + margin)
 
 
 def _overlap_depth(body: BodySlice, x: float, y: float, yaw: float, outline: Polygon) -> float:

@@ -138,8 +138,7 @@ def no_room_to_turn(navigation: NavigationMap):
     x0, y0, x1, y1 = unary_union([o.outline for o in navigation.obstacles]).bounds
     xs = np.arange(x0 - ROOM_MARGIN, x1 + ROOM_MARGIN, ROOM_STEP)
     ys = np.arange(y0 - ROOM_MARGIN, y1 + ROOM_MARGIN, ROOM_STEP)
-    grid = np.array([[navigation.stand_problem(x, y, None) is not None for x in xs] for y in ys])
-    return xs, ys, grid
+    return xs, ys, navigation.no_room_to_turn(xs, ys)
 
 
 def furniture(obstacles: list[Obstacle]) -> list[Furniture]:

@@ -85,9 +85,9 @@ def reach_maps(
     heights: list[tuple[float, bool]],
 ) -> list[ReachMap]:
     """The reach maps at `heights` ((height, linear) each) of the planner that `station`,
-    `options` and `seed` make. Kept per process: a map takes about 2 s of inverse kinematics
-    and collision checks, and the same scenario and seed are laid out again by every run
-    directory and `layout` of them."""
+    `options` and `seed` make. Kept per process: a layout's maps take one to three seconds
+    of inverse kinematics and collision checks, and the same scenario and seed are laid out
+    again by every run directory and `layout` of them."""
     key = repr(
         (
             station.variant,
@@ -141,7 +141,9 @@ class ReachMapper:
 
     def reach_map(self, height: float, linear: bool = False) -> ReachMap:
         down = self.radial_solutions(height, (0.0, 0.0))
-        tilted = [self.radial_solutions(height, tilt) for tilt in TILTS]
+        reached = [i for i, q in enumerate(down) if q is not None]
+        within = range(reached[0], reached[-1] + 1) if reached else range(0)
+        tilted = [self.radial_solutions(height, tilt, within) for tilt in TILTS]
         reached_tilts = sum(np.array([q is not None for q in s], dtype=float) for s in tilted)
         reached_tilts += np.array([q is not None for q in tilted[-1]], dtype=float)  # mirror
         clear = self._clear_of_cell(down, linear)
@@ -157,18 +159,23 @@ class ReachMapper:
             blocked=kinematic[None, :] & ~clear,
         )
 
-    def radial_solutions(self, height: float, tilt: tuple[float, float]) -> list:
+    def radial_solutions(
+        self, height: float, tilt: tuple[float, float], within: range | None = None
+    ) -> list:
         """Joint positions that put the tool at each distance along the base's x axis at
         `height`, its axis leaning by TILT towards `tilt` (radial, tangential), or None
         where the planner's inverse kinematics finds none (the cell ignored): from a
-        distance that is reached, outwards and inwards, each solution seeding the next."""
+        distance that is reached, outwards and inwards, each solution seeding the next.
+        Only the distances `within` are wanted (all if None): the line is followed no
+        further than they lie, and not at all when there are none."""
+        within = range(self.radii.size) if within is None else within
         solutions: list = [None] * self.radii.size
-        start = self._first_reached(height, tilt)
+        start = self._first_reached(height, tilt) if within else None
         if start is None:
             return solutions
         k, q = start
         solutions[k] = q
-        for order in (range(k + 1, self.radii.size), range(k - 1, -1, -1)):
+        for order in (range(k + 1, within.stop), range(k - 1, within.start - 1, -1)):
             previous = q
             for i in order:
                 previous = self._kinematic(self._pose(i, height, tilt), previous)

@@ -10,7 +10,10 @@ height, the named places, areas and starting objects, the safety sensors with th
 panels).
 """
 
+import hashlib
+import io
 import math
+import pickle
 import textwrap
 from pathlib import Path
 
@@ -40,6 +43,10 @@ REACH_COLOURS = plt.get_cmap("Greens")
 BLOCKED_COLOUR = "#e7298a"
 FINDING_COLOUR = "#d7301f"
 PROTECTIVE_COLOUR, WARNING_COLOUR = "#cb181d", "#fd8d3c"
+DRAWN_KEPT = 8
+"""Drawn layout files kept per process (the last ones)."""
+_drawn: dict[tuple[str, str], bytes] = {}
+"""The files this process drew lately, by the layout's content and the file type."""
 
 
 def draw_layout(layout: CellLayout) -> Figure:
@@ -79,13 +86,26 @@ def draw_layout(layout: CellLayout) -> Figure:
 
 
 def write_layout(layout: CellLayout, path: Path) -> Path:
-    """PNG or SVG by the file's suffix; the same layout gives the same bytes."""
-    figure = draw_layout(layout)
-    with plt.rc_context({"svg.hashsalt": "hrc_drake-layout"}):
-        metadata = {"Date": None} if path.suffix.lower() == ".svg" else None
-        figure.savefig(path, dpi=DPI, metadata=metadata)
-    plt.close(figure)
+    """PNG or SVG by the file's suffix; the same layout gives the same bytes (drawn once
+    per process: every run directory of a scenario shows the same layout)."""
+    kind = path.suffix.lower().lstrip(".")
+    key = (hashlib.sha256(pickle.dumps(layout)).hexdigest(), kind)
+    if key not in _drawn:
+        if len(_drawn) >= DRAWN_KEPT:
+            del _drawn[next(iter(_drawn))]
+        _drawn[key] = _layout_file(layout, kind)
+    path.write_bytes(_drawn[key])
     return path
+
+
+def _layout_file(layout: CellLayout, kind: str) -> bytes:
+    figure = draw_layout(layout)
+    written = io.BytesIO()
+    with plt.rc_context({"svg.hashsalt": "hrc_drake-layout"}):
+        metadata = {"Date": None} if kind == "svg" else None
+        figure.savefig(written, format=kind, dpi=DPI, metadata=metadata)
+    plt.close(figure)
+    return written.getvalue()
 
 
 def _panel(ax, layout: CellLayout, reach: ReachMap | None, bounds, whole: bool) -> None:

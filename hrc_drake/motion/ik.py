@@ -5,6 +5,8 @@ Solutions respect the joint limits, keep the clearance to the static cell, keep 
 and the nominal posture (home), which also keeps A4 and A6 from turning a full circle.
 """
 
+import math
+
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.inverse_kinematics import (
@@ -13,6 +15,7 @@ from pydrake.multibody.inverse_kinematics import (
 )
 from pydrake.solvers import Solve
 
+from hrc_drake.iisy import LINK_NAMES
 from hrc_drake.motion.errors import PlanningFailed
 
 POSITION_TOLERANCE = 1e-4
@@ -30,6 +33,59 @@ TOOL_REACH_MARGIN = 0.25
 """m beyond the nominal reach that still counts as maybe reachable (tool, offsets)."""
 CLEARANCE_INFLUENCE = 0.05
 """m beyond the clearance (the checker's padding) at which distances start to count."""
+WRIST_SLACK = 0.001
+"""m the wrist may lie beyond the arm's length before a pose counts as out of reach, on top
+of what the solver's tolerances let it move (rounding, the solver's own feasibility)."""
+
+
+class ArmLength:
+    """Tool poses no joint positions reach, known from the arm's link lengths without a
+    solve: the wrist (link_6's origin, fixed in the tool's frame) lies at most the summed
+    distances between the joints' origins (each on its joint's axis, so each distance the
+    same in every posture) from the shoulder (link_2's origin, on a circle about A1's axis).
+    A solve that cannot succeed costs every start of the budget; this costs microseconds."""
+
+    def __init__(self, model):
+        plant, context = model.plant, model.plant.CreateDefaultContext()
+        plant.SetPositions(context, model.variant.home)
+        origins = [
+            plant.GetBodyByName(name, model.arm).body_frame().CalcPoseInWorld(context).translation()
+            for name in LINK_NAMES[2:]
+        ]
+        self.length = float(np.linalg.norm(np.diff(origins, axis=0), axis=1).sum())
+        a1 = plant.GetJointByName("A1", model.arm)
+        X_a1 = a1.frame_on_parent().CalcPoseInWorld(context)
+        self.axis_point, self.axis = X_a1.translation(), X_a1.rotation() @ a1.revolute_axis()
+        self.shoulder = self._cylindrical(origins[0])
+        """(distance from A1's axis, height along it) of the shoulder's circle."""
+        wrist = model.tcp.CalcPoseInWorld(context).inverse() @ origins[-1]
+        self.wrist_along, wrist_aside = float(wrist[2]), float(np.hypot(wrist[0], wrist[1]))
+        """The wrist in the tool's frame: along its axis, and its distance off the axis
+        (a circle round it, the tool's turn about its axis being free)."""
+        self.slack = (
+            wrist_aside
+            + math.sqrt(3.0) * POSITION_TOLERANCE
+            + abs(self.wrist_along) * ANGLE_TOLERANCE
+            + WRIST_SLACK
+        )
+
+    def _cylindrical(self, point: np.ndarray) -> tuple[float, float]:
+        offset = point - self.axis_point
+        along = float(offset @ self.axis)
+        return float(np.linalg.norm(offset - along * self.axis)), along
+
+    def beyond(self, pose: RigidTransform) -> bool:
+        """Whether no joint positions put the tool at `pose` (its axis within the solver's
+        tolerances): the wrist would lie beyond the arm's length from every shoulder
+        position."""
+        return self.wrist_distance(pose) > self.length + self.slack
+
+    def wrist_distance(self, pose: RigidTransform) -> float:
+        """How far from the shoulder's circle the wrist of the tool at `pose` lies (its
+        centre, when the wrist lies off the tool's axis)."""
+        wrist = pose.translation() + self.wrist_along * pose.rotation().col(2)
+        radial, along = self._cylindrical(wrist)
+        return math.hypot(radial - self.shoulder[0], along - self.shoulder[1])
 
 
 class ToolTargetSolver:
@@ -38,6 +94,7 @@ class ToolTargetSolver:
     def __init__(self, model, q_nominal: np.ndarray):
         self.model = model
         self.q_nominal = np.asarray(q_nominal, dtype=float)
+        self.arm_length = ArmLength(model)
         self.shoulder = model.plant.GetBodyByName("link_2", model.arm).body_frame()
         self._clearance_constraint = MinimumDistanceLowerBoundConstraint(
             model.checker, 0.0, model.checker_context, None, CLEARANCE_INFLUENCE
@@ -56,7 +113,8 @@ class ToolTargetSolver:
         depends on how busy the machine is)."""
         self._check_reach(pose, q_start)
         wrist_sign = self._wrist_side(q_start)
-        for seed in self._seeds(q_start, rng, attempts):
+        seeds = self._seeds(q_start, rng, attempts)  # drawn all the same: the stream goes on
+        for seed in [] if self.arm_length.beyond(pose) else seeds:
             q = self._solve_from(pose, seed, q_start, free_rotation, wrist_sign)
             if q is not None:
                 return q
@@ -112,11 +170,20 @@ class ToolTargetSolver:
 
     def _unconstrained(self, pose, q_start, free_rotation, rng, attempts):
         """(start, its solution without the clearance constraint or None) for each start of
-        a solve, in turn."""
+        a solve, in turn (None without a solve where the arm is too short)."""
         wrist_sign = self._wrist_side(q_start)
         q_reference = 0.5 * (q_start + self.q_nominal)
-        for seed in self._seeds(q_start, rng, attempts):
-            yield seed, self._solve(pose, seed, q_reference, free_rotation, wrist_sign, False)
+        seeds = self._seeds(q_start, rng, attempts)
+        beyond = self.arm_length.beyond(pose)
+        for seed in seeds:
+            yield (
+                seed,
+                (
+                    None
+                    if beyond
+                    else self._solve(pose, seed, q_reference, free_rotation, wrist_sign, False)
+                ),
+            )
 
     def _seeds(self, q_start: np.ndarray, rng: np.random.Generator, attempts: int) -> list:
         """The starts of a solve: the current posture, home, then random postures."""
