@@ -126,12 +126,13 @@ class _Checks:
             written = finder.config.outputs.get("object_id")
             if not isinstance(finder, NextObject) or getattr(written, "entry", None) is not entry:
                 continue
+            hands = [v.value for v in known.get((id(pick), "hand"), ())] or ["auto"]
             for area in known.get((id(finder), "area"), ()):
                 for wanted in known.get((id(finder), "filter"), ()):
-                    found += self._lying_in(area, wanted.value, finder, agent)
+                    found += self._lying_in(area, wanted.value, finder, agent, hands[0])
         return found
 
-    def _lying_in(self, area: Known, wanted: str, finder, agent) -> list[tuple]:
+    def _lying_in(self, area: Known, wanted: str, finder, agent, hands: str) -> list[tuple]:
         """The initial objects in a known area that a filter of their type alone takes."""
         condition = parse_filter(wanted)
         if set(condition) - {"type"} or not isinstance(area.value, AreaRef):
@@ -144,21 +145,22 @@ class _Checks:
             (
                 f"{obj.label} in area '{area.value.name}' ({where})",
                 obj.pose.translation(),
-                partial(self._pick_problem, obj, agent),
+                partial(self._pick_problem, obj, agent, hands),
             )
             for obj in self.scene.objects
             if condition.get("type", obj.type) == obj.type
             and region.contains(obj.pose.translation()[:2])
         ]
 
-    def _pick_problem(self, obj, agent, stand: Known | None) -> str:
+    def _pick_problem(self, obj, agent, hands: str, stand: Known | None) -> str:
         """Why the person standing at `stand` (a walk's known target, facing as it says or
-        the object; None: their start) cannot take `obj` there, as the run would plan the
-        pick; "" when they can."""
+        the object; None: their start) cannot take `obj` there with `hands` (the pick's
+        port), as the run would plan the pick; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         kind = self.scenario.workpieces.types[obj.type]
         center, heading, size = box_at(obj.pose, kind.shape, kind.size)
-        hands = grasp_hands(size, kind.mass, {})
+        if hands == "auto":
+            hands = grasp_hands(size, kind.mass, kind.attributes)
         clip = "pick_table" if center[2] >= TABLE_HEIGHT else "pick_floor"
         command = AnimateCommand(0, clip, grasp=Grasp(hands, center, heading, size))
         try:
@@ -175,10 +177,8 @@ class _Checks:
             return x, y, math.radians(yaw_deg)
         pose = _resolved(agent, stand.value)
         x, y, _ = pose.position
-        if pose.quaternion is None:
-            return x, y, math.atan2(facing[1] - y, facing[0] - x)
-        R = pose.to_transform().rotation().matrix()
-        return x, y, math.atan2(R[1, 0], R[0, 0])
+        yaw = _heading(pose)
+        return x, y, math.atan2(facing[1] - y, facing[0] - x) if yaw is None else yaw
 
     @cached_property
     def performer(self) -> Performer:
@@ -272,10 +272,7 @@ class _Checks:
         if pose is None:
             return
         x, y, z = pose.position
-        yaw = None
-        if pose.quaternion is not None:
-            R = pose.to_transform().rotation().matrix()
-            yaw = math.atan2(R[1, 0], R[0, 0])
+        yaw = _heading(pose)
         location = known.value.name and abs(z) <= FLOOR_LEVEL
         problem = "" if location else stand_problem(self.scene.navigation, x, y, yaw)
         if not problem:
@@ -300,6 +297,14 @@ def _never_set(key: str, near: str | None) -> str:
         f"blackboard entry '{key}' is never set: no scenario parameter, location or area, "
         f"SubTree port, node output, SetBlackboard or script writes it{hint}"
     )
+
+
+def _heading(pose: Pose) -> float | None:
+    """The yaw (rad) a pose turns to (None: it gives no orientation)."""
+    if pose.quaternion is None:
+        return None
+    R = pose.to_transform().rotation().matrix()
+    return math.atan2(R[1, 0], R[0, 0])
 
 
 def _resolved(agent, value) -> Pose | None:
