@@ -89,10 +89,10 @@ def reach_findings(
             elif hindrance is not None:
                 problems = [(hindrance(value), said) for _, said, value in stands]
                 if all(problem for problem, _ in problems):
-                    where = "(" + ", ".join(f"{v:.2f}" for v in target) + ")"
                     problem, said = problems[0]
                     message = (
-                        f"{what} at {where}, taken where the person stands ({said}): {problem}"
+                        f"{what} at {_point_text(target)}, taken where the person stands "
+                        f"({said}): {problem}"
                     )
                     yield Locator.node(node, port, message, target)
 
@@ -113,8 +113,12 @@ def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str, K
     return points
 
 
+def _point_text(point) -> str:
+    return "(" + ", ".join(f"{v:.2f}" for v in point) + ")"
+
+
 def _too_far(value, target, distance: float, stands, limit: float) -> str:
-    where = "(" + ", ".join(f"{v:.2f}" for v in target) + ")"
+    where = _point_text(target)
     nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
     return (
         f"{value} at {where} is {distance:.2f} m from where the person stands ({nearest}); "

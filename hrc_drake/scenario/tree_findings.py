@@ -121,6 +121,8 @@ class _Checks:
         """The objects at the start that a pick may take: those of the type a NextObject
         filters for (by type alone) in its area, where it writes the entry the pick reads."""
         entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
+        if entry is None:  # a literal id: nothing finds it
+            return []
         found = []
         for finder in nodes:
             written = finder.config.outputs.get("object_id")
