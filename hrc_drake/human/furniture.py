@@ -55,6 +55,24 @@ class Furniture:
         ]
         return max(below, key=lambda piece: piece.high, default=None)
 
+    def pile(self, piece: Obstacle) -> Obstacle:
+        """`piece` and what it stands on, down to the floor, as one prism (its outlines'
+        union): hands leaving the top of a stack go down outside all of it, not only outside
+        its top box (coexistence seed 9: a hand went down into the box under it)."""
+        pile, added = [piece], [piece]
+        while added:
+            added = [
+                other
+                for top in added
+                for other in self.pieces
+                if other not in pile
+                and abs(other.high - top.low) <= RESTING
+                and other.outline.intersects(top.outline)
+            ]
+            pile.extend(dict.fromkeys(added))
+        outline = shapely.union_all([p.outline for p in pile])
+        return Obstacle(piece.name, outline, min(p.low for p in pile), piece.high)
+
     def room(self, point, direction, low: float, high: float) -> float:
         """How far (m) a hand spanning the heights `low` to `high` can move from `point`
         along the floor direction `direction` before it meets a piece (FAR: no piece)."""
@@ -105,7 +123,7 @@ class Furniture:
         if not grown.covers(start):
             return None
         far = np.asarray(point[:2], dtype=float) + FAR * np.asarray(back[:2], dtype=float)
-        crossing = LineString([tuple(point[:2]), tuple(far)]).intersection(grown.exterior)
+        crossing = LineString([tuple(point[:2]), tuple(far)]).intersection(grown.boundary)
         nearest = min(getattr(crossing, "geoms", [crossing]), key=start.distance)
         return np.array([nearest.x, nearest.y])
 

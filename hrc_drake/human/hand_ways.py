@@ -153,7 +153,7 @@ def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, hea
         inset = hand_extent(body, R, forward, side) + EDGE_MARGIN
         edge = None
         if support is not None:
-            edge = furniture.behind_edge(support, position, -forward, inset)
+            edge = furniture.behind_edge(furniture.pile(support), position, -forward, inset)
         if edge is None:
             clear[side] = (position, orientation)
             continue

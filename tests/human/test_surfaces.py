@@ -228,6 +228,29 @@ def test_a_box_put_down_beside_a_stack_goes_over_the_stack_in_both_hands():
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
+def test_hands_leaving_a_box_put_on_top_of_a_stack_go_down_outside_the_whole_stack():
+    """Coexistence seed 9 at 142.6 s, as the person stood: material put on top of a stack of
+    two that stands a little to the right of it. Having let go, the hands leave over the
+    edge of the surface and down outside it: outside the box under the put one, they went
+    down into the stack's bottom box (a hand 1.2 cm in it there; 0.6 cm in a box beside it
+    here): they touch nothing of it."""
+    start = (0.0, -0.2, np.pi / 2)
+    stack = [((0.25, 0.27, 0.94), 0.0), ((0.233, 0.316, 1.02), 0.096), ((0.47, 0.25, 0.94), 0.013)]
+    nearby = tuple(Box(center, yaw, MATERIAL) for center, yaw in stack)
+    grasp = Grasp("both", (-0.25, 0.27, TOP + 0.04), 0.0, MATERIAL)
+    place = AnimateCommand(
+        2, "place_table", target=(0.132, 0.281, 1.1), hold=hold_of(grasp, start[2]), nearby=nearby
+    )
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp)), (PUT_DOWN, place)]
+    boxes = [(MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(yaw), c)) for c, yaw in stack]
+    run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=boxes)
+    run.record(PUT_DOWN + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= TOUCHING, run.overlap
+
+
+TOUCHING = 0.001
+"""m: a hand this far into a box, or less, only touches it."""
 OFF_THE_WAY = 0.015
 """m: how far a palm letting go of a box may stray from the straight way out (the IK keys
 along it put the hands within millimetres; between them the arms' joints ease)."""
