@@ -277,6 +277,18 @@ def corners_in_world(body: HumanBody, poses, parts: tuple[str, ...]) -> np.ndarr
     return np.einsum("pnij,nj->pni", placed[..., :3], local) + placed[..., 3]
 
 
+@lru_cache(maxsize=16)
+def parts_shapes(body: HumanBody, parts: tuple[str, ...]):
+    """The radii and corner indices of the `parts`' shapes (in turn, as `corners_in_world`
+    has their corners: `Prisms.shape_depths`' arguments) and where each part's shapes start
+    among them."""
+    points = [arm_points(body, part) for part in parts]
+    sizes = [len(p) for part in points for p in part.points]
+    radii = np.concatenate([part.radii_row for part in points])
+    starts = np.cumsum([0, *(len(part.radii) for part in points[:-1])])
+    return radii, padded_shapes(sizes), starts
+
+
 def check_arm(
     body: HumanBody, prisms: Prisms, q: np.ndarray, part: str, not_down: bool = False
 ) -> ArmCheck:

@@ -17,17 +17,15 @@ an `ArmCorrection`: joint offsets at the checked instants, eased in and out.
 
 from bisect import bisect_right
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from hrc_drake.human.arm_shapes import (
     ArmCheck,
     Prisms,
-    arm_points,
     check_arm,
     corners_in_world,
-    padded_shapes,
+    parts_shapes,
 )
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.grasp import arm_indices
@@ -207,7 +205,7 @@ class _Keep:
         same pelvis; default `poses`): one forward kinematics per pose, the depths of all
         at once."""
         corners = corners_in_world(body, poses if arms is None else arms, SIDES)
-        radii, shapes, sides = _both_arms(body)
+        radii, shapes, sides = parts_shapes(body, SIDES)
         tolerances = np.array([[_tolerance(s, holding) for s in SIDES] for holding in holdings])
         clear = np.ones(len(times), dtype=bool)
         early = np.array(times) < self.until
@@ -266,18 +264,6 @@ def _near(times: list, start: float, end: float) -> list:
 def _correction(moved: dict, start: float) -> ArmCorrection:
     keys = _eased(sorted(moved.items()), start)
     return ArmCorrection(tuple(t for t, _ in keys), tuple(o for _, o in keys))
-
-
-@lru_cache(maxsize=4)
-def _both_arms(body):
-    """The radii and corner indices of both arms' shapes (SIDES in turn, as
-    `corners_in_world` has their corners: `Prisms.shape_depths`' arguments) and where each
-    side's shapes start among them."""
-    arms = [arm_points(body, s) for s in SIDES]
-    sizes = [len(p) for arm in arms for p in arm.points]
-    radii = np.concatenate([arm.radii_row for arm in arms])
-    sides = np.cumsum([0, *(len(arm.radii) for arm in arms[:-1])])
-    return radii, padded_shapes(sizes), sides
 
 
 def _tolerance(side: str, holding) -> float:

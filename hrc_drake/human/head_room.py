@@ -14,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from hrc_drake.human.arm_shapes import HEAD, Prisms, arm_points, check_arm, corners_in_world
+from hrc_drake.human.arm_shapes import HEAD, Prisms, check_arm, corners_in_world, parts_shapes
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.clearance import (
     EASE,
@@ -82,7 +82,8 @@ def head_correction(body: HumanBody, furniture, pose, start: float, end: float):
 def _head_depths(body: HumanBody, prisms: Prisms, poses: np.ndarray) -> np.ndarray:
     """How deep the head goes into the prisms near each pose (-inf: none is near)."""
     corners = corners_in_world(body, poses, (HEAD,))
-    return prisms.deepest_near(poses[:, :2], NEAR, corners, *_head_shapes(body)).max(axis=1)
+    radii, shapes, _ = parts_shapes(body, (HEAD,))
+    return prisms.deepest_near(poses[:, :2], NEAR, corners, radii, shapes).max(axis=1)
 
 
 def _ducked(body: HumanBody, near: Prisms, q: np.ndarray, planned: np.ndarray) -> np.ndarray:
@@ -147,9 +148,3 @@ def _keyed(times: np.ndarray, offsets: np.ndarray) -> ArmCorrection:
 @lru_cache(maxsize=4)
 def _spine(body: HumanBody) -> np.ndarray:
     return np.array([body.index(n) for n in SPINE])
-
-
-def _head_shapes(body: HumanBody):
-    """The radii and corner indices of the head's shapes (`Prisms.shape_depths`' arguments)."""
-    points = arm_points(body, HEAD)
-    return points.radii_row, points.shapes

@@ -16,6 +16,7 @@ import numpy as np
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
+from hrc_drake.human.going_in import refuse_going_in
 from hrc_drake.human.grasp import hold_of
 from hrc_drake.human.messages import (
     CancelCommand,
@@ -179,7 +180,7 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
     if walking:
         segments = (*walking, *activity.segments)
         activity = Activity.plan(performer, segments, activity.final_pose)
-    state = _switch(
+    switched = _switch(
         performer,
         state,
         activity,
@@ -189,7 +190,19 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
         animation=command.animation_name,
         hold=hold_after(command, state.anchor),
     )
-    return _record(state, command.seq, RUNNING)
+    if _aimed(command):
+        try:
+            refuse_going_in(performer, switched.activity, t)
+        except Unreachable as error:
+            return _record(state, command.seq, FAILED, str(error))
+    return _record(switched, command.seq, RUNNING)
+
+
+def _aimed(command) -> bool:
+    """Whether `command` puts the hands on something (a target or a grasp)."""
+    return not isinstance(command, MoveCommand) and (
+        command.target is not None or command.grasp is not None
+    )
 
 
 def hold_after(command, pose) -> Hold | None:

@@ -171,6 +171,16 @@ class ActorPick(TargetedAction):
     ports = (InputPort("object_id", int), HAND_PORT)
     contact_event = "grasp"
 
+    def on_start(self) -> Status:
+        """FAILURE at once, saying so, when the person's hands already hold something: played
+        through, the pick took the hands off what they held (the objects refuse the grasp
+        only when the hands close)."""
+        held = self.held()
+        if held is not None:
+            self.failure_reason = f"{held.holder} already holds object {held.id}"
+            return Status.FAILURE
+        return super().on_start()
+
     def clip(self) -> str:
         return "pick_table" if self.object_point()[2] >= TABLE_HEIGHT else "pick_floor"
 

@@ -17,10 +17,11 @@ from hrc_drake.agent_trees import sections
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
+from hrc_drake.human.going_in import refuse_going_in
 from hrc_drake.human.grasp import grasp_hands
 from hrc_drake.human.messages import AnimateCommand, Grasp
 from hrc_drake.human.navigation import FLOOR_LEVEL
-from hrc_drake.human.performer import Performer
+from hrc_drake.human.performer import Performer, place
 from hrc_drake.human.planning import plan_animation
 from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
@@ -165,8 +166,11 @@ class _Checks:
             hands = grasp_hands(size, kind.mass, kind.attributes)
         clip = "pick_table" if center[2] >= TABLE_HEIGHT else "pick_floor"
         command = AnimateCommand(0, clip, grasp=Grasp(hands, center, heading, size))
+        performer = self.performer
+        standing = place(performer, performer.body.standing_pose(), x, y, yaw)
         try:
-            plan_animation(self.performer, command, (x, y, yaw), 0.0)
+            activity = plan_animation(performer, command, (x, y, yaw), 0.0)
+            refuse_going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
         except Unreachable as error:
             return str(error)
         return ""

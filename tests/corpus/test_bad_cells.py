@@ -437,6 +437,43 @@ CASES = {
             ),
         ],
     ),
+    "a pick off a shelf's bottom board the head cannot stoop to": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="shelf_front"/>'
+        '<NextObject area="bottom_board" filter="type=carton" object_id="{c}" pose="{at}"/>'
+        '<ActorPick object_id="{c}"/>',
+        (
+            "port 'object_id': carton in area 'bottom_board' (NextObject at ",
+            "at (3.00, 0.47, 0.20), taken where the person stands (location 'shelf_front', "
+            "ActorMovement at ",
+            "): the head would go ",
+            " cm into 'shelf' ",
+        ),
+        "ActorPick",
+        changes=[
+            (
+                "human:\n",
+                "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
+                "  - add_weld: {parent: world, child: shelf::body, "
+                "X_PC: {translation: [3.0, 0.55, 0.0]}}\nhuman:\n",
+            ),
+            (
+                "safety:\n",
+                "    carton: {shape: box, size: [0.3, 0.25, 0.2], mass: 2.0, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: carton, pose: {{translation: [3.0, 0.47, 0.201]}}}}\n"
+                "safety:\n",
+            ),
+            (
+                "locations:\n",
+                "locations:\n  shelf_front: {translation: [3.0, 0.0, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, 90]}}\n",
+            ),
+            (
+                "areas:\n",
+                "areas:\n  bottom_board: [[2.6, 0.35], [3.4, 0.35], [3.4, 0.75], [2.6, 0.75]]\n",
+            ),
+        ],
+    ),
     "a reach out of reach from the person's start": person(
         '<ActorMovement target="door"/>',
         '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',

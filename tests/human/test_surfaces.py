@@ -397,16 +397,35 @@ def test_rising_with_a_carton_from_a_shelfs_bottom_board_keeps_the_feet_on_the_f
     squat eased out joint by joint sank the feet 3.6 cm into the floor, and the palms came
     3.2 cm off the carton between the way's points, and a hand went 2.3 cm into the board
     above. The feet stay on the floor, the palms on the carton and the hands out of the
-    board. (The head still goes into the 1.1 m board stooping to it: docs/realism.md.)"""
+    board. The person stands 0.55 m from the shelf (closer, the head would go into the
+    1.1 m board stooping to it: the next test)."""
     size = (0.3, 0.25, 0.2)
-    center = (0.0, 0.55, 0.101 + size[2] / 2)
+    center = (0.0, 0.5, 0.101 + size[2] / 2)
     grasp = Grasp("both", center, 0.0, size)
     schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp))]
     objects = [(size, RigidTransform(center))]
-    run = Run(schedule, STANDING, [FLOOR, SHELF], ("lower_leg",), objects=objects)
+    back = (0.0, -0.2, np.pi / 2)
+    run = Run(schedule, back, [FLOOR, SHELF], ("lower_leg",), objects=objects)
     run.record(0.1 + load_clips()["pick_floor"].events["grasp"])
     run.segments = ("lower_leg", "hand")
     _picked_up_between_the_palms(run, width=size[0], clip="pick_floor")
+
+
+def test_a_carton_on_a_shelfs_bottom_board_the_head_cannot_stoop_to_is_refused():
+    """Standing 0.35 m from the shelf, the person cannot stoop to a carton on its bottom
+    board without the head going into the 1.1 m board (8 cm, played through it before):
+    however the spine and arms are moved, so the pick fails, saying what would go where,
+    and the person does not go into the shelf."""
+    size = (0.3, 0.25, 0.2)
+    center = (0.0, 0.47, 0.101 + size[2] / 2)
+    grasp = Grasp("both", center, 0.0, size)
+    schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp))]
+    run = Run(schedule, STANDING, [FLOOR, SHELF], objects=[(size, RigidTransform(center))])
+    run.record(0.1 + _duration("pick_floor"))
+    result = run.status().results.last
+    assert result.outcome == "failed"
+    assert result.reason.startswith("the head would go") and "'shelf'" in result.reason
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
 HEAD_SPEED = 1.5

@@ -12,7 +12,7 @@ import pytest
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform, RollPitchYaw
 
-from hrc_drake.messages import CANCELLED
+from hrc_drake.messages import CANCELLED, SUCCEEDED
 from hrc_drake.runner import run
 from hrc_drake.workpieces.config import ConveyorConfig
 from hrc_drake.workpieces.messages import BOTH_HANDS, RIGHT_HAND, ROBOT_HOLDER
@@ -126,6 +126,20 @@ def test_a_persons_failed_pick_says_why_in_the_run_logs(tmp_path):
     assert [(record["path"], record["reason"]) for record in failures] == [
         ("pick_moving_part", why)
     ]
+
+
+def test_a_pick_while_the_hands_hold_something_fails_at_once_and_keeps_the_hold():
+    """Holding a part, the person is told to take another: the pick fails at once, saying
+    why, and the hands keep what they hold (played through, the hands went to the second
+    part and left the first: a hand 5.6 cm off what it held in a cell of our own)."""
+    sim = Simulation(cell(human="pick_while_holding.xml")).advance(12.0)
+    pick = sim.tree("human").node("pick_while_holding")
+    assert pick.failure_reason == "right_hand already holds object 1"
+    assert sim.events("human") == ["went_on"]
+    objects = {obj.id: obj for obj in sim["workpieces_status"].objects}
+    assert objects[1].holder == RIGHT_HAND and objects[2].holder is None
+    walked_and_took_the_first = [SUCCEEDED, SUCCEEDED]
+    assert [result.outcome for result in sim["human_status"].results] == walked_and_took_the_first
 
 
 def test_a_part_that_vanishes_while_the_person_reaches_for_it_fails_the_pick():

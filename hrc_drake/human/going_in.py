@@ -1,0 +1,54 @@
+"""What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
+still goes into the furniture once the head and arms have been kept out of it as far as
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance).
+
+Where the corrections cannot find a way, the person played it through the shelf: a stoop
+to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
+reported only a realism excess. Refused, the tree's node fails with what would have gone
+where (the run's summary says so), and `hrc-drake validate` finds it before a run
+(hrc_drake.scenario.tree_findings plans the picks it can know of)."""
+
+import numpy as np
+
+from hrc_drake.human.activity import Activity
+from hrc_drake.human.aiming import Unreachable
+from hrc_drake.human.arm_shapes import HEAD, Prisms, corners_in_world, parts_shapes
+from hrc_drake.human.clearance import NEAR, SAMPLE
+from hrc_drake.human.performer import Performer
+from hrc_drake.human.skeleton import SIDES
+
+DEPTH_LIMIT = 0.01
+"""m: the realism audit's limit for the body in the cell's geometry or in an object
+(docs/realism.md); deeper than this, the motion is refused."""
+PARTS = (HEAD, *SIDES)
+
+
+def refuse_going_in(performer: Performer, activity: Activity, start: float) -> None:
+    """Raises Unreachable when `activity`, played from `start` with its corrections, puts the
+    head or an arm deeper than DEPTH_LIMIT into what it keeps out of."""
+    furniture = activity.furniture_of(performer)
+    if not furniture.pieces:
+        return
+    end = activity.end if np.isfinite(activity.end) else start
+    times = np.arange(start, end + SAMPLE / 2, SAMPLE)
+    poses = np.array([activity.pose(performer, float(t)) for t in times])
+    body = performer.body
+    radii, shapes, starts = parts_shapes(body, PARTS)
+    corners = corners_in_world(body, poses, PARTS)
+    prisms = Prisms.of(furniture)
+    depths = prisms.deepest_near(poses[:, :2], NEAR, corners, radii, shapes)
+    k, shape = np.unravel_index(np.argmax(depths), depths.shape)
+    if depths[k, shape] <= DEPTH_LIMIT:
+        return
+    part = PARTS[np.searchsorted(starts, shape, side="right") - 1]
+    into = prisms.shape_depths(corners[k], radii, shapes)[:, shape]
+    where = furniture.pieces[int(np.argmax(into))].name
+    raise Unreachable(
+        f"{_named(part)} would go {100 * depths[k, shape]:.1f} cm into '{where}' "
+        f"{times[k] - start:.1f} s in, however the arms and head are moved: no way to do it "
+        "from where the person stands"
+    )
+
+
+def _named(part: str) -> str:
+    return "the head" if part == HEAD else f"the {part} arm"
