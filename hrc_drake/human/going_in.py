@@ -24,11 +24,20 @@ PARTS = (HEAD, *SIDES)
 
 
 def refuse_going_in(performer: Performer, activity: Activity, start: float) -> None:
-    """Raises Unreachable when `activity`, played from `start` with its corrections, puts the
-    head or an arm deeper than DEPTH_LIMIT into what it keeps out of."""
+    """Raises Unreachable, saying what would go where, when `activity`, played from `start`
+    with its corrections, puts the head or an arm deeper than DEPTH_LIMIT into what it keeps
+    out of."""
+    problem = going_in(performer, activity, start)
+    if problem:
+        raise Unreachable(problem)
+
+
+def going_in(performer: Performer, activity: Activity, start: float) -> str:
+    """What of the head and arms `activity`, played from `start`, puts deeper than
+    DEPTH_LIMIT into what it keeps out of, and where ("" when nothing)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
-        return
+        return ""
     end = activity.end if np.isfinite(activity.end) else start
     times = np.arange(start, end + SAMPLE / 2, SAMPLE)
     poses = np.array([activity.pose(performer, float(t)) for t in times])
@@ -39,11 +48,11 @@ def refuse_going_in(performer: Performer, activity: Activity, start: float) -> N
     depths = prisms.deepest_near(poses[:, :2], NEAR, corners, radii, shapes)
     k, shape = np.unravel_index(np.argmax(depths), depths.shape)
     if depths[k, shape] <= DEPTH_LIMIT:
-        return
+        return ""
     part = PARTS[np.searchsorted(starts, shape, side="right") - 1]
     into = prisms.shape_depths(corners[k], radii, shapes)[:, shape]
     where = furniture.pieces[int(np.argmax(into))].name
-    raise Unreachable(
+    return (
         f"{_named(part)} would go {100 * depths[k, shape]:.1f} cm into '{where}' "
         f"{times[k] - start:.1f} s in, however the arms and head are moved: no way to do it "
         "from where the person stands"

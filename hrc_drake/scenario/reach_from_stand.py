@@ -3,7 +3,9 @@ target farther from the last walk's end (or the person's start) than a hand reac
 without walking fails the node at run time ("out of reach without walking"), so validate
 says it first. So does a pick of an object that a NextObject finds in an area, for the
 objects that lie there at the start (a pallet's far row: "hand stays 0.27 m from the
-target", every time the person tried).
+target", every time the person tried), and a place after such a pick, for an object of
+the type it finds (a tote put into a shelf's compartment from too close: "the head would
+go 3.4 cm into 'shelf'").
 
 Where the person stands is known statically only along the tree's certain paths: the last
 walk among the earlier children of the Sequences above the node. A Fallback's earlier
@@ -35,6 +37,10 @@ Taken = Callable[[TreeNode], list[tuple[str, np.ndarray, Callable]]]
 """The objects a pick node may take, as far as known before the run: a label, the centre,
 and what keeps the person from taking it from a place to stand (the walk's known target,
 None: the person's start): why the hands cannot get there, or ""."""
+Placing = Callable[[TreeNode, np.ndarray], Callable | None]
+"""For the last pick before a place node and the place's target point: what keeps the
+person from putting down there what that pick took, from a place to stand (as `Taken`'s),
+or None when what the hands hold is not known before the run."""
 
 
 def clip_step_back(clips: dict) -> float:
@@ -56,23 +62,27 @@ def reach_findings(
     start: np.ndarray,
     clips: dict | None = None,
     taken: Taken | None = None,
+    placing: Placing | None = None,
 ) -> Iterator[Finding]:
     """A Finding at each ActorPlace/ActorReach whose known target, and each ActorPick whose
     `taken` object, is farther from every place the person can stand there than a hand
-    reaches (`known`: the known values by (id(node), port); `start`: the person's start on
-    the floor)."""
+    reaches, or that the hands cannot get to from all of them (`known`: the known values by
+    (id(node), port); `start`: the person's start on the floor)."""
     limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
     parents = {id(child): node for node in nodes for child in node.children_nodes()}
     for node in nodes:
         if isinstance(node, ActorPlace | ActorReach):
             port = "target"
             targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
+            pick = _last_before(node, parents, ActorPick)
+            if isinstance(node, ActorPlace) and isinstance(pick, ActorPick) and placing:
+                targets = [(v, p, None if p is None else placing(pick, p)) for v, p, _ in targets]
         elif isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
             targets = taken(node)
         else:
             continue
-        stand = _stand_before(node, parents)
+        stand = _last_before(node, parents, ActorMovement)
         if stand is UNKNOWN:
             continue
         stands = _stand_points(stand, known, resolve, start)
@@ -90,8 +100,9 @@ def reach_findings(
                 problems = [(hindrance(value), said) for _, said, value in stands]
                 if all(problem for problem, _ in problems):
                     problem, said = problems[0]
+                    done = "taken" if isinstance(node, ActorPick) else "put down"
                     message = (
-                        f"{what} at {_point_text(target)}, taken where the person stands "
+                        f"{what} at {_point_text(target)}, {done} where the person stands "
                         f"({said}): {problem}"
                     )
                     yield Locator.node(node, port, message, target)
@@ -126,14 +137,15 @@ def _too_far(value, target, distance: float, stands, limit: float) -> str:
     )
 
 
-def _stand_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
-    """The walk whose end the person stands at when `node` starts (None: no walk before
-    it, they stand at their start; UNKNOWN: not known statically)."""
+def _last_before(node: TreeNode, parents: dict, kind: type) -> TreeNode | None | object:
+    """The last node of `kind` that has run when `node` starts (a walk: the person stands
+    at its end; a pick: the hands hold what it took). None: none before it (the person
+    stands at their start); UNKNOWN: not known statically."""
     child = node
     while (parent := parents.get(id(child))) is not None:
         if _is_sequence(parent):
             for sibling in reversed(_earlier_siblings(parent, child)):
-                if (last := _last_walk(sibling)) is not None:
+                if (last := _last_of(sibling, kind)) is not None:
                     return last
         elif not isinstance(parent, SubTreeNode) and not _runs_first(parent, child):
             return UNKNOWN  # a Fallback's failed tries, a Parallel's others, a loop
@@ -141,25 +153,25 @@ def _stand_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
     return None
 
 
-def _last_walk(node: TreeNode) -> TreeNode | None | object:
-    """The walk that leaves the person where they are once `node` succeeded (None: it
-    does not move them)."""
-    if not _walks(node):
+def _last_of(node: TreeNode, kind: type) -> TreeNode | None | object:
+    """The last node of `kind` that has run once `node` succeeded (None: there is none in
+    it)."""
+    if not _holds(node, kind):
         return None
-    if isinstance(node, ActorMovement):
+    if isinstance(node, kind):
         return node if not node.config.preconditions else UNKNOWN
     if isinstance(node, SubTreeNode):
-        return _last_walk(node.child)
+        return _last_of(node.child, kind)
     if _is_sequence(node):
         for child in reversed(node.children_nodes()):
-            if _walks(child):
-                return _last_walk(child)
+            if _holds(child, kind):
+                return _last_of(child, kind)
     return UNKNOWN
 
 
-def _walks(node: TreeNode) -> bool:
-    """Whether a walk is in the subtree of `node`."""
-    return isinstance(node, ActorMovement) or any(_walks(c) for c in node.children_nodes())
+def _holds(node: TreeNode, kind: type) -> bool:
+    """Whether a node of `kind` is in the subtree of `node`."""
+    return isinstance(node, kind) or any(_holds(c, kind) for c in node.children_nodes())
 
 
 def _is_sequence(node: TreeNode) -> bool:

@@ -12,14 +12,15 @@ from collections.abc import Iterator
 from functools import cached_property, partial
 
 import numpy as np
+from pydrake.math import RigidTransform
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
-from hrc_drake.human.going_in import refuse_going_in
-from hrc_drake.human.grasp import grasp_hands
-from hrc_drake.human.messages import AnimateCommand, Grasp
+from hrc_drake.human.going_in import going_in
+from hrc_drake.human.grasp import grasp_hands, hold_of
+from hrc_drake.human.messages import AnimateCommand, Box, Grasp
 from hrc_drake.human.navigation import FLOOR_LEVEL
 from hrc_drake.human.performer import Performer, place
 from hrc_drake.human.planning import plan_animation
@@ -29,7 +30,7 @@ from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
+from hrc_drake.nodes.targeted import NEARBY, TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
@@ -115,25 +116,49 @@ class _Checks:
         def taken(pick):
             return self._taken(tree.node_list, known, pick, agent)
 
+        def placing(pick, target):
+            return self._placing(tree.node_list, known, pick, target, agent)
+
         start = self.scenario.human.start[:2]
-        return reach_findings(tree.node_list, known, point, start, self.clips, taken)
+        return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
 
     def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
         """The objects at the start that a pick may take: those of the type a NextObject
         filters for (by type alone) in its area, where it writes the entry the pick reads."""
-        entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
-        if entry is None:  # a literal id: nothing finds it
-            return []
         found = []
-        for finder in nodes:
-            written = finder.config.outputs.get("object_id")
-            if not isinstance(finder, NextObject) or getattr(written, "entry", None) is not entry:
-                continue
-            hands = [v.value for v in known.get((id(pick), "hand"), ())] or ["auto"]
+        hands = _hands(known, pick)
+        for finder in _finders(nodes, pick):
             for area in known.get((id(finder), "area"), ()):
                 for wanted in known.get((id(finder), "filter"), ()):
-                    found += self._lying_in(area, wanted.value, finder, agent, hands[0])
+                    found += self._lying_in(area, wanted.value, finder, agent, hands)
         return found
+
+    def _placing(self, nodes, known, pick, target, agent):
+        """What keeps the person from putting down at `target` what `pick` took: an object
+        of the one type the NextObjects it takes from filter for (None: not known)."""
+        types = {
+            parse_filter(wanted.value).get("type")
+            for finder in _finders(nodes, pick)
+            for wanted in known.get((id(finder), "filter"), ())
+        }
+        if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
+            return None
+        (kind,) = types
+        return partial(self._place_problem, kind, _hands(known, pick), target, agent)
+
+    def _place_problem(self, kind: str, hands: str, target, agent, stand: Known | None) -> str:
+        """Why the person standing at `stand` cannot put an object of type `kind`, held in
+        `hands`, down at `target`, as the run would plan it; "" when they can."""
+        x, y, yaw = self._standing_at(agent, stand, target)
+        shape = self.scenario.workpieces.types[kind]
+        _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
+        if hands == "auto":
+            hands = grasp_hands(size, shape.mass, shape.attributes)
+        target = tuple(target)
+        hold = hold_of(Grasp(hands, target, yaw, size), yaw)
+        clip = "place_table" if target[2] >= TABLE_HEIGHT else "place_floor"
+        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=self._near(target))
+        return self._planned_problem(command, (x, y, yaw))
 
     def _lying_in(self, area: Known, wanted: str, finder, agent, hands: str) -> list[tuple]:
         """The initial objects in a known area that a filter of their type alone takes."""
@@ -165,15 +190,34 @@ class _Checks:
         if hands == "auto":
             hands = grasp_hands(size, kind.mass, kind.attributes)
         clip = "pick_table" if center[2] >= TABLE_HEIGHT else "pick_floor"
-        command = AnimateCommand(0, clip, grasp=Grasp(hands, center, heading, size))
+        grasp = Grasp(hands, center, heading, size)
+        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(center, obj))
+        return self._planned_problem(command, (x, y, yaw))
+
+    def _planned_problem(self, command: AnimateCommand, stand) -> str:
+        """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run
+        would plan it (refused where it goes into the furniture even with the head and arms
+        kept out, which is worked out only where the plan itself goes in); "" when they can."""
         performer = self.performer
-        standing = place(performer, performer.body.standing_pose(), x, y, yaw)
         try:
-            activity = plan_animation(performer, command, (x, y, yaw), 0.0)
-            refuse_going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
+            activity = plan_animation(performer, command, stand, 0.0)
         except Unreachable as error:
             return str(error)
-        return ""
+        if not going_in(performer, activity, 0.0):
+            return ""
+        standing = place(performer, performer.body.standing_pose(), *stand)
+        return going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
+
+    def _near(self, point, taken=None) -> tuple[Box, ...]:
+        """The objects at the start near `point` but `taken`, as a node tells the person
+        (hrc_drake.nodes.targeted.NEARBY)."""
+        types = self.scenario.workpieces.types
+        return tuple(
+            Box(*box_at(obj.pose, types[obj.type].shape, types[obj.type].size))
+            for obj in self.scene.objects
+            if obj is not taken
+            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
+        )
 
     def _standing_at(self, agent, stand: Known | None, facing) -> tuple[float, float, float]:
         """Where the person stands and which way they face: the walk's target, facing as it
@@ -324,3 +368,22 @@ def _resolved(agent, value) -> Pose | None:
 
 def _xyz(p) -> str:
     return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"
+
+
+def _finders(nodes, pick) -> list:
+    """The NextObjects that write the entry `pick` reads its object from (none for a
+    literal id)."""
+    entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
+    if entry is None:
+        return []
+    return [
+        finder
+        for finder in nodes
+        if isinstance(finder, NextObject)
+        and getattr(finder.config.outputs.get("object_id"), "entry", None) is entry
+    ]
+
+
+def _hands(known, pick) -> str:
+    """The hands a pick takes with, as its `hand` port says (auto: by the object)."""
+    return ([v.value for v in known.get((id(pick), "hand"), ())] or ["auto"])[0]

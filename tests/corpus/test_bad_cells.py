@@ -474,6 +474,39 @@ CASES = {
             ),
         ],
     ),
+    "a put-down into a shelf's compartment the head cannot get to": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
+        '<ActorMovement target="shelf_front"/><ActorPlace target="3.0;0.6;0.676"/>',
+        (
+            "port 'target': '3.0;0.6;0.676' at (3.00, 0.60, 0.68), put down where the person "
+            "stands (location 'shelf_front', ActorMovement at ",
+            "): the head would go ",
+            " cm into 'shelf' ",
+        ),
+        "ActorPlace",
+        changes=[
+            (
+                "human:\n",
+                "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
+                "  - add_weld: {parent: world, child: shelf::body, "
+                "X_PC: {translation: [3.0, 0.55, 0.0]}}\nhuman:\n",
+            ),
+            (
+                "safety:\n",
+                "    tote: {shape: box, size: [0.3, 0.4, 0.15], mass: 1.5, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: tote, pose: {{translation: [0.0, 0.6, 0.976]}}}}\n"
+                "safety:\n",
+            ),
+            (
+                "locations:\n",
+                "locations:\n  shelf_front: {translation: [3.0, 0.0, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, 90]}}\n  table_front: {translation: [0.0, 1.45, "
+                "0.0], rotation: !Rpy {deg: [0, 0, -90]}}\n",
+            ),
+        ],
+    ),
     "a reach out of reach from the person's start": person(
         '<ActorMovement target="door"/>',
         '<ActorReach target="0.0;0.6;1.0"/><ActorMovement target="door"/>',
