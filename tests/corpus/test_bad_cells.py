@@ -35,6 +35,19 @@ ROBOT_TREE = "  robot: {file: robot.xml, period: 0.05}\n"
 OBJECTS = "  objects:\n"
 PART_ON_TABLE = "    - {type: part, pose: {translation: [0.0, 0.6, 0.93]}}\n"
 
+A_SHELF = (
+    "human:\n",
+    "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
+    "  - add_weld: {parent: world, child: shelf::body, X_PC: {translation: [3.0, 0.55, 0.0]}}\n"
+    "human:\n",
+)
+"""Our shelf (boards at 0.1, 0.6, 1.1 and 1.6 m), its front 0.35 m beyond y = 0."""
+A_SHELF_FRONT = (
+    "locations:\n",
+    "locations:\n  shelf_front: {translation: [3.0, 0.0, 0.0], rotation: !Rpy {deg: [0, 0, 90]}}\n",
+)
+"""Where the person stands facing the shelf, 0.35 m from it."""
+
 ON_A_PEDESTAL = GOOD_SCENARIO.replace(
     "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
 ).replace(
@@ -451,23 +464,14 @@ CASES = {
         ),
         "ActorPick",
         changes=[
-            (
-                "human:\n",
-                "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
-                "  - add_weld: {parent: world, child: shelf::body, "
-                "X_PC: {translation: [3.0, 0.55, 0.0]}}\nhuman:\n",
-            ),
+            A_SHELF,
             (
                 "safety:\n",
                 "    carton: {shape: box, size: [0.3, 0.25, 0.2], mass: 2.0, capacity: 4}\n"
                 f"{OBJECTS}    - {{type: carton, pose: {{translation: [3.0, 0.47, 0.201]}}}}\n"
                 "safety:\n",
             ),
-            (
-                "locations:\n",
-                "locations:\n  shelf_front: {translation: [3.0, 0.0, 0.0], "
-                "rotation: !Rpy {deg: [0, 0, 90]}}\n",
-            ),
+            A_SHELF_FRONT,
             (
                 "areas:\n",
                 "areas:\n  bottom_board: [[2.6, 0.35], [3.4, 0.35], [3.4, 0.75], [2.6, 0.75]]\n",
@@ -487,23 +491,18 @@ CASES = {
         ),
         "ActorPlace",
         changes=[
-            (
-                "human:\n",
-                "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
-                "  - add_weld: {parent: world, child: shelf::body, "
-                "X_PC: {translation: [3.0, 0.55, 0.0]}}\nhuman:\n",
-            ),
+            A_SHELF,
             (
                 "safety:\n",
                 "    tote: {shape: box, size: [0.3, 0.4, 0.15], mass: 1.5, capacity: 4}\n"
                 f"{OBJECTS}    - {{type: tote, pose: {{translation: [0.0, 0.6, 0.976]}}}}\n"
                 "safety:\n",
             ),
+            A_SHELF_FRONT,
             (
                 "locations:\n",
-                "locations:\n  shelf_front: {translation: [3.0, 0.0, 0.0], "
-                "rotation: !Rpy {deg: [0, 0, 90]}}\n  table_front: {translation: [0.0, 1.45, "
-                "0.0], rotation: !Rpy {deg: [0, 0, -90]}}\n",
+                "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, -90]}}\n",
             ),
         ],
     ),
