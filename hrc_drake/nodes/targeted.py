@@ -166,7 +166,8 @@ HAND_PORT = InputPort(
 
 
 class ActorPick(TargetedAction):
-    """Picks up an object (table or floor clip by its height) into the hand(s)."""
+    """Picks up an object (table or floor clip by its height) into the hand(s); fails at once
+    while the hands hold something."""
 
     ports = (InputPort("object_id", int), HAND_PORT)
     contact_event = "grasp"
