@@ -1,6 +1,6 @@
 """What handing the controller its desired motion costs per plant step, in C++: the
-station's systems (`add_step_samples`: a step clock and a product with RobotMotion's
-samples) against the SymbolicVectorSystem that evaluated RobotMotion's quintic segment
+station's systems (`add_step_samples`: a step clock, a one-hot vector of the step's slot,
+times RobotMotion's samples) against the SymbolicVectorSystem that evaluated RobotMotion's quintic segment
 at every step before (kept here as the reference), and against nothing.
 
 Three diagrams advance in turns, timed by this process's CPU time: each reads its desired

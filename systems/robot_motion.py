@@ -20,10 +20,12 @@ from pydrake.common import RandomDistribution
 from pydrake.common.value import AbstractValue
 from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
 from pydrake.systems.primitives import (
+    AffineSystem,
     Demultiplexer,
-    LinearSystem,
     LinearTransformDensity,
     MatrixGain,
+    Saturation,
+    WrapToSystem,
 )
 
 from hrc_drake.iisy import VARIANTS
@@ -265,23 +267,24 @@ def add_desired_motion(builder, motion: RobotMotion) -> Demultiplexer:
 def add_step_samples(builder, samples, slots: int, step: float) -> Demultiplexer:
     """Adds the C++ systems that hand each plant step (`step` apart) its samples from the
     output `samples` (`RobotMotion.desired_samples`, in `slots` slots): a clock counting
-    the steps (ROBOT_DESIRED_CLOCK, in its state a one-hot vector of the step's slot), the
-    step's samples (ROBOT_DESIRED_MOTION: the samples' matrix, a column per slot, times the
-    one-hot vector), their differences (ROBOT_DESIRED_DIFFERENCES) and their split
+    the steps (`add_step_clock`: a one-hot vector of the step's slot), the step's samples
+    (ROBOT_DESIRED_MOTION: the samples' matrix, a column per slot, times the one-hot
+    vector), their differences (ROBOT_DESIRED_DIFFERENCES) and their split
     (ROBOT_DESIRED_SPLIT) into the desired state (q, v: output 0) and acceleration
     (output 1): what the controller reads at every step.
 
     At a time between steps (in ((n - 1) h, n h]) the outputs are those of step n. A run
     starts at time 0. The product is Drake's LinearTransformDensity (A w + b for inputs A
     and w), the one C++ primitive that multiplies two signals; its density output is never
-    asked for. Per plant step this costs 2 us, the SymbolicVectorSystem that evaluated the
-    segment at each step before 13 us (`benchmarks/desired_motion.py`)."""
+    asked for. Per plant step at 2 ms this costs 0.13x the bare robot's whole step, the
+    SymbolicVectorSystem that evaluated the segment at each step before 0.47x
+    (`benchmarks/desired_motion.py`)."""
     rows = samples.size() // slots
-    clock = builder.AddNamedSystem(ROBOT_DESIRED_CLOCK, step_clock(slots, step))
+    clock = add_step_clock(builder, slots, step)
     selected = builder.AddNamedSystem(
         ROBOT_DESIRED_MOTION, LinearTransformDensity(RandomDistribution.kUniform, slots, rows)
     )
-    builder.Connect(clock.get_output_port(), selected.get_input_port_w_in())
+    builder.Connect(clock, selected.get_input_port_w_in())
     builder.Connect(samples, selected.get_input_port_A())
     joints = rows // 3
     differences = builder.AddNamedSystem(
@@ -300,15 +303,36 @@ def sample_slots(horizon: float, step: float) -> int:
     return int(np.ceil(horizon / step - 1e-9)) + 3
 
 
-def step_clock(slots: int, step: float) -> LinearSystem:
-    """A discrete system whose state, from time 0, is e_(n mod slots) at each step n h: a
-    permutation matrix turns it one slot at each step."""
-    turn = np.roll(np.eye(slots), 1, axis=0)
-    clock = LinearSystem(
-        turn, np.zeros((slots, 0)), np.eye(slots), np.zeros((slots, 0)), time_period=step
+def add_step_clock(builder, slots: int, step: float):
+    """Adds a clock whose output, from time 0, at each step n h (h = `step`) and until the
+    next, is the one-hot vector e_(n mod slots), in exact integer arithmetic: a counter n
+    (ROBOT_DESIRED_CLOCK; its output g_i = 1 + i - n for each slot i), wrapped into
+    [2 - slots, 2) (1 for i = n mod slots, at most 0 for every other slot) and clamped to
+    [0, 1]. Memory and work per step grow with the slots, not with their square (as a
+    permutation matrix turning a one-hot state would: 200 MB at the smallest plant step
+    the scenario allows). Returns the output."""
+    slot = np.arange(slots, dtype=float)
+    counter = builder.AddNamedSystem(
+        ROBOT_DESIRED_CLOCK,
+        AffineSystem(
+            A=[[1.0]],
+            B=np.zeros((1, 0)),
+            f0=[1.0],
+            C=-np.ones((slots, 1)),
+            D=np.zeros((slots, 0)),
+            y0=1.0 + slot,
+            time_period=step,
+        ),
     )
-    clock.configure_default_state(np.eye(slots)[0])
-    return clock
+    wrap = builder.AddNamedSystem(f"{ROBOT_DESIRED_CLOCK}_wrap", WrapToSystem(slots))
+    for i in range(slots):
+        wrap.set_interval(i, 2.0 - slots, 2.0)
+    clamp = builder.AddNamedSystem(
+        f"{ROBOT_DESIRED_CLOCK}_clamp", Saturation(np.zeros(slots), np.ones(slots))
+    )
+    builder.Connect(counter.get_output_port(), wrap.get_input_port())
+    builder.Connect(wrap.get_output_port(), clamp.get_input_port())
+    return clamp.get_output_port()
 
 
 def desired_differences(joints: int, time_step: float) -> np.ndarray:
