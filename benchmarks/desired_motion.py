@@ -1,7 +1,7 @@
 """What handing the controller its desired motion costs per plant step, in C++: the
 station's systems (`add_step_samples`: a step clock, a one-hot vector of the step's slot,
-times RobotMotion's samples) against the SymbolicVectorSystem that evaluated RobotMotion's quintic segment
-at every step before (kept here as the reference), and against nothing.
+times RobotMotion's samples) against the SymbolicVectorSystem that evaluated RobotMotion's
+quintic segment at every step before (kept here as the reference), and against nothing.
 
 Three diagrams advance in turns, timed by this process's CPU time: each reads its desired
 state into a ZeroOrderHold at every plant step, as the controller does; `none` reads a
