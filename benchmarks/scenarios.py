@@ -4,8 +4,9 @@ For each scenario: a full run (trees, person, workpieces, safety monitor, RobotM
 the robot's desired state recorded; then the bare plant + inverse-dynamics controller
 replaying that same desired state, in the same process. The ratio full / bare is what the
 behaviour, the person and the measurements cost on top of simulating the robot itself.
-`cell/bare` is the same replay with the scenario's static cell in the plant (as in the
-station's dynamic plant: its contact geometry is part of every step), against the bare one.
+`cell/bare` is the same replay with the scenario's static cell and its contact geometry in
+the plant, against the bare one (the station's dynamic plant had them until it dropped its
+geometry: `benchmarks/plant_contact.py`).
 Where the scenario's plant steps longer than 1 ms, the bare replay also runs at 1 ms
 (`bare 1ms`, `full/bare1ms`): what the full run costs against the robot simulated as finely
 as before.

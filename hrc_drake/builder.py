@@ -8,11 +8,11 @@ the scenario asks for it: no `human:` section, no person and no monitor; no work
 no Workpieces; no `trees:`, no behavior trees. Which tree commands which actor, and the
 names of every port and system, come from `hrc_drake.wiring`.
 
-Two SceneGraphs: the dynamic plant keeps its own for contact (robot and cell only), and
-the world scene, named `scene_graph`, holds a kinematic mirror of the robot and cell
-(posed from the plant's state), the person and the workpieces. The safety monitor,
-Meshcat and the `query_object` output see the world scene; the plant's 1 kHz steps never
-pay for the person's or the objects' geometry.
+One SceneGraph, the world scene named `scene_graph`: a kinematic mirror of the robot and
+cell (posed from the plant's state), the person and the workpieces. The safety monitor,
+Meshcat and the `query_object` output see it, when they ask. The dynamic plant simulates
+the robot alone, without geometry (`station.make_dynamic_plant`): its steps pose nothing
+and query no contact.
 
 Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 `robot_motion.robot_tree_command`), so tests and notebooks can command the actors directly.
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Meshcat, MeshcatVisualizer, MeshcatVisualizerParams, Role, SceneGraph
-from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlant
+from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import ModelInstanceIndex
 from pydrake.systems.framework import Diagram, DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer
@@ -45,7 +45,7 @@ from hrc_drake.human.navigation import cell_navigation, cell_obstacles
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
 from hrc_drake.scenario import Scenario
 from hrc_drake.seeding import stream
-from hrc_drake.station import add_station_models, model_parser
+from hrc_drake.station import add_station_models, make_dynamic_plant, model_parser
 from hrc_drake.systems.adapters import add_human_hands
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.human_actor import HumanActor, add_human
@@ -58,9 +58,9 @@ from hrc_drake.systems.safety_sensors import SafetySensors, add_safety_sensors
 from hrc_drake.systems.workpieces import Workpieces, add_workpieces
 from hrc_drake.wiring import (
     COMMANDED_BY,
+    DYNAMIC_PLANT,
     HUMAN,
     HUMAN_MODEL,
-    PHYSICS_SCENE_GRAPH,
     RECORDER,
     ROBOT,
     ROBOT_MOTION,
@@ -125,12 +125,9 @@ def build_diagram(
 ) -> Diagram:
     """The whole scenario as one Diagram named after the scenario (see module docstring)."""
     builder = DiagramBuilder()
-    plant, physics = AddMultibodyPlant(scenario.plant, builder)
-    physics.set_name(PHYSICS_SCENE_GRAPH)
     spec = scenario.station
-    arm, _ = add_station_models(plant, model_parser(plant), spec)
-    plant.Finalize()
-    plant.SetDefaultPositions(arm, spec.initial_positions)
+    plant, arm = make_dynamic_plant(spec, scenario.plant)
+    builder.AddNamedSystem(DYNAMIC_PLANT, plant)
     controller = add_robot_controller(builder, spec, plant, arm)
     scene_graph, mirror = _add_world_scene(builder, plant, scenario)
 
@@ -187,10 +184,9 @@ def _add_world_scene(builder, plant, scenario):
     """The SceneGraph everyone else sees: a kinematic mirror of the robot and cell, posed
     from the dynamic plant's state, with the person and the workpieces beside it.
 
-    The dynamic plant keeps a SceneGraph of its own for contact. Its every step re-poses
-    only its own geometry; the person's and the workpieces' frames are re-posed only when
-    someone queries this scene (the safety monitor at 100 Hz, Meshcat when it draws).
-    Nothing here takes part in physics, so no collision filters are needed between them.
+    Its frames are re-posed only when someone queries this scene (the safety monitor at
+    100 Hz, Meshcat when it draws). Nothing here takes part in physics, so no collision
+    filters are needed between them.
     """
     scene_graph = builder.AddNamedSystem(SCENE_GRAPH, SceneGraph())
     mirror = MultibodyPlant(0.0)

@@ -1,7 +1,7 @@
 """The models of a station: the robot (arm + tool, welded at its base pose) and the static
-cell, described by a StationSpec. The simulation plant, the world scene's mirror, the
-controller's plant and the planner's collision model are all built from one spec, so they
-agree; none of them needs the rest of the scenario."""
+cell, described by a StationSpec. The simulation plant (the robot alone), the world scene's
+mirror, the controller's plant and the planner's collision model are all built from one
+spec, so they agree; none of them needs the rest of the scenario."""
 
 from dataclasses import dataclass, field
 
@@ -14,7 +14,12 @@ from pydrake.multibody.parsing import (
     Parser,
     ProcessModelDirectives,
 )
-from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.plant import (
+    ApplyMultibodyPlantConfig,
+    MultibodyPlant,
+    MultibodyPlantConfig,
+)
+from pydrake.multibody.tree import ModelInstanceIndex
 
 from hrc_drake.iisy import BASE_FRAME, TOOL_BODY, VARIANTS, add_iisy, add_tool
 from hrc_drake.paths import add_bundled_model, add_model_package, bundled_model_file
@@ -118,6 +123,26 @@ def _add_bundled_cell(plant: MultibodyPlant, parser: Parser, cell) -> None:
         X_PC = RigidTransform() if weld.X_PC is None else weld.X_PC.GetDeterministicValue()
         parent, child = (GetScopedFrameByName(plant, name) for name in (weld.parent, weld.child))
         plant.WeldFrames(parent, child, X_PC)
+
+
+def make_dynamic_plant(
+    spec: StationSpec, config: MultibodyPlantConfig
+) -> tuple[MultibodyPlant, ModelInstanceIndex]:
+    """The plant a simulation steps the robot's dynamics in: the arm and tool (finalized, at
+    the spec's initial positions) with no cell and no geometry, so a step poses nothing and
+    asks for no contact; returns it and the arm.
+
+    No contact force can act on the robot in a run: the planner keeps it clear of the cell
+    and of itself (its collision checker has every pair of the station's models; validate
+    and the layout check the reach). With the cell's geometry in it, each step posed the
+    robot's and ran the broad phase against the cell's: 0.9x the bare robot's whole cost
+    (`benchmarks/plant_contact.py`). Whoever looks at the cell sees the world scene."""
+    plant = MultibodyPlant(config.time_step)
+    ApplyMultibodyPlantConfig(config, plant)
+    arm = add_robot(plant, model_parser(plant), spec)
+    plant.Finalize()
+    plant.SetDefaultPositions(arm, spec.initial_positions)
+    return plant, arm
 
 
 def make_control_plant(spec: StationSpec, time_step: float) -> MultibodyPlant:

@@ -73,12 +73,13 @@ SEQ_STEP = len(AGENTS)
 
 
 # System names in the station diagram.
-PHYSICS_SCENE_GRAPH = "physics_scene_graph"
+DYNAMIC_PLANT = "plant"
 SCENE_GRAPH = "scene_graph"
 STATION_MIRROR = "station_mirror"
 STATION_MIRROR_GEOMETRY = "station_mirror_geometry"
 ROBOT_CONTROLLER = "robot_controller"
 ROBOT_MOTION = "robot_motion"
+ROBOT_DESIRED_CLOCK = "robot_desired_clock"
 ROBOT_DESIRED_MOTION = "robot_desired_motion"
 ROBOT_DESIRED_DIFFERENCES = "robot_desired_differences"
 ROBOT_DESIRED_SPLIT = "robot_desired_split"

@@ -8,29 +8,43 @@ desired motion until the next update as a quintic segment per joint (state, `des
 while the robot holds still or cruises at a constant rate, one segment runs STEADY_HORIZON ahead
 and the updates within it are left out unless a command, the safety scale or the held object
 changes (`MotionStateMachine.horizon`, `unchanged`);
-Drake's C++ `SymbolicVectorSystem` evaluates it at every plant step for the inverse-dynamics
-controller (`add_desired_motion`), so no Python runs between updates and nothing feeds through.
+the update also samples it at every plant step it covers (`desired_samples`), and Drake's C++
+systems hand each step its sample for the inverse-dynamics controller (`add_desired_motion`),
+so no Python runs between updates and nothing feeds through.
 The state machine is plain Python in hrc_drake/motion/state_machine.py: this system reads its
 inputs, runs one update of it, keeps the MotionState and publishes views of it.
 See hrc_drake/motion/messages.py for the commands and the status."""
 
 import numpy as np
+from pydrake.common import RandomDistribution
 from pydrake.common.value import AbstractValue
-from pydrake.symbolic import MakeVectorVariable, Variable
 from pydrake.systems.framework import BasicVector, EventStatus, LeafSystem
-from pydrake.systems.primitives import Demultiplexer, MatrixGain, SymbolicVectorSystem
+from pydrake.systems.primitives import (
+    AffineSystem,
+    Demultiplexer,
+    LinearTransformDensity,
+    MatrixGain,
+    Saturation,
+    WrapToSystem,
+)
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import NO_COMMANDS
-from hrc_drake.motion.execution import SEGMENT_COEFFICIENTS, faithful_segment, hermite_segment
+from hrc_drake.motion.execution import faithful_segment, hermite_segment, step_samples
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
-from hrc_drake.motion.state_machine import MotionInputs, MotionState, MotionStateMachine
+from hrc_drake.motion.state_machine import (
+    STEADY_HORIZON,
+    MotionInputs,
+    MotionState,
+    MotionStateMachine,
+)
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.station import StationSpec
 from hrc_drake.wiring import (
     GRIPPER_ISSUER,
     ROBOT,
+    ROBOT_DESIRED_CLOCK,
     ROBOT_DESIRED_DIFFERENCES,
     ROBOT_DESIRED_MOTION,
     ROBOT_DESIRED_SPLIT,
@@ -49,9 +63,10 @@ class RobotMotion(LeafSystem):
     (WorkpiecesStatus, or unconnected when the scenario has no workpieces), `human_status`
     (where the person stands, for `avoid_person`; optional).
     Outputs: `desired_segment` (the time of the last update, then per joint the coefficients of
-    the desired motion's quintic in the time since: `add_desired_motion` evaluates it),
-    `path_rate` (the fraction of
-    full speed it moves along its path now, for the safety monitor), `robot_status`,
+    the desired motion's quintic in the time since), `desired_samples` (that quintic sampled
+    at the plant steps n h it covers, h = `sample_step`: step n's samples in slot
+    n mod `sample_slots`; see `add_desired_motion`), `path_rate` (the fraction of full speed
+    it moves along its path now, for the safety monitor), `robot_status`,
     `gripper_command` (the vacuum's Attach/Release for the workpieces' `robot_gripper`
     issuer, or None).
     """
@@ -61,18 +76,23 @@ class RobotMotion(LeafSystem):
         station: StationSpec,
         seed: np.random.SeedSequence,
         options: MotionOptions | None = None,
+        *,
+        sample_step: float,
     ):
-        """`seed`: the planner's stream of the run's seed."""
+        """`seed`: the planner's stream of the run's seed; `sample_step`: the plant's time
+        step, at which the controller reads the desired motion."""
         super().__init__()
         self._options = options or MotionOptions()
+        self.sample_step = sample_step
+        self.sample_slots = sample_slots(max(STEADY_HORIZON, self._options.period), sample_step)
         self._planner = MotionPlanner(station, self._options, seed)
         self._machine = MotionStateMachine(self._planner)
         self._n = len(VARIANTS[station.variant].joint_names)
         initial = self._machine.initial(station.initial_positions)
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
-        self._segment = self.DeclareDiscreteState(
-            self._segment_of(initial, 0.0, self._options.period)
-        )
+        segment = self._segment_of(initial, 0.0, self._options.period)
+        self._segment = self.DeclareDiscreteState(segment)
+        self._samples = self.DeclareDiscreteState(self._samples_of(segment))
         self._segment_end = self.DeclareDiscreteState(np.zeros(1))
         """When the desired segment ends: the next update that must run."""
 
@@ -84,6 +104,7 @@ class RobotMotion(LeafSystem):
         self._workpieces = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
         self.DeclareStateOutputPort("desired_segment", self._segment)
+        self.DeclareStateOutputPort("desired_samples", self._samples)
         self.DeclareVectorOutputPort(
             "path_rate", 1, self._calc_path_rate, {self.time_ticket(), self.all_state_ticket()}
         )
@@ -128,6 +149,15 @@ class RobotMotion(LeafSystem):
                 return np.concatenate([[t], coefficients.ravel()]), horizon
         return self._segment_of(state, t, period), period
 
+    def _samples_of(self, segment: np.ndarray) -> np.ndarray:
+        """`desired_samples` of `segment`: its steps from the one before its start on, each
+        in its slot (the steps of a segment and their neighbours never share a slot)."""
+        h, slots = self.sample_step, self.sample_slots
+        first = round(segment[0] / h) - 1
+        times = np.arange(first, first + slots) * h
+        samples = step_samples(segment[0], segment[1:].reshape(self._n, -1), h, times)
+        return np.roll(samples, first, axis=0).ravel()
+
     def _calc_path_rate(self, context, output: BasicVector) -> None:
         output.SetAtIndex(0, self._state(context).path_rate_at(context.get_time()))
 
@@ -148,6 +178,7 @@ class RobotMotion(LeafSystem):
         new_state.get_mutable_abstract_state(self._state_index).set_value(state)
         segment, horizon = self._segment_ahead(state, t)
         new_state.get_mutable_discrete_state(self._segment).set_value(segment)
+        new_state.get_mutable_discrete_state(self._samples).set_value(self._samples_of(segment))
         new_state.get_mutable_discrete_state(self._segment_end).set_value([t + horizon])
         return EventStatus.Succeeded()
 
@@ -198,13 +229,16 @@ def add_robot_motion(
     workpieces=None,
 ) -> tuple[RobotMotion, Demultiplexer]:
     """Adds RobotMotion as ROBOT_MOTION between the plant and its RobotController, with its
-    desired motion (`add_desired_motion`); `seed` is the planner's stream of the run's seed.
+    desired motion (`add_desired_motion`) sampled at the plant's steps; `seed` is the
+    planner's stream of the run's seed.
     With `workpieces` (the Workpieces system) the vacuum gripper issues its `robot_gripper`
     commands and reads its status; without, Grip and Release fail with a reason. Returns
     RobotMotion and the desired motion's split (outputs q, v and vdot)."""
-    motion = builder.AddNamedSystem(ROBOT_MOTION, RobotMotion(station, seed, options))
+    motion = builder.AddNamedSystem(
+        ROBOT_MOTION, RobotMotion(station, seed, options, sample_step=plant.time_step())
+    )
     builder.Connect(plant.get_state_output_port(arm), motion.GetInputPort("robot_state"))
-    split = add_desired_motion(builder, motion, plant.time_step())
+    split = add_desired_motion(builder, motion)
     builder.Connect(split.get_output_port(0), controller.GetInputPort("desired_state"))
     if controller.HasInputPort("desired_acceleration"):
         builder.Connect(split.get_output_port(1), controller.GetInputPort("desired_acceleration"))
@@ -219,37 +253,86 @@ def add_robot_motion(
     return motion, split
 
 
-def add_desired_motion(builder, motion: RobotMotion, time_step: float) -> Demultiplexer:
-    """Adds the C++ evaluation of `motion`'s desired segment for a plant stepping every
-    `time_step`: its samples around each step (ROBOT_DESIRED_MOTION), their differences
-    (ROBOT_DESIRED_DIFFERENCES) and their split (ROBOT_DESIRED_SPLIT) into the desired
-    state (q, v: output 0) and acceleration (output 1): what the controller reads at every
-    plant step."""
-    joints = (motion.GetOutputPort("desired_segment").size() - 1) // SEGMENT_COEFFICIENTS
-    samples = builder.AddNamedSystem(
-        ROBOT_DESIRED_MOTION, desired_samples_system(joints, time_step)
+def add_desired_motion(builder, motion: RobotMotion) -> Demultiplexer:
+    """Adds the C++ systems that hand each plant step `motion`'s desired motion
+    (`add_step_samples` of its `desired_samples`); returns their split."""
+    return add_step_samples(
+        builder,
+        motion.GetOutputPort("desired_samples"),
+        motion.sample_slots,
+        motion.sample_step,
     )
-    builder.Connect(motion.GetOutputPort("desired_segment"), samples.get_input_port())
+
+
+def add_step_samples(builder, samples, slots: int, step: float) -> Demultiplexer:
+    """Adds the C++ systems that hand each plant step (`step` apart) its samples from the
+    output `samples` (`RobotMotion.desired_samples`, in `slots` slots): a clock counting
+    the steps (`add_step_clock`: a one-hot vector of the step's slot), the step's samples
+    (ROBOT_DESIRED_MOTION: the samples' matrix, a column per slot, times the one-hot
+    vector), their differences (ROBOT_DESIRED_DIFFERENCES) and their split
+    (ROBOT_DESIRED_SPLIT) into the desired state (q, v: output 0) and acceleration
+    (output 1): what the controller reads at every step.
+
+    At a time between steps (in ((n - 1) h, n h]) the outputs are those of step n. A run
+    starts at time 0. The product is Drake's LinearTransformDensity (A w + b for inputs A
+    and w), the one C++ primitive that multiplies two signals; its density output is never
+    asked for. Per plant step at 2 ms this costs 0.13x the bare robot's whole step, the
+    SymbolicVectorSystem that evaluated the segment at each step before 0.47x
+    (`benchmarks/desired_motion.py`)."""
+    rows = samples.size() // slots
+    clock = add_step_clock(builder, slots, step)
+    selected = builder.AddNamedSystem(
+        ROBOT_DESIRED_MOTION, LinearTransformDensity(RandomDistribution.kUniform, slots, rows)
+    )
+    builder.Connect(clock, selected.get_input_port_w_in())
+    builder.Connect(samples, selected.get_input_port_A())
+    joints = rows // 3
     differences = builder.AddNamedSystem(
-        ROBOT_DESIRED_DIFFERENCES, MatrixGain(desired_differences(joints, time_step))
+        ROBOT_DESIRED_DIFFERENCES, MatrixGain(desired_differences(joints, step))
     )
-    builder.Connect(samples.get_output_port(), differences.get_input_port())
+    builder.Connect(selected.get_output_port_w_out(), differences.get_input_port())
     split = builder.AddNamedSystem(ROBOT_DESIRED_SPLIT, Demultiplexer([2 * joints, joints]))
     builder.Connect(differences.get_output_port(), split.get_input_port())
     return split
 
 
-def desired_samples_system(joints: int, time_step: float) -> SymbolicVectorSystem:
-    """q(t - h), q(t) and q(t + h) (stacked) at the context's time t from a `desired_segment`
-    input, evaluated in C++ (each joint's quintic in Horner form) for a plant stepping every
-    `time_step` h: each sample once, as `desired_differences` takes them further."""
-    t = Variable("t")
-    segment = MakeVectorVariable(1 + joints * SEGMENT_COEFFICIENTS, "segment")
-    since = t - segment[0]
-    rows = np.array(segment[1:]).reshape(joints, SEGMENT_COEFFICIENTS).tolist()
-    h = time_step
-    samples = [_horner(row, since + k * h) for k in (-1, 0, 1) for row in rows]
-    return SymbolicVectorSystem(time=t, input=segment, output=samples)
+def sample_slots(horizon: float, step: float) -> int:
+    """Slots for the samples of a segment of up to `horizon` s at steps `step` apart: its
+    steps and one more on either side, as the update's time and the steps' times may round
+    either way of each other."""
+    return int(np.ceil(horizon / step - 1e-9)) + 3
+
+
+def add_step_clock(builder, slots: int, step: float):
+    """Adds a clock whose output, from time 0, at each step n h (h = `step`) and until the
+    next, is the one-hot vector e_(n mod slots), in exact integer arithmetic: a counter n
+    (ROBOT_DESIRED_CLOCK; its output g_i = 1 + i - n for each slot i), wrapped into
+    [2 - slots, 2) (1 for i = n mod slots, at most 0 for every other slot) and clamped to
+    [0, 1]. Memory and work per step grow with the slots, not with their square (as a
+    permutation matrix turning a one-hot state would: 200 MB at the smallest plant step
+    the scenario allows). Returns the output."""
+    slot = np.arange(slots, dtype=float)
+    counter = builder.AddNamedSystem(
+        ROBOT_DESIRED_CLOCK,
+        AffineSystem(
+            A=[[1.0]],
+            B=np.zeros((1, 0)),
+            f0=[1.0],
+            C=-np.ones((slots, 1)),
+            D=np.zeros((slots, 0)),
+            y0=1.0 + slot,
+            time_period=step,
+        ),
+    )
+    wrap = builder.AddNamedSystem(f"{ROBOT_DESIRED_CLOCK}_wrap", WrapToSystem(slots))
+    for i in range(slots):
+        wrap.set_interval(i, 2.0 - slots, 2.0)
+    clamp = builder.AddNamedSystem(
+        f"{ROBOT_DESIRED_CLOCK}_clamp", Saturation(np.zeros(slots), np.ones(slots))
+    )
+    builder.Connect(counter.get_output_port(), wrap.get_input_port())
+    builder.Connect(wrap.get_output_port(), clamp.get_input_port())
+    return clamp.get_output_port()
 
 
 def desired_differences(joints: int, time_step: float) -> np.ndarray:
@@ -269,10 +352,3 @@ def desired_differences(joints: int, time_step: float) -> np.ndarray:
             [one / h**2, -2.0 * one / h**2, one / h**2],
         ]
     )
-
-
-def _horner(coefficients, x):
-    value = coefficients[-1]
-    for c in reversed(coefficients[:-1]):
-        value = c + x * value
-    return value

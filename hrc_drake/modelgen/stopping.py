@@ -21,8 +21,9 @@ one. They are written to models/iisy/stopping/<variant>.yaml:
     .venv/bin/python -m hrc_drake.modelgen stopping    # re-measure and rewrite the files
 
 The measurement executes the commanded motion with ideal tracking (RobotMotion's desired
-state, as the controller reads it, fed back as the robot state); tests/motion check the
-station's stop (plant and controller) against it. The safety monitor reads the data with
+state, as the controller at a plant step of SAMPLE reads it, fed back as the robot state;
+evaluated at any time, as the measurement samples between those steps too); tests/motion
+check the station's stop (plant and controller) against it. The safety monitor reads the data with
 `hrc_drake.safety.stopping.load_stops(variant)`.
 """
 
@@ -35,10 +36,11 @@ from pathlib import Path
 import numpy as np
 import yaml
 from pydrake.systems.analysis import Simulator
-from pydrake.systems.framework import DiagramBuilder
+from pydrake.systems.framework import BasicVector, DiagramBuilder, LeafSystem
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import FINISHED, SUCCEEDED
+from hrc_drake.motion.execution import step_samples
 from hrc_drake.motion.messages import MoveJoints, SetSpeed
 from hrc_drake.motion.model import PlanningModel
 from hrc_drake.motion.options import MotionOptions
@@ -46,7 +48,7 @@ from hrc_drake.safety.geometry import body_parts, bounding_segment
 from hrc_drake.safety.stopping import Stop, stopping_file
 from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec
-from hrc_drake.systems.robot_motion import RobotMotion, add_desired_motion
+from hrc_drake.systems.robot_motion import RobotMotion, desired_differences
 from hrc_drake.wiring import (
     ROBOT,
     ROBOT_MODEL,
@@ -70,16 +72,40 @@ AT_REST = 1e-6
 """rad/s: desired joint speeds below this are rest (braking leaves rounding residues)."""
 
 
+class _DesiredState(LeafSystem):
+    """The desired state (q, v) at the context's time from RobotMotion's `desired_segment`:
+    its samples around that time (`step_samples`) differenced as a plant stepping every
+    SAMPLE reads them (`desired_differences`)."""
+
+    def __init__(self, segment_size: int, joints: int):
+        super().__init__()
+        self._joints = joints
+        self._segment = self.DeclareVectorInputPort("desired_segment", segment_size)
+        self._differences = desired_differences(joints, SAMPLE)[: 2 * joints]
+        self.DeclareVectorOutputPort("desired_state", 2 * joints, self._calc)
+
+    def _calc(self, context, output: BasicVector) -> None:
+        segment = self._segment.Eval(context)
+        coefficients = segment[1:].reshape(self._joints, -1)
+        samples = step_samples(segment[0], coefficients, SAMPLE, [context.get_time()])
+        output.SetFromVector(self._differences @ samples[0])
+
+
 class _IdealRobot:
     """RobotMotion whose desired state is fed back as the measured state."""
 
     def __init__(self, variant: str, options: MotionOptions):
         station = StationSpec(variant)
         builder = DiagramBuilder()
-        self.motion = builder.AddSystem(RobotMotion(station, stream(0, ROBOT_MOTION), options))
-        split = add_desired_motion(builder, self.motion, SAMPLE)
-        builder.Connect(split.get_output_port(0), self.motion.GetInputPort("robot_state"))
-        builder.ExportOutput(split.get_output_port(0), "desired_state")
+        self.motion = builder.AddSystem(
+            RobotMotion(station, stream(0, ROBOT_MOTION), options, sample_step=SAMPLE)
+        )
+        segment = self.motion.GetOutputPort("desired_segment")
+        joints = len(VARIANTS[variant].joint_names)
+        desired = builder.AddSystem(_DesiredState(segment.size(), joints))
+        builder.Connect(segment, desired.get_input_port())
+        builder.Connect(desired.get_output_port(), self.motion.GetInputPort("robot_state"))
+        builder.ExportOutput(desired.get_output_port(), "desired_state")
         command = command_input(tree_issuer(ROBOT))
         builder.ExportInput(self.motion.GetInputPort(command), command)
         builder.ExportInput(self.motion.GetInputPort("speed_scale"), "speed_scale")

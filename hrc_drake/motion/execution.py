@@ -115,8 +115,8 @@ def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.n
     that leaves `start` and reaches `end` after `duration`, each (q, q̇, q̈) stacked.
 
     RobotMotion chooses ṙ at each update and holds it until the next, so the desired motion
-    over one period is known at the update: this segment carries it to Drake's C++ systems,
-    which evaluate it at every plant step (exact at the updates, where ṙ changes; between
+    over one period is known at the update: this segment carries it to the plant steps
+    until the next update (`step_samples`; exact at the updates, where ṙ changes; between
     them within the error of a quintic over one period)."""
     q0, v0, a0 = np.split(np.asarray(start, dtype=float), 3)
     q1, v1, a1 = np.split(np.asarray(end, dtype=float), 3)
@@ -143,6 +143,20 @@ def segment_motion(coefficients: np.ndarray, since: float) -> np.ndarray:
     v = coefficients[:, 1:] @ (np.arange(1, SEGMENT_COEFFICIENTS) * powers[:-1])
     a = coefficients[:, 2:] @ (np.array([2.0, 6.0, 12.0, 20.0]) * powers[:-2])
     return np.concatenate([q, v, a])
+
+
+def step_samples(start: float, coefficients: np.ndarray, step: float, times: np.ndarray):
+    """q(t - h), q(t) and q(t + h) stacked, of a `hermite_segment` (joints × 6) that starts
+    at time `start`, at each of `times` (h = `step`): one row per time.
+
+    Each in Horner form at ((k h + t) - start), k = -1, 0, 1: at t = n h as Drake's periodic
+    events compute it, the bits that a SymbolicVectorSystem gave at every plant step
+    before RobotMotion sampled its segments itself."""
+    since = (np.array([-step, 0.0, step])[None, :] + np.asarray(times)[:, None]) - start
+    value = np.broadcast_to(coefficients[:, -1], (*since.shape, len(coefficients)))
+    for c in coefficients[:, -2::-1].T:
+        value = c + since[..., None] * value
+    return value.reshape(len(since), -1)
 
 
 def faithful_segment(coefficients: np.ndarray, middle: np.ndarray, duration: float) -> bool:
