@@ -63,13 +63,11 @@ class Furniture:
         while added:
             added = [
                 other
-                for top in added
                 for other in self.pieces
-                if other not in pile
-                and abs(other.high - top.low) <= RESTING
-                and other.outline.intersects(top.outline)
+                if all(other is not p for p in pile)
+                and any(_stands_on(top, other) for top in added)
             ]
-            pile.extend(dict.fromkeys(added))
+            pile += added
         outline = shapely.union_all([p.outline for p in pile])
         return Obstacle(piece.name, outline, min(p.low for p in pile), piece.high)
 
@@ -126,6 +124,11 @@ class Furniture:
         crossing = LineString([tuple(point[:2]), tuple(far)]).intersection(grown.boundary)
         nearest = min(getattr(crossing, "geoms", [crossing]), key=start.distance)
         return np.array([nearest.x, nearest.y])
+
+
+def _stands_on(top: Obstacle, under: Obstacle) -> bool:
+    """Whether `top` rests on `under`."""
+    return abs(under.high - top.low) <= RESTING and under.outline.intersects(top.outline)
 
 
 def _piece(box) -> Obstacle:

@@ -74,9 +74,8 @@ def reach_findings(
         if isinstance(node, ActorPlace | ActorReach):
             port = "target"
             targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
-            pick = _last_before(node, parents, ActorPick)
-            if isinstance(node, ActorPlace) and isinstance(pick, ActorPick) and placing:
-                targets = [(v, p, None if p is None else placing(pick, p)) for v, p, _ in targets]
+            if isinstance(node, ActorPlace) and placing is not None:
+                targets = _placings(node, parents, targets, placing)
         elif isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
             targets = taken(node)
@@ -106,6 +105,15 @@ def reach_findings(
                         f"({said}): {problem}"
                     )
                     yield Locator.node(node, port, message, target)
+
+
+def _placings(place, parents, targets, placing: Placing) -> list:
+    """`targets` of a place node with what keeps the person from putting down there what
+    the last pick before it took (unchanged when no pick is known to come before)."""
+    pick = _last_before(place, parents, ActorPick)
+    if not isinstance(pick, ActorPick):
+        return targets
+    return [(v, p, None if p is None else placing(pick, p)) for v, p, _ in targets]
 
 
 def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str, Known | None]]:
