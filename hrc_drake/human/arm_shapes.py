@@ -17,6 +17,8 @@ ARM = ("upper_arm", "forearm", "hand")
 """The arm's bodies, from the shoulder out."""
 HEAD = "head"
 """The part that is the head and neck (one body: neck, skull and face shapes)."""
+ACROSS = 0.7
+"""A prism's face whose normal is within 45 degrees of a direction lies across it."""
 
 
 @dataclass(frozen=True)
@@ -134,7 +136,14 @@ class Prisms:
         distance = np.where(sideways, self.axes @ point - self.ahead, -np.inf).max(axis=1)
         return distance <= reach
 
-    def overlap(self, points: np.ndarray, radii: np.ndarray, shapes: np.ndarray, not_down=False):
+    def overlap(
+        self,
+        points: np.ndarray,
+        radii: np.ndarray,
+        shapes: np.ndarray,
+        not_down=False,
+        not_along=None,
+    ):
         """How deep the convex shapes (each the hull of its row of `points` by the indices in
         `shapes`, as `padded_shapes` has them, grown by its radius) go into the prisms: the
         deepest shape and prism by the separating-axis test on the prisms' faces (at least as
@@ -151,6 +160,8 @@ class Prisms:
         choice = along[k, :, shape].copy()
         if not_down:
             choice[self.axes[k, :, 2] < 0.0] = np.inf
+        if not_along is not None:
+            choice[np.abs(self.axes[k] @ not_along) > ACROSS] = np.inf
         f = int(np.argmin(choice))
         run = points[shapes[shape]] @ self.axes[k, f]
         if forward[k, f, shape] <= backward[k, f, shape]:
@@ -290,11 +301,16 @@ def parts_shapes(body: HumanBody, parts: tuple[str, ...]):
 
 
 def check_arm(
-    body: HumanBody, prisms: Prisms, q: np.ndarray, part: str, not_down: bool = False
+    body: HumanBody,
+    prisms: Prisms,
+    q: np.ndarray,
+    part: str,
+    not_down: bool = False,
+    not_along=None,
 ) -> ArmCheck:
     """How deep the `part` (an arm's side or HEAD) goes into the prisms at q (its deepest
     shape), where, and how it gets out (as `Prisms.overlap`)."""
     arm = arm_points(body, part)
     world = arms_in_world(body, q, (part,))[part]
-    depth, shape, out, k = prisms.overlap(world, arm.radii_row, arm.shapes, not_down)
+    depth, shape, out, k = prisms.overlap(world, arm.radii_row, arm.shapes, not_down, not_along)
     return ArmCheck(depth, arm.frames[shape], arm.stacked[k], world[k], out)

@@ -88,14 +88,33 @@ def push_out(body: HumanBody, q: np.ndarray, side: str, check: ArmCheck, keep_ha
 def clear_of(body: HumanBody, near: Prisms, q: np.ndarray, holding=()) -> np.ndarray | None:
     """q with both arms out of the prisms near it (None: they are clear as they are)."""
     moved = q
-    for side in SIDES:
-        for _ in range(PUSHES):
+    for _ in range(PUSHES):
+        pushed = moved
+        for side in SIDES:
             held = side in holding
-            check = check_arm(body, near, moved, side, not_down=not held)
-            if check.depth <= _tolerance(side, holding):
-                break
-            moved = push_out(body, moved, side, check, held)
+            palm = body.frame_pose(f"{side}_hand_grasp", moved).rotation().col(1) if held else None
+            check = check_arm(body, near, moved, side, not_down=not held, not_along=palm)
+            if check.depth > _tolerance(side, holding):
+                before, moved = moved, push_out(body, moved, side, check, held)
+                if len(holding) == len(SIDES):
+                    moved = _following(body, before, moved, side)
+        if moved is pushed:
+            break
     return None if moved is q else moved
+
+
+def _following(body: HumanBody, before: np.ndarray, moved: np.ndarray, side: str) -> np.ndarray:
+    """`moved` with the other hand moved as the `side` hand was from `before`: two hands
+    that hold one object between their palms move it together (the object's heading is the
+    line between them: one moving alone turns it, into the other palm)."""
+    (other,) = (s for s in SIDES if s != side)
+    shift = (
+        body.frame_pose(f"{side}_hand_grasp", moved).translation()
+        - body.frame_pose(f"{side}_hand_grasp", before).translation()
+    )
+    X = body.frame_pose(f"{other}_hand_grasp", moved)
+    task = FrameTask(f"{other}_hand_grasp", X.translation() + shift, X.rotation(), HELD, (1.0,) * 3)
+    return body.solve(moved, [task], arm_indices(body, (other,)), iterations=PUSH_STEPS)
 
 
 @dataclass(frozen=True, eq=False)
@@ -222,26 +241,30 @@ def _keeping_held_hands(body, near, q, corrected, holding):
     they must go to get out of what q puts them in (at least HAND_SHIFT) brought back
     towards q until it moves them that far: a correction found while a hand was free must
     not carry it away from what it then takes or holds."""
-    kept = corrected
-    for side in holding:
-        allowed = max(HAND_SHIFT, check_arm(body, near, q, side).depth + MARGIN)
-        kept = _arm_pulled_back(body, q, kept, side, allowed)
-    return kept
+    allowed = {
+        side: max(HAND_SHIFT, check_arm(body, near, q, side).depth + MARGIN) for side in holding
+    }
+    return _arms_pulled_back(body, q, corrected, allowed)
 
 
-def _arm_pulled_back(body, q, corrected, side: str, allowed: float):
-    """`corrected` with the `side` arm's offset from q scaled down (by bisection) until its
-    hand is at most `allowed` from where q has it."""
-    arm, frame = arm_indices(body, (side,)), f"{side}_hand_grasp"
-    place = body.frame_pose(frame, q).translation()
+def _arms_pulled_back(body, q, corrected, allowed: dict):
+    """`corrected` with the offsets from q of the arms of `allowed`'s sides scaled down, by
+    one factor (by bisection), until each hand is at most its `allowed` distance from where
+    q has it (one factor: two hands that hold one object stay where they are on it)."""
+    arms = arm_indices(body, tuple(allowed))
+    places = {side: body.frame_pose(f"{side}_hand_grasp", q).translation() for side in allowed}
 
     def scaled(scale):
         pose = corrected.copy()
-        pose[arm] = q[arm] + scale * (corrected[arm] - q[arm])
+        pose[arms] = q[arms] + scale * (corrected[arms] - q[arms])
         return pose
 
     def within(pose) -> bool:
-        return np.linalg.norm(body.frame_pose(frame, pose).translation() - place) <= allowed
+        return all(
+            np.linalg.norm(body.frame_pose(f"{side}_hand_grasp", pose).translation() - place)
+            <= allowed[side]
+            for side, place in places.items()
+        )
 
     if within(corrected):
         return corrected

@@ -218,12 +218,18 @@ def test_a_box_put_down_beside_a_stack_goes_over_the_stack_in_both_hands():
     """The box goes over the stack held in both palms (it went through the stack's top box,
     the arm pushed out of it carried a palm 2.2 cm off the box's face) and lands a palm's
     room beside it."""
-    run = _put_down_beside_a_stack()
-    release = PUT_DOWN + load_clips()["place_table"].events["release"]
-    for t in np.arange(PUT_DOWN, release, 1.0 / 30.0):
+    _put_down_between_the_palms(_put_down_beside_a_stack(), PUT_DOWN, MATERIAL[0])
+
+
+def _put_down_between_the_palms(run: Run, put_down: float, width: float) -> None:
+    """A box `width` across held in both hands and put down by place_table at `put_down`
+    (command 2): the palms stay on its faces until they let go, and nothing of the run's
+    segments goes into the furniture or the other objects."""
+    release = put_down + load_clips()["place_table"].events["release"]
+    for t in np.arange(put_down, release, 1.0 / 30.0):
         run.record(t)
-        assert _palms_off_the_faces(run, width=MATERIAL[0]) <= HAND_ON_OBJECT, t
-    run.record(PUT_DOWN + _duration("place_table") + 0.2)
+        assert _palms_off_the_faces(run, width=width) <= HAND_ON_OBJECT, t
+    run.record(put_down + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
@@ -308,6 +314,35 @@ def test_a_box_taken_off_another_stays_between_the_palms():
     box_below = (MATERIAL, RigidTransform(RotationMatrix.MakeZRotation(below[1]), below[0]))
     run = Run(schedule, start, [FLOOR, TABLE], ARMS, objects=[box_below])
     _picked_up_between_the_palms(run)
+
+
+STACKED_CARTON = (0.4, 0.3, 0.2)
+"""Cartons stacked by hand into one column on a EUR pallet (a cell of our own)."""
+
+
+def test_a_carton_put_on_a_column_at_head_height_stays_between_the_palms():
+    """The top carton of a column of eight on a pallet (its bottom at 1.55 m, the person's
+    head height) lifted off and put back. Both forearms went in front of its near corners;
+    pushed out across its faces, the palms came apart, 4 cm off the faces at the put-down.
+    They keep their places on the faces: the arms are moved out along them, and the two
+    hands move together."""
+    base = 0.245  # the centre of a carton standing on the pallet's top
+    column = [(0.05, 0.55, base + 0.2 * k) for k in range(7)]
+    top = (0.05, 0.55, base + 0.2 * 7)
+    nearby = tuple(Box(c, 0.0, STACKED_CARTON) for c in column)
+    grasp = Grasp("both", top, 0.0, STACKED_CARTON)
+    put_down = 0.1 + _duration("pick_table") + 0.5
+    place = AnimateCommand(
+        2, "place_table", target=top, hold=hold_of(grasp, np.pi / 2), nearby=nearby
+    )
+    schedule = [
+        (0.1, AnimateCommand(1, "pick_table", grasp=grasp, nearby=nearby)),
+        (put_down, place),
+    ]
+    boxes = [(STACKED_CARTON, RigidTransform(c)) for c in column]
+    pallet = furniture("euro_pallet", 0.0, 0.75)
+    run = Run(schedule, (0.0, 0.0, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
+    _put_down_between_the_palms(run, put_down, STACKED_CARTON[0])
 
 
 CRATE, PALLET_CARTON = (0.28, 0.34, 0.24), (0.26, 0.3, 0.2)
