@@ -92,8 +92,11 @@ def clear_of(body: HumanBody, near: Prisms, q: np.ndarray, holding=()) -> np.nda
         pushed = moved
         for side in SIDES:
             held = side in holding
-            palm = body.frame_pose(f"{side}_hand_grasp", moved).rotation().col(1) if held else None
-            check = check_arm(body, near, moved, side, not_down=not held, not_along=palm)
+            check = (
+                _held_check(body, near, moved, side)
+                if held
+                else check_arm(body, near, moved, side, not_down=True)
+            )
             if check.depth > _tolerance(side, holding):
                 before, moved = moved, push_out(body, moved, side, check, held)
                 if len(holding) == len(SIDES):
@@ -242,9 +245,16 @@ def _keeping_held_hands(body, near, q, corrected, holding):
     towards q until it moves them that far: a correction found while a hand was free must
     not carry it away from what it then takes or holds."""
     allowed = {
-        side: max(HAND_SHIFT, check_arm(body, near, q, side).depth + MARGIN) for side in holding
+        side: max(HAND_SHIFT, _held_check(body, near, q, side).depth + MARGIN) for side in holding
     }
     return _arms_pulled_back(body, q, corrected, allowed)
+
+
+def _held_check(body: HumanBody, near: Prisms, q: np.ndarray, side: str) -> ArmCheck:
+    """How the arm of a holding or aimed hand at q gets out of the prisms: along its palm's
+    face, never across it (off the face, the palm leaves what it holds)."""
+    palm = body.frame_pose(f"{side}_hand_grasp", q).rotation().col(1)
+    return check_arm(body, near, q, side, not_along=palm)
 
 
 def _arms_pulled_back(body, q, corrected, allowed: dict):

@@ -58,7 +58,9 @@ CHEST = "chest"
 """The body the hands' way with a held object is laid out in."""
 HOLDING_ORIENTATION = 1.0
 """Weight of the hands' orientation while they hold an object on its way: a palm that
-tilts pokes its fingers into the object."""
+tilts pokes its fingers into the object. Two palms keep only their normals and may turn
+about them (held fingers down at head height, the arms could not keep both: the way over
+a column of cartons was given up for the straight one, through the column's top carton)."""
 
 
 def _between(start: dict, end: dict, s: float) -> dict:
@@ -147,7 +149,7 @@ def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, 
             middle = np.mean([p for p, _ in targets.values()], axis=0)
             rise = _plateau(s) * max(over - middle[2], 0.0)
             targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
-        tasks = hand_tasks(targets, HOLDING_ORIENTATION)
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=len(targets) == 2)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
         slipped = max(slipped, _spacing_error(body, solved, targets))
