@@ -24,6 +24,17 @@ def anchored_collision_shapes(plant, inspector) -> Iterator[tuple[str, object, R
             yield name, inspector.GetShape(geometry), X_WB @ inspector.GetPoseInFrame(geometry)
 
 
+def static_geometry(plant, inspector) -> dict:
+    """Every collision geometry of the plant's anchored bodies, named after its model."""
+    found = {}
+    for body_index in range(plant.num_bodies()):
+        body = plant.get_body(BodyIndex(body_index))
+        if plant.IsAnchored(body):
+            for geometry in plant.GetCollisionGeometriesForBody(body):
+                found[geometry] = plant.GetModelInstanceName(body.model_instance())
+    return found
+
+
 def collision_geometries(plant) -> list:
     """Every collision geometry of every body of `plant`."""
     return [

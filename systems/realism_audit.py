@@ -22,13 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import FramePoseVector
-from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.safety.geometry import bounding_segment, human_parts
+from hrc_drake.scene_geometry import static_geometry
 from hrc_drake.wiring import REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid, moved
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
@@ -80,7 +80,7 @@ class RealismAudit(LeafSystem):
     def __init__(self, scene: "AuditScene", period: float, stride_time: float):
         super().__init__()
         self.period = period
-        self._scene = scene
+        self.scene = scene
         self._stride_time = stride_time
         self._last_audit: tuple[Recorded | None, AuditState] = (None, AuditState())
         self._human = self.DeclareAbstractInputPort("human_status", message_value())
@@ -127,7 +127,7 @@ class RealismAudit(LeafSystem):
         if record is None or last is None or not record.holds(last):
             last, audit = None, AuditState()
         for recorded in record.since(last) if record is not None else ():
-            audit = audited(audit, self._scene.sample(recorded), self._stride_time)
+            audit = audited(audit, self.scene.sample(recorded), self._stride_time)
         self._last_audit = (record, audit)
         output.set_value(audit)
 
@@ -192,6 +192,7 @@ class AuditScene:
             time=recorded.time,
             static_depths=static_depths,
             object_depths=object_depths,
+            carried_depths=self._carried_depths(recorded, held),
             hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, recorded)),
             tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
             sole_points=sole_points,
@@ -294,6 +295,30 @@ class AuditScene:
                 depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
         return tuple(depths)
 
+    def _carried_depths(self, recorded: Recorded, held) -> tuple:
+        """How deep each held object goes into the cell's static geometry and the objects the
+        person does not hold (those whose bounding spheres meet it)."""
+        free = [o for o in recorded.objects if o.holder not in PERSON_HOLDERS and o.geometry_id]
+        depths = []
+        for obj in (o for o in held if o.geometry_id is not None):
+            near = {f.geometry_id: f"{f.type} {f.id}" for f in free if self._meet(obj, f)}
+            for geometry, name in (near | self._static).items():
+                distance = (
+                    self._query(recorded.objects)
+                    .ComputeSignedDistancePairClosestPoints(obj.geometry_id, geometry)
+                    .distance
+                )
+                if distance < 0:
+                    depths.append((-distance, f"{obj.type} {obj.id} in {name}"))
+        return tuple(depths)
+
+    def _meet(self, a, b) -> bool:
+        reach = self._object_radii[a.type] + self._object_radii[b.type]
+        return (
+            b.geometry_id is not None
+            and np.linalg.norm(a.pose.translation() - b.pose.translation()) <= reach
+        )
+
     def _hand_gaps(self, obj, recorded: Recorded) -> list:
         """Each holding hand's distance to the object's surface, both at the time of the
         person's pose (the object's pose moved back to it along its velocity)."""
@@ -341,17 +366,6 @@ def _point_segment_distances(points, starts, ends) -> np.ndarray:
     lengths = np.maximum(np.einsum("nj,nj->n", along, along), 1e-12)
     s = np.clip(np.einsum("nkj,nj->nk", offsets, along) / lengths[:, None], 0.0, 1.0)
     return np.linalg.norm(offsets - s[:, :, None] * along[:, None, :], axis=2)
-
-
-def static_geometry(plant, inspector) -> dict:
-    """Every collision geometry of the plant's anchored bodies, named after its model."""
-    found = {}
-    for body_index in range(plant.num_bodies()):
-        body = plant.get_body(BodyIndex(body_index))
-        if plant.IsAnchored(body):
-            for geometry in plant.GetCollisionGeometriesForBody(body):
-                found[geometry] = plant.GetModelInstanceName(body.model_instance())
-    return found
 
 
 def add_realism_audit(

@@ -4,6 +4,8 @@ Sampled at the person's update rate during the run, it keeps the worst of each o
 (docs/realism.md gives the published figures behind the limits):
 - how deep any body segment goes into the cell's static geometry, and into objects that
   the person does not hold (a box on the pallet, the carton the robot holds out);
+- how deep an object the person holds goes into the cell's static geometry or another
+  object (a carton carried through the top of a stack);
 - how far a held object is from its holding hand(s): the grasp point's distance to the
   object's surface, inside or out;
 - how far a carried object leans from upright;
@@ -38,6 +40,7 @@ WALKING_SPEED = 0.5
 LIMITS = {
     "penetration_static": 0.01,
     "penetration_objects": 0.01,
+    "penetration_carried": 0.01,
     "hand_object_gap": 0.02,
     "carried_tilt_deg": 15.0,
     "foot_slip": 0.01,
@@ -68,6 +71,8 @@ class Sample:
     """Penetration depth (m) of each body segment into the cell's static geometry."""
     object_depths: tuple[tuple[float, str], ...]
     """Penetration depth (m) of each body segment into objects the person does not hold."""
+    carried_depths: tuple[tuple[float, str], ...]
+    """Penetration depth (m) of each held object into the static geometry or another object."""
     hand_gaps: tuple[tuple[float, str], ...]
     """|distance| from each holding hand's grasp point to its object's surface."""
     tilts: tuple[tuple[float, str], ...]
@@ -83,6 +88,7 @@ class Sample:
 class AuditState:
     static_penetration: Worst = Worst()
     object_penetration: Worst = Worst()
+    carried_penetration: Worst = Worst()
     hand_gap: Worst = Worst()
     carried_tilt: Worst = Worst()
     foot_slip: Worst = Worst()
@@ -114,6 +120,7 @@ def audited(state: AuditState, sample: Sample, stride_time: float) -> AuditState
         state,
         static_penetration=_worst(state.static_penetration, sample.static_depths, t),
         object_penetration=_worst(state.object_penetration, sample.object_depths, t),
+        carried_penetration=_worst(state.carried_penetration, sample.carried_depths, t),
         hand_gap=_worst(state.hand_gap, sample.hand_gaps, t),
         carried_tilt=_worst(state.carried_tilt, [(math.degrees(a), w) for a, w in sample.tilts], t),
         foot_slip=slip,
@@ -174,6 +181,7 @@ def realism_metrics(state: AuditState | None) -> dict:
     return {
         "penetration_static": worst(state.static_penetration, "where"),
         "penetration_objects": worst(state.object_penetration, "where"),
+        "penetration_carried": worst(state.carried_penetration, "where"),
         "hand_object_gap": worst(state.hand_gap, "object"),
         "carried_tilt_deg": worst(state.carried_tilt, "object"),
         "foot_slip": worst(state.foot_slip, "point"),
@@ -189,6 +197,7 @@ def realism_metrics(state: AuditState | None) -> dict:
 MEASURES = {
     "penetration_static": ("body in the cell's geometry", "m"),
     "penetration_objects": ("body in an object", "m"),
+    "penetration_carried": ("carried object in the cell or another object", "m"),
     "hand_object_gap": ("holding hand off its object", "m"),
     "carried_tilt_deg": ("carried object tilted", "deg"),
     "foot_slip": ("standing foot slid", "m"),

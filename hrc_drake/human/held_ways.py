@@ -58,9 +58,7 @@ CHEST = "chest"
 """The body the hands' way with a held object is laid out in."""
 HOLDING_ORIENTATION = 1.0
 """Weight of the hands' orientation while they hold an object on its way: a palm that
-tilts pokes its fingers into the object. Two palms keep only their normals and may turn
-about them (held fingers down at head height, the arms could not keep both: the way over
-a column of cartons was given up for the straight one, through the column's top carton)."""
+tilts pokes its fingers into the object."""
 
 
 def _between(start: dict, end: dict, s: float) -> dict:
@@ -95,14 +93,22 @@ def _way(body, clip, placed_pose, span, *way, over=None):
     shelf's bottom board). With `over` (a world height), the palms' midpoint rises to
     it first, crosses at that height and lowers last (over what stands on the way), if the
     arms can hold the object up there: else it goes the straight way (lifted too high, a
-    carton in both hands was 5.3 cm off a palm: collaboration seed 15). Unreachable where
-    the arms cannot hold it even on the straight way."""
+    carton in both hands was 5.3 cm off a palm: collaboration seed 15). Where the palms
+    cannot keep their orientation and their hold, they keep only their normals and turn
+    about them (`_held_way`'s `turning`). Unreachable where the arms cannot hold it even on
+    the straight way."""
     count = CARRY_SAMPLES
     while True:
         times = tuple(np.linspace(*span, count))
-        offsets, slipped = _held_way(body, clip, placed_pose, times, *way, over)
-        if over is not None and slipped > HOLDING_SLIP:
-            offsets, slipped = _held_way(body, clip, placed_pose, times, *way)
+        straight = []
+        for height, turning in [(h, t) for h in dict.fromkeys((over, None)) for t in (False, True)]:
+            offsets, slipped = _held_way(body, clip, placed_pose, times, *way, height, turning)
+            if slipped <= HOLDING_SLIP:
+                break
+            if height is None:
+                straight.append((offsets, slipped))
+        else:
+            offsets, slipped = min(straight, key=lambda held: held[1])
         if slipped > LOSING_HOLD:
             raise Unreachable(
                 f"the hands cannot keep hold of the object on its way from where the person "
@@ -132,9 +138,12 @@ def _strays_between(body, clip, placed_pose, times, offsets, sides) -> float:
     )
 
 
-def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None):
+def _held_way(
+    body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None, turning=False
+):
     """`_way`'s offsets at `times`, and how far the palms' spacing strays from the
-    object's on it."""
+    object's on it. With `turning` two palms keep only their normals, free to turn about
+    them (the fingers down a box's sides at head height: the arms cannot keep both)."""
     offsets, solved, slipped = [], None, 0.0
     for k, t in enumerate(times):
         s = k / (len(times) - 1)
@@ -149,7 +158,7 @@ def _held_way(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, 
             middle = np.mean([p for p, _ in targets.values()], axis=0)
             rise = _plateau(s) * max(over - middle[2], 0.0)
             targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
-        tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=len(targets) == 2)
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=turning and len(targets) == 2)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
         slipped = max(slipped, _spacing_error(body, solved, targets))

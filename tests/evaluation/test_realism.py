@@ -1,9 +1,11 @@
 """The realism audit: what it measures of the person, step by step and in a diagram."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
@@ -16,7 +18,10 @@ from hrc_drake.evaluation.realism import (
 )
 from hrc_drake.human.walking import travel
 from hrc_drake.scenario import HumanConfig, load_scenario, overridden
+from hrc_drake.systems.realism_audit import Recorded
+from hrc_drake.wiring import REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid
+from hrc_drake.workpieces.messages import BOTH_HANDS
 
 STRIDE = 1.0
 DT = 1.0 / 60.0
@@ -27,6 +32,7 @@ def _sample(t, soles=None, pelvis=None, walking=False, **worst) -> Sample:
         time=t,
         static_depths=worst.get("static", ()),
         object_depths=worst.get("objects", ()),
+        carried_depths=worst.get("carried", ()),
         hand_gaps=worst.get("gaps", ()),
         tilts=worst.get("tilts", ()),
         sole_points=soles or {},
@@ -156,3 +162,41 @@ def test_the_report_page_marks_what_is_beyond_its_limit():
     rows = {row[0]: row for row in realism_rows(realism_metrics(state))}
     assert rows["penetration_static"][1:] == [0.05, 0.01, "hand in table at 1.0 s", False]
     assert rows["hand_object_gap"][-1] is True
+
+
+def test_a_carried_box_in_another_box_or_in_the_bench_is_found_inside_it():
+    """Coexistence's cell at its start (a box of material, 0.08 m tall, its centre 0.94 m
+    over the floor on the bench): one from the shelf held in both hands 3 cm down into it,
+    then 2 cm down into the bench's top beside it, and held clear of both."""
+    diagram = build_diagram(load_scenario("coexistence", [("seed", 0)]))
+    simulator = Simulator(diagram)
+    simulator.AdvanceTo(0.05)
+    audit = diagram.GetSubsystemByName(REALISM_AUDIT)
+    context = audit.GetMyContextFromRoot(simulator.get_context())
+    objects = audit.GetInputPort("workpieces_status").Eval(context).objects
+    (on_bench,) = (o for o in objects if o.support == "bench")
+    taken = next(o for o in objects if o.type == "material" and o is not on_bench)
+    others = tuple(o for o in objects if o is not taken)
+
+    def carried_at(x: float, z: float) -> dict:
+        held = replace(taken, pose=RigidTransform([x, 3.77, z]), holder=BOTH_HANDS, support=None)
+        recorded = Recorded(
+            None,
+            0.05,
+            0.05,
+            (0.0, 0.0),
+            False,
+            {"left": np.zeros(7), "right": np.zeros(7)},
+            audit.GetInputPort("human_positions").Eval(context).copy(),
+            (*others, held),
+        )
+        state = audited(AuditState(), audit.scene.sample(recorded), STRIDE)
+        return realism_metrics(state)["penetration_carried"]
+
+    into_box = carried_at(0.25, 0.94 + 0.08 - 0.03)
+    assert into_box["max"] == pytest.approx(0.03, abs=1e-6)
+    assert into_box["where"] == f"material {taken.id} in material {on_bench.id}"
+    into_bench = carried_at(0.6, 0.94 - 0.02)
+    assert into_bench["max"] == pytest.approx(0.02, abs=1e-6)
+    assert into_bench["where"] == f"material {taken.id} in bench"
+    assert carried_at(0.6, 0.94 + 0.1)["max"] == 0.0

@@ -31,7 +31,7 @@ def test_a_run_over_the_realism_limits_says_so_above_everything_else(page, tmp_p
     verdict = page.locator("#realism-verdict")
     assert verdict.is_visible() and background(verdict) == RED
     assert verdict.inner_text() == (
-        "The person's realism audit: 3 of 6 measures over their limits; worst: body in the "
+        "The person's realism audit: 3 of 7 measures over their limits; worst: body in the "
         "cell's geometry 16.3 cm (limit 1 cm): pelvis in work_table at 36.2 s; also: "
         "standing foot slid 3.8 cm (limit 1 cm): right_heel at 12.0 s; also: carried object "
         "tilted 20.0° (limit 15°): box 3 at 50.5 s"
@@ -53,7 +53,7 @@ def test_a_run_within_the_limits_says_so_in_green(page, tmp_path):
     metrics = {"scenario": "cell", "seed": 3, "realism": realism()}
     opened(page, write_run_html(tmp_path / "report.html", metrics, {}))
     verdict = page.locator("#realism-verdict")
-    assert verdict.inner_text() == "The person's realism audit: within its limits (6 measures)"
+    assert verdict.inner_text() == "The person's realism audit: within its limits (7 measures)"
     assert background(verdict) == GREEN
 
 

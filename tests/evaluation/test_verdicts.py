@@ -17,6 +17,7 @@ def realism(**worst) -> dict:
         for name, key in (
             ("penetration_static", "where"),
             ("penetration_objects", "where"),
+            ("penetration_carried", "where"),
             ("hand_object_gap", "object"),
             ("carried_tilt_deg", "object"),
             ("foot_slip", "point"),
@@ -44,7 +45,7 @@ OVER = realism(
 def test_the_verdict_leads_with_the_measure_farthest_beyond_its_limit():
     """16 times its limit beats 3.8 times and 1.3 times, whatever the units."""
     assert realism_verdict(OVER) == [
-        "3 of 6 measures over their limits; worst: body in the cell's geometry 16.3 cm "
+        "3 of 7 measures over their limits; worst: body in the cell's geometry 16.3 cm "
         "(limit 1 cm): pelvis in work_table at 36.2 s",
         "also: standing foot slid 3.8 cm (limit 1 cm): right_heel at 12.0 s",
         "also: carried object tilted 20.0° (limit 15°): box 3 at 50.5 s",
@@ -53,18 +54,18 @@ def test_the_verdict_leads_with_the_measure_farthest_beyond_its_limit():
 
 def test_within_the_limits_says_so_and_without_a_person_nothing():
     at_limits = realism(**{name: (limit, 1.0, "x") for name, limit in LIMITS.items()})
-    assert realism_verdict(at_limits) == ["within its limits (6 measures)"]
+    assert realism_verdict(at_limits) == ["within its limits (7 measures)"]
     assert realism_verdict({}) == []
 
 
 def test_the_run_summary_prints_the_verdict():
     lines = key_metrics({"realism": OVER})
-    assert lines[-3].startswith("realism: 3 of 6 measures over their limits; worst: body in")
+    assert lines[-3].startswith("realism: 3 of 7 measures over their limits; worst: body in")
     assert lines[-2:] == [
         "  also: standing foot slid 3.8 cm (limit 1 cm): right_heel at 12.0 s",
         "  also: carried object tilted 20.0° (limit 15°): box 3 at 50.5 s",
     ]
-    assert key_metrics({"realism": realism()}) == ["realism: within its limits (6 measures)"]
+    assert key_metrics({"realism": realism()}) == ["realism: within its limits (7 measures)"]
 
 
 def row(seed: int, events: dict, margin: float | None, section: dict) -> dict:

@@ -342,6 +342,8 @@ def test_a_carton_put_on_a_column_at_head_height_stays_between_the_palms():
     boxes = [(STACKED_CARTON, RigidTransform(c)) for c in column]
     pallet = furniture("euro_pallet", 0.0, 0.75)
     run = Run(schedule, (0.0, 0.0, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
+    run.record(put_down)
+    run.overlap = (0.0, "", 0.0)  # measured from the put-down on (the lift-off sets the scene)
     _put_down_between_the_palms(run, put_down, STACKED_CARTON[0])
 
 
