@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common.value import AbstractValue
-from pydrake.geometry import FramePoseVector
+from pydrake.geometry import CollisionFilterDeclaration, FramePoseVector, GeometrySet
 from pydrake.systems.framework import EventStatus, LeafSystem
 
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
@@ -257,6 +257,10 @@ class AuditScene:
         self._fix_poses(scene, self._mirror.get_source_id(), poses)
         if self._workpieces is not None:
             self._fix_poses(scene, self._workpieces.source_id, self._object_poses(()))
+            static = GeometrySet(list(self._static))
+            self._scene_graph.collision_filter_manager(scene).Apply(
+                CollisionFilterDeclaration().AllowBetween(self._workpieces.geometry_set(), static)
+            )
         return scene, self._plant.CreateDefaultContext()
 
     def _fix_poses(self, scene_context, source, poses: FramePoseVector) -> None:
@@ -296,28 +300,31 @@ class AuditScene:
         return tuple(depths)
 
     def _carried_depths(self, recorded: Recorded, held) -> tuple:
-        """How deep each held object goes into the cell's static geometry and the objects the
-        person does not hold (those whose bounding spheres meet it)."""
+        """How deep each held object goes into the cell's static geometry (the broad phase:
+        the audit's context lets the objects collide with it) and into the objects the
+        person does not hold (pair queries for those whose bounding spheres meet it)."""
+        names = {o.geometry_id: f"{o.type} {o.id}" for o in held if o.geometry_id is not None}
+        if not names:
+            return ()
+        query = self._query(recorded.objects)
+        depths = [
+            (pair.depth, f"{names[own]} in {self._static[other]}")
+            for pair in query.ComputePointPairPenetration()
+            for own, other in ((pair.id_A, pair.id_B), (pair.id_B, pair.id_A))
+            if own in names and other in self._static
+        ]
         free = [o for o in recorded.objects if o.holder not in PERSON_HOLDERS and o.geometry_id]
-        depths = []
-        for obj in (o for o in held if o.geometry_id is not None):
-            near = {f.geometry_id: f"{f.type} {f.id}" for f in free if self._meet(obj, f)}
-            for geometry, name in (near | self._static).items():
-                distance = (
-                    self._query(recorded.objects)
-                    .ComputeSignedDistancePairClosestPoints(obj.geometry_id, geometry)
-                    .distance
+        for obj, other in ((h, f) for h in held if h.geometry_id in names for f in free):
+            reach = self._object_radii[obj.type] + self._object_radii[other.type]
+            if np.linalg.norm(obj.pose.translation() - other.pose.translation()) <= reach:
+                pair = query.ComputeSignedDistancePairClosestPoints(
+                    obj.geometry_id, other.geometry_id
                 )
-                if distance < 0:
-                    depths.append((-distance, f"{obj.type} {obj.id} in {name}"))
+                if pair.distance < 0:
+                    depths.append(
+                        (-pair.distance, f"{names[obj.geometry_id]} in {other.type} {other.id}")
+                    )
         return tuple(depths)
-
-    def _meet(self, a, b) -> bool:
-        reach = self._object_radii[a.type] + self._object_radii[b.type]
-        return (
-            b.geometry_id is not None
-            and np.linalg.norm(a.pose.translation() - b.pose.translation()) <= reach
-        )
 
     def _hand_gaps(self, obj, recorded: Recorded) -> list:
         """Each holding hand's distance to the object's surface, both at the time of the

@@ -6,7 +6,7 @@ Each way is keys of the clip (hrc_drake.human.hand_ways.Keys) that
 hrc_drake.human.targeting lays out round the clip's event.
 """
 
-from itertools import pairwise
+from itertools import pairwise, product
 
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
@@ -101,7 +101,8 @@ def _way(body, clip, placed_pose, span, *way, over=None):
     while True:
         times = tuple(np.linspace(*span, count))
         straight = []
-        for height, turning in [(h, t) for h in dict.fromkeys((over, None)) for t in (False, True)]:
+        turnings = (False, True) if len(way[0]) == 2 else (False,)
+        for height, turning in product(dict.fromkeys((over, None)), turnings):
             offsets, slipped = _held_way(body, clip, placed_pose, times, *way, height, turning)
             if slipped <= HOLDING_SLIP:
                 break
@@ -158,7 +159,7 @@ def _held_way(
             middle = np.mean([p for p, _ in targets.values()], axis=0)
             rise = _plateau(s) * max(over - middle[2], 0.0)
             targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
-        tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=turning and len(targets) == 2)
+        tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=turning)
         solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
         offsets.append(solved - placed)
         slipped = max(slipped, _spacing_error(body, solved, targets))
