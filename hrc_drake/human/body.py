@@ -18,6 +18,11 @@ from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS, build_sk
 from hrc_drake.human.sdf import MODEL_NAME, human_sdf
 from hrc_drake.human.skeleton import SIDES
 
+LARGEST_STEP = 0.5
+"""rad: no joint moves further in one step (scaled down as a whole): near a singular arm the
+damped step is huge and the solve can leave for a far branch (a right arm reaching a
+carton's side at head height swung its abduction to 180 degrees in five steps and ended
+1.1 m off)."""
 LIMIT_PASSES = 4
 """Times an IK step is solved again without the joints it pushes into their limits."""
 
@@ -151,7 +156,8 @@ class HumanBody:
             if not pushing.any():
                 break
             moving &= ~pushing
-        return step
+        largest = np.abs(step).max(initial=0.0)
+        return step if largest <= LARGEST_STEP else step * (LARGEST_STEP / largest)
 
     def task_error(self, q: np.ndarray, tasks: list[FrameTask]) -> float:
         """Largest weighted position error of the tasks (m)."""

@@ -63,14 +63,22 @@ PASSAGE_KEYS = 4
 
 
 def approached(
-    hands: dict, heading: float, reaching: bool, opening: bool = True, above=None, room=None
+    hands: dict,
+    heading: float,
+    reaching: bool,
+    opening: bool = True,
+    above=None,
+    room=None,
+    headroom: float = np.inf,
 ) -> dict:
     """The hands' targets moved to where they come before closing on them: above, and
     (`opening`) outwards from an object's faces (a reaching hand: back towards the body);
     hands that hold what they put down stay on it. `above` (side: height) raises a hand
     further, so far that its grasp frame is at least that high; `room` (side: m) is as far
-    as a palm can open outwards (a neighbouring object)."""
+    as a palm can open outwards (a neighbouring object); `headroom` (m) is as far as what
+    the hands hold may rise (CLEARANCE / 2 under the board above)."""
     out, up = APPROACH
+    up = min(up, max(headroom - CLEARANCE / 2, 0.0))
     back = -np.array([np.cos(heading), np.sin(heading), 0.0])
     moved = {}
     for side, (position, R) in hands.items():

@@ -6,6 +6,8 @@ Each way is keys of the clip (hrc_drake.human.hand_ways.Keys) that
 hrc_drake.human.targeting lays out round the clip's event.
 """
 
+from dataclasses import dataclass
+from functools import cached_property
 from itertools import pairwise, product
 
 import numpy as np
@@ -41,6 +43,10 @@ palms came 3.2 cm off it between two of 8 points)."""
 HOLDING_SLIP = 0.02
 """m: palms whose spacing strays further than this from the held object's are off its faces
 by more than about 1 cm each, past their 8 mm gap (the audit allows 2 cm)."""
+WAY_STRAY = 0.01
+"""m: where the palms' midpoint, halfway between two points of a way, strays further than
+this from the way, the way is solved at more points (the audit allows a held object 1 cm
+into anything)."""
 LOSING_HOLD = 2 * HOLDING_SLIP
 """m: palms whose spacing strays further than this on the straight way are each off the
 object by more than the audit allows: the person cannot carry it off from where they stand
@@ -56,6 +62,16 @@ runs in the chest's frame, which turns and leans with the trunk: coexistence see
 box passed 3 cm outside it, over a stack)."""
 CHEST = "chest"
 """The body the hands' way with a held object is laid out in."""
+SPINE = ("lumbar_flexion", "lumbar_bending", "thorax_flexion", "thorax_rotation")
+"""The joints that also move the holding hands where the arms alone leave them short of the
+way (rising from a stoop, the clip draws the shoulders back faster than straight arms can
+keep a carton over the crate it was lifted off: 2.7 cm low); the pelvis and legs stay as
+the clip has them."""
+REACH_TOLERANCE = 0.005
+"""m: a holding hand further than this from its target on the way is short of it."""
+LIFT, LIFTING = 0.01, 0.15
+"""m, share of the way: an object held on its way keeps this far above where it was taken
+(or is put) once it is this share of the way from there."""
 HOLDING_ORIENTATION = 1.0
 """Weight of the hands' orientation while they hold an object on its way: a palm that
 tilts pokes its fingers into the object."""
@@ -97,87 +113,196 @@ def _way(body, clip, placed_pose, span, *way, over=None):
     cannot keep their orientation and their hold, they keep only their normals and turn
     about them (`_held_way`'s `turning`). Unreachable where the arms cannot hold it even on
     the straight way."""
+    start, end, trunk_from, trunk_to, arms = way
     count = CARRY_SAMPLES
     while True:
         times = tuple(np.linspace(*span, count))
         straight = []
-        turnings = (False, True) if len(way[0]) == 2 else (False,)
+        turnings = (False, True) if len(start) == 2 else (False,)
         for height, turning in product(dict.fromkeys((over, None)), turnings):
-            offsets, slipped = _held_way(body, clip, placed_pose, times, *way, height, turning)
-            if slipped <= HOLDING_SLIP:
+            route = _Route(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, height)
+            offsets, slipped, missed = _held_way(route, arms, turning)
+            if slipped <= HOLDING_SLIP and missed <= WAY_STRAY:
                 break
             if height is None:
-                straight.append((offsets, slipped))
+                straight.append((slipped, missed, route, offsets))
         else:
-            offsets, slipped = min(straight, key=lambda held: held[1])
+            slipped, _, route, offsets = min(straight, key=lambda held: held[:2])
         if slipped > LOSING_HOLD:
             raise Unreachable(
                 f"the hands cannot keep hold of the object on its way from where the person "
                 f"stands (their spacing strays {slipped * 100:.0f} cm from its width)"
             )
-        strays = _strays_between(body, clip, placed_pose, times, offsets, tuple(way[0]))
-        if count >= MOST_SAMPLES or strays <= HOLDING_SLIP:
+        if count >= MOST_SAMPLES or not _strays_between(route, offsets):
             return times, offsets
         count = 2 * count - 1
 
 
-def _strays_between(body, clip, placed_pose, times, offsets, sides) -> float:
-    """How far the holding palms' spacing strays between two points of a way, the joints
-    halfway (as they run straight), from its mean at the two (0: one hand holds)."""
-    if len(sides) < 2:
-        return 0.0
+@dataclass(frozen=True, eq=False)
+class _Route:
+    """The way of the holding hands at `times` of `clip`: the body under the arms at each
+    point and the hands' world targets there (`_way`)."""
 
-    def spacing(t, offset):
-        q = placed_pose(clip.sample(t)) + offset
-        left, right = (body.frame_pose(f"{side}_hand_grasp", q).translation() for side in sides)
-        return float(np.linalg.norm(left - right))
+    body: HumanBody
+    clip: object
+    placed_pose: object
+    times: tuple
+    start: dict
+    end: dict
+    trunk_from: np.ndarray
+    trunk_to: np.ndarray
+    over: float | None
 
-    at = [spacing(t, offset) for t, offset in zip(times, offsets, strict=True)]
-    halfway = zip(pairwise(times), pairwise(offsets), pairwise(at), strict=True)
-    return max(
-        abs(spacing((a + b) / 2, (p + q) / 2) - (x + y) / 2) for (a, b), (p, q), (x, y) in halfway
-    )
+    def body_at(self, t: float, s: float) -> np.ndarray:
+        """The pose under the arms a fraction s of the way, at clip time t."""
+        placed = self.placed_pose(self.clip.sample(t))
+        eased = placed + self.trunk_from + s * (self.trunk_to - self.trunk_from)
+        return legs_of(self.body).planted(eased, placed)
+
+    def targets(self, q: np.ndarray, s: float) -> dict:
+        """The hands' world targets a fraction s of the way, the body under them at q: laid
+        out in the chest's frame, over `over` in the middle, never lower than the way's
+        lower end and, near an end it rises from or lowers onto, held over that end's place
+        in the world (the chest swings as the trunk rises: a crate lifted off a pallet from
+        between two others swung 8 cm into one, collaboration seed 0; a carton lifted off a
+        crate dipped 3.2 cm into it, seed 15). The palms keep their orientation in the
+        chest (held in the world too, the arms left the carton 1 cm lower between points)."""
+        targets = self._in_world(q, _between(self.start, self.end, self._progress(s)))
+        middle = _midpoint(targets)
+        shift = np.zeros(3)
+        if self.over is not None:
+            shift[2] = _plateau(s) * max(self.over - middle[2], 0.0)
+        for end, weight in self._held_to(s):
+            shift[:2] += weight * (_midpoint(end)[:2] - middle[:2])
+        shift[2] = max(shift[2], self._lowest(s) - middle[2])
+        return {side: (p + shift, R) for side, (p, R) in targets.items()}
+
+    def _held_to(self, s: float) -> list:
+        """The ends the way keeps to at s, each with how much: over something, its start
+        while it rises and its end while it lowers; else its lower end until LIFTING of the
+        way from it."""
+        start, end = self.ends
+        if self.over is not None:
+            return [(start, _rising(s)), (end, _lowering(s))]
+        low, off = (start, s) if self._low_first else (end, 1.0 - s)
+        return [(low, 1.0 - minimum_jerk(off / LIFTING))]
+
+    def _lowest(self, s: float) -> float:
+        """How low the palms' midpoint may be a fraction s of the way: LIFT above its lower
+        end once it is off it."""
+        a, b = (_midpoint(end)[2] for end in self.ends)
+        off = s if self._low_first else 1.0 - s
+        return min(a, b) + LIFT * minimum_jerk(off / LIFTING)
+
+    @property
+    def _low_first(self) -> bool:
+        a, b = (_midpoint(end)[2] for end in self.ends)
+        return a <= b
+
+    def _progress(self, s: float) -> float:
+        return minimum_jerk(s if self.over is None else _crossing(s))
+
+    def _in_world(self, q: np.ndarray, local: dict) -> dict:
+        chest = self.body.frame_pose(CHEST, q)
+        return {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
+
+    @cached_property
+    def ends(self) -> tuple[dict, dict]:
+        """The hands' world targets at the way's two ends, as laid out in the chest."""
+        return tuple(
+            self._in_world(self.body_at(t, s), _between(self.start, self.end, s))
+            for t, s in ((self.times[0], 0.0), (self.times[-1], 1.0))
+        )
+
+    def fractions(self) -> np.ndarray:
+        return np.linspace(0.0, 1.0, len(self.times))
 
 
-def _held_way(
-    body, clip, placed_pose, times, start, end, trunk_from, trunk_to, arms, over=None, turning=False
-):
-    """`_way`'s offsets at `times`, and how far the palms' spacing strays from the
-    object's on it. With `turning` two palms keep only their normals, free to turn about
-    them (the fingers down a box's sides at head height: the arms cannot keep both)."""
-    offsets, solved, slipped = [], None, 0.0
-    for k, t in enumerate(times):
-        s = k / (len(times) - 1)
-        placed = placed_pose(clip.sample(t))
-        q = legs_of(body).planted(placed + trunk_from + s * (trunk_to - trunk_from), placed)
+def _strays_between(route: _Route, offsets) -> bool:
+    """Whether the holding palms stray between two points of the way, the joints halfway
+    (as they run straight): their spacing from its mean at the two by more than
+    HOLDING_SLIP, or their midpoint from the way's there by more than WAY_STRAY (the keys
+    on a way rising from a pallet were on it, the carton between them 2.9 cm below it)."""
+    body, sides = route.body, tuple(route.start)
+    for (a, b), (p, q), (u, v) in zip(
+        pairwise(route.times), pairwise(offsets), pairwise(route.fractions()), strict=True
+    ):
+        t, s = (a + b) / 2, (u + v) / 2
+        played = route.placed_pose(route.clip.sample(t)) + (p + q) / 2
+        hands = _hands_at(body, sides, played)
+        aimed = _midpoint(route.targets(route.body_at(t, s), s))
+        if np.linalg.norm(np.mean(hands, axis=0) - aimed) > WAY_STRAY:
+            return True
+        spacings = [
+            _spacing(_hands_at(body, sides, route.placed_pose(route.clip.sample(x)) + o))
+            for x, o in ((a, p), (b, q))
+        ]
+        if abs(_spacing(hands) - np.mean(spacings)) > HOLDING_SLIP:
+            return True
+    return False
+
+
+def _midpoint(targets: dict) -> np.ndarray:
+    return np.mean([p for p, _ in targets.values()], axis=0)
+
+
+def _hands_at(body, sides, q: np.ndarray) -> list[np.ndarray]:
+    return [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in sides]
+
+
+def _spacing(hands: list[np.ndarray]) -> float:
+    return float(np.linalg.norm(hands[0] - hands[1])) if len(hands) == 2 else 0.0
+
+
+def _held_way(route: _Route, arms: np.ndarray, turning: bool):
+    """The offsets at the route's times, how far the palms' spacing strays from the
+    object's on it and how far their midpoint misses the way's (the arms cannot hold the
+    palms' orientation up there: over a stack in a shelf the keys were 13 cm under the way,
+    then one jumped 25 cm onto it). With `turning` two palms keep only their normals, free
+    to turn about them (the fingers down a box's sides at head height)."""
+    offsets, solved, slipped, missed = [], None, 0.0, 0.0
+    for t, s in zip(route.times, route.fractions(), strict=True):
+        q = route.body_at(t, s)
         if solved is not None:  # each point starts from the last: the arms follow the way
             q[arms] = solved[arms]
-        chest = body.frame_pose(CHEST, q)
-        local = _between(start, end, minimum_jerk(s if over is None else _crossing(s)))
-        targets = {side: (chest @ p, chest.rotation() @ R) for side, (p, R) in local.items()}
-        if over is not None:
-            middle = np.mean([p for p, _ in targets.values()], axis=0)
-            rise = _plateau(s) * max(over - middle[2], 0.0)
-            targets = {side: (p + [0.0, 0.0, rise], R) for side, (p, R) in targets.items()}
+        targets = route.targets(q, s)
         tasks = hand_tasks(targets, HOLDING_ORIENTATION, turn_in_palm=turning)
-        solved = body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
-        offsets.append(solved - placed)
-        slipped = max(slipped, _spacing_error(body, solved, targets))
-    return offsets, slipped
+        solved = route.body.solve(q, tasks, arms, iterations=60, posture_weight=1e-4)
+        if route.body.task_error(solved, tasks) > REACH_TOLERANCE:
+            spine = np.concatenate([arms, _spine(route.body)])
+            solved = route.body.solve(q, tasks, spine, iterations=60, posture_weight=1e-4)
+        offsets.append(solved - route.placed_pose(route.clip.sample(t)))
+        slipped = max(slipped, _spacing_error(route.body, solved, targets))
+        held = np.mean(_hands_at(route.body, tuple(targets), solved), axis=0)
+        missed = max(missed, float(np.linalg.norm(held - _midpoint(targets))))
+    return offsets, slipped, missed
+
+
+def _spine(body) -> np.ndarray:
+    return np.array([body.index(name) for name in SPINE])
 
 
 def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
     """How far the holding palms' spacing at q is from their targets' (0: one hand)."""
-    if len(targets) < 2:
-        return 0.0
-    at = [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in targets]
     aimed = [p for p, _ in targets.values()]
-    return abs(float(np.linalg.norm(at[0] - at[1]) - np.linalg.norm(aimed[0] - aimed[1])))
+    return abs(_spacing(_hands_at(body, tuple(targets), q)) - _spacing(aimed))
 
 
 def _crossing(s: float) -> float:
     """How far across a way over something the hands are at s: in its middle half."""
     return min(max(2.0 * s - 0.5, 0.0), 1.0)
+
+
+def _rising(s: float) -> float:
+    """How much of a way over something holds to its start: all while it rises (the first
+    quarter), none once it crosses (from the middle)."""
+    return 1.0 - minimum_jerk(4.0 * s - 1.0)
+
+
+def _lowering(s: float) -> float:
+    """How much of a way over something holds to its end: none up to the middle, all while
+    it lowers (the last quarter)."""
+    return 1.0 - minimum_jerk(3.0 - 4.0 * s)
 
 
 def _plateau(s: float) -> float:
@@ -205,6 +330,16 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     )
     top = beside.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
     return None if top is None else top + CLEARANCE + lowest
+
+
+def headroom(body, furniture: Furniture, carry: CarryArms, middle, heading: float) -> float:
+    """How far the held object, the palms' midpoint at `middle`, can rise before it or the
+    hands meet what stands over it (the board above a shelf's compartment; inf: nothing)."""
+    around, _, highest = _held_outline(body, carry, heading)
+    top = middle[2] + highest
+    area = MultiPoint([np.asarray(middle[:2]) + c for c in around]).convex_hull
+    ceiling = furniture.lowest_above(area, top)
+    return np.inf if ceiling is None else ceiling - top
 
 
 def _held_outline(body, carry: CarryArms, heading: float):
@@ -248,8 +383,7 @@ def _out_from_under(body, carry: CarryArms, grasped, carried, around) -> np.ndar
 
 
 def _palms_midpoint(body, carry: CarryArms, q: np.ndarray) -> np.ndarray:
-    hands = [body.frame_pose(f"{s}_hand_grasp", q).translation() for s in carry.hands]
-    return np.mean(hands, axis=0)
+    return np.mean(_hands_at(body, carry.hands, q), axis=0)
 
 
 def _over(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around) -> float | None:

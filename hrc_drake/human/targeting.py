@@ -37,7 +37,7 @@ from hrc_drake.human.hand_ways import (
     over_the_edge,
     room_beside,
 )
-from hrc_drake.human.held_ways import carried_off, put_down
+from hrc_drake.human.held_ways import carried_off, headroom, put_down
 
 TARGETED = {
     "pick_floor": "grasp",
@@ -145,8 +145,9 @@ def aim_clip(
     putting_down = carry is not None and not takes
     above = clearing(body, furniture, hands, lowest)
     room = room_beside(body, furniture, hands)
+    roof = headroom(body, furniture, carry, middle, heading) if putting_down else np.inf
     near = approached(
-        hands, heading, reaching, not putting_down, None if putting_down else above, room
+        hands, heading, reaching, not putting_down, None if putting_down else above, room, roof
     )
     near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
     marks = (approach_time, event, hold_end)

@@ -128,3 +128,20 @@ def test_palms_on_the_sides_of_a_box_stay_flat_on_its_faces(height):
             assert np.linalg.norm(X.translation() - position) <= 0.01, (side, iterations)
             normal = X.rotation().col(1) @ R.col(1)
             assert normal >= np.cos(np.radians(2.0)), (side, iterations)
+
+
+@pytest.mark.parametrize("height", [1.7, 1.78, 1.85])
+def test_palms_reach_a_box_held_up_at_head_height(height):
+    """Palms on the sides of a carton 0.55 m ahead at and above the head (a column of
+    cartons stacked by hand): the trunk, free with the arms from the start, leaned back
+    against its limits before the arms rose and the hands stopped 10-41 cm short, and an
+    arm near a singular pose swung to a far branch in a few huge steps (1.1 m off). The
+    hands get there."""
+    body = human_body()
+    q0 = body.standing_pose()
+    q0[body.index("base_yaw")] = np.pi / 2
+    hands = palm_targets(Grasp("both", (0.05, 0.55, height), 0.0, (0.4, 0.3, 0.2)), np.pi / 2)
+    q = hands_on(body, q0, hands, tolerance=0.01)
+    for side, (position, _) in hands.items():
+        reached = body.frame_pose(f"{side}_hand_grasp", q).translation()
+        assert np.linalg.norm(reached - position) <= 0.01, side

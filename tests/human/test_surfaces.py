@@ -400,6 +400,23 @@ def test_a_box_the_hands_cannot_get_to_from_where_the_person_stands_is_refused()
     assert last.outcome == "failed" and "hand stays" in last.reason, last
 
 
+def test_a_carton_lifted_off_a_crate_rises_before_it_moves():
+    """Collaboration seed 15 at 11.9 s: a carton taken off a crate in the pallet's block. Its
+    way into the carry posture is laid out in the chest's frame, and as the trunk began to
+    rise the chest carried the palms 2.9 cm down and back: the carton dipped into the crate
+    it lay on. The palms never go below where they took it."""
+    run = _taken_off_the_block(0.55)
+    grasped = 0.1 + load_clips()["pick_floor"].events["grasp"] + 0.05
+    heights = []
+    for t in np.arange(grasped, 0.1 + _duration("pick_floor"), 1.0 / 60.0):
+        run.record(t)
+        q = run.positions()[run.body.plant_index]
+        heights.append(
+            np.mean([run.body.frame_pose(f"{s}_hand_grasp", q).translation()[2] for s in SIDES])
+        )
+    assert min(heights) >= heights[0] - 0.002, (heights[0], min(heights))
+
+
 def _taken_off_the_block(x: float) -> Run:
     """The person standing at (x, -0.4) takes a carton off a crate in the pallet's block."""
     (center, size), others = ((0.6, 0.05, 0.484), PALLET_CARTON), CRATES
@@ -525,6 +542,34 @@ def test_a_tote_carried_to_a_shelf_goes_in_under_the_board_above_onto_another():
     run = carried_in(put_down_at=t + SAMPLE)
     run.record(t + SAMPLE + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(2) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_tote_put_onto_a_stack_under_the_board_above_stays_under_it():
+    """A cell of our own: a third tote (0.4 m deep) put onto a stack of two on our shelf's
+    middle board, 3 cm under the board above, a carton on that board. The hands came 6 cm
+    over the stack before they lowered it, higher than the board's underside: the way took
+    the board and the carton on it for something beside the way, rose over the carton and
+    came down through the board (a forearm 6.8 cm in, the hands 25 cm in one frame). The
+    hands stay under the board and nothing of the arms goes into the shelf."""
+    tote, shelf_y = (0.3, 0.4, 0.15), 0.65
+    stack = [(0.0, 0.7, 0.601 + tote[2] / 2), (0.0, 0.7, 0.601 + 1.5 * tote[2])]
+    carton = ((0.0, shelf_y, 1.201), (0.3, 0.25, 0.2))
+    hold = Hold("both", (tote[1], tote[0], tote[2]))
+    nearby = (*(Box(c, 0.0, tote) for c in stack), Box(carton[0], 0.0, carton[1]))
+    target = (0.0, 0.7, 0.601 + 2.5 * tote[2])
+    put = AnimateCommand(1, "place_table", target=target, hold=hold, nearby=nearby)
+    objects = [(tote, RigidTransform(c)) for c in stack] + [(carton[1], RigidTransform(carton[0]))]
+    shelf = furniture("shelf", 0.0, shelf_y)
+    run = Run([(0.1, put)], STANDING, [FLOOR, shelf], ARMS, objects=objects)
+    board_above = 1.08
+    for t in np.arange(0.1, 0.1 + load_clips()["place_table"].events["release"], 1.0 / 60.0):
+        run.record(t)
+        q = run.positions()[run.body.plant_index]
+        hands = [run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES]
+        assert max(hand[2] for hand in hands) < board_above, t
+    run.record(0.1 + _duration("place_table") + 0.2)
+    assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
