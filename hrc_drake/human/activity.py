@@ -9,12 +9,13 @@ import numpy as np
 
 from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.head_room import head_correction
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.messages import Box
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
-from hrc_drake.human.segments import Segment
+from hrc_drake.human.segments import ClipSegment, Segment
 
 BLEND_TIME = 0.5
 """Shortest cross-fade between activities (s)."""
@@ -114,6 +115,11 @@ class Activity:
             early,
         )
         return heads if arms is None else (*heads, arms)
+
+    def putting_down(self, performer: Performer, t: float) -> CarryArms | None:
+        """The carry of what the hands hold at t to put down (None: nothing)."""
+        segment = self._segment_at(t)
+        return segment.putting_down(performer, t) if isinstance(segment, ClipSegment) else None
 
     def _segment_at(self, t: float) -> Segment:
         return self.segments[self._index_at(t)]

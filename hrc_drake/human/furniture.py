@@ -116,13 +116,16 @@ class Furniture:
         ]
         return max(tops, default=None)
 
-    def lowest_above(self, area: Polygon, height: float) -> float | None:
-        """The lowest underside at or above `height` of the pieces over a floor area (the
-        board above a shelf's compartment; None: nothing is)."""
-        return min(
-            (p.low for p in self.pieces if p.low >= height and p.outline.intersects(area)),
-            default=None,
+    def above(self, area: Polygon, height: float) -> "Furniture":
+        """The pieces over a floor area wholly at or above `height` (the board above a
+        shelf's compartment)."""
+        return Furniture(
+            tuple(p for p in self.pieces if p.low >= height and p.outline.intersects(area))
         )
+
+    def lowest(self) -> float | None:
+        """The lowest underside of the pieces (None: there are none)."""
+        return min((p.low for p in self.pieces), default=None)
 
     def behind_edge(self, piece: Obstacle, point, back, margin: float):
         """`point` (x, y) moved along the floor direction `back` until it is `margin` outside

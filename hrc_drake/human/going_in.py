@@ -1,6 +1,7 @@
 """What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
 still goes into the furniture once the head and arms have been kept out of it as far as
-they can (hrc_drake.human.head_room, hrc_drake.human.clearance).
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance), or a put-down whose held
+object goes into it on its planned way.
 
 Where the corrections cannot find a way, the person played it through the shelf: a stoop
 to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
@@ -14,6 +15,7 @@ from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.arm_shapes import HEAD, Prisms, corners_in_world, parts_shapes
 from hrc_drake.human.clearance import NEAR, SAMPLE
+from hrc_drake.human.grasp import held_corners
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.skeleton import SIDES
 
@@ -23,6 +25,8 @@ in the cell's geometry or an object (docs/realism.md), since the prisms' separat
 test, which knows only their faces' directions, overstates how deep a round shape goes in
 beside an edge (a forearm passing a shelf board's edge: 1.4 cm by it, clear in SceneGraph)."""
 PARTS = (HEAD, *SIDES)
+HELD_RADII, HELD_SHAPE = np.zeros(1), np.arange(8)[None]
+"""A held box as one shape of `Prisms.shape_depths`: its 8 corners, no radius."""
 
 
 def refuse_going_in(performer: Performer, activity: Activity, start: float) -> None:
@@ -36,7 +40,8 @@ def refuse_going_in(performer: Performer, activity: Activity, start: float) -> N
 
 def going_in(performer: Performer, activity: Activity, start: float) -> str:
     """What of the head and arms `activity`, played from `start`, puts deeper than
-    DEPTH_LIMIT into what it keeps out of, and where ("" when nothing)."""
+    DEPTH_LIMIT into what it keeps out of, or else what the hands hold to put down, and
+    where ("" when nothing)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
         return ""
@@ -50,7 +55,7 @@ def going_in(performer: Performer, activity: Activity, start: float) -> str:
     depths = prisms.deepest_near(poses[:, :2], NEAR, corners, radii, shapes)
     k, shape = np.unravel_index(np.argmax(depths), depths.shape)
     if depths[k, shape] <= DEPTH_LIMIT:
-        return ""
+        return _held_going_in(performer, activity, prisms, times)
     part = PARTS[np.searchsorted(starts, shape, side="right") - 1]
     into = prisms.shape_depths(corners[k], radii, shapes)[:, shape]
     where = furniture.pieces[int(np.argmax(into))].name
@@ -58,6 +63,35 @@ def going_in(performer: Performer, activity: Activity, start: float) -> str:
         f"{_named(part)} would go {100 * depths[k, shape]:.1f} cm into '{where}' "
         f"{times[k] - start:.1f} s in, however the arms and head are moved: no way to do it "
         "from where the person stands"
+    )
+
+
+def _held_going_in(performer: Performer, activity: Activity, prisms, times) -> str:
+    """What an object the hands hold to put down goes into deeper than DEPTH_LIMIT, and
+    where ("" when nothing), on the put-down's planned way (a blend from the pose before
+    leaves the object where the hands were: it comes from the carry posture): a tote
+    carried up to a shelf whose board is at its height is in the board before the put-down
+    begins (a cell of our own: 4.5 cm)."""
+    body, furniture = performer.body, activity.furniture_of(performer)
+    worst = (0.0, "", times[0])
+    for t in times:
+        carry = activity.putting_down(performer, float(t))
+        if carry is None:
+            continue
+        q = activity.planned_pose(performer, float(t))
+        near = np.flatnonzero(prisms.near_mask(q[:2], NEAR + max(carry.size)))
+        if not near.size:
+            continue
+        corners = held_corners(body, carry, q)[None]
+        into = prisms.subset(near).shape_depths(corners, HELD_RADII, HELD_SHAPE)[0, :, 0]
+        if into.max() > worst[0]:
+            worst = (float(into.max()), furniture.pieces[near[np.argmax(into)]].name, t)
+    depth, where, t = worst
+    if depth <= DEPTH_LIMIT:
+        return ""
+    return (
+        f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
+        f"{t - times[0]:.1f} s in: no way to put it down from where the person stands"
     )
 
 

@@ -264,6 +264,24 @@ class CarryArms:
         return held
 
 
+def held_corners(body: HumanBody, carry: CarryArms, q: np.ndarray) -> np.ndarray:
+    """The corners (8 x 3) of the object held in the carry's hands at q, placed as the
+    workpieces place it (hrc_drake.workpieces.world.holder_frames): level, at the palms'
+    midpoint facing away from the body (both hands) or at the grasp point facing the
+    person's heading (one hand), its centre where `object_center_in_holder` says."""
+    hands = [body.frame_pose(f"{side}_hand_grasp", q).translation() for side in carry.hands]
+    if len(hands) == 2:
+        across = (hands[0] - hands[1])[:2]
+        yaw = math.atan2(across[1], across[0]) - math.pi / 2
+    else:
+        yaw = q[body.index("base_yaw")]
+    R = RotationMatrix.MakeZRotation(yaw).matrix()
+    hands_word = BOTH_HANDS if len(hands) == 2 else ONE_HAND
+    center = np.mean(hands, axis=0) + R @ object_center_in_holder(Hold(hands_word, carry.size))
+    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    return center + (signs * np.asarray(carry.size) / 2) @ R.T
+
+
 def carry_arms(body: HumanBody, hold: Hold) -> CarryArms:
     return _carry_arms(body, hold.hands, tuple(round(v, 4) for v in hold.size))
 

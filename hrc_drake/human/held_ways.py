@@ -69,6 +69,8 @@ keep a carton over the crate it was lifted off: 2.7 cm low); the pelvis and legs
 the clip has them."""
 REACH_TOLERANCE = 0.005
 """m: a holding hand further than this from its target on the way is short of it."""
+MOVE_SHARE = 0.1
+"""Share of a way at least given to each of its parts within a crossing level."""
 LIFT, LIFTING = 0.01, 0.15
 """m, share of the way: an object held on its way keeps this far above where it was taken
 (or is put) once it is this share of the way from there."""
@@ -97,7 +99,7 @@ def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
     return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
 
 
-def _way(body, clip, placed_pose, span, *way, over=None):
+def _way(body, clip, placed_pose, span, *way, level=None):
     """`way` = (start, end, trunk_from, trunk_to, arms). Times evenly spaced over `span` (the
     first and last), CARRY_SAMPLES of them or more (MOST_SAMPLES), and the offsets there on
     the way of the holding hands from `start` to
@@ -106,10 +108,11 @@ def _way(body, clip, placed_pose, span, *way, over=None):
     arms are solved to hold the object, the rest of the body eases from the offset
     `trunk_from` to `trunk_to`, the feet kept where the clip has them (a squat eased out
     linearly in the joints sank the feet 3.6 cm into the floor, rising with a carton from a
-    shelf's bottom board). With `over` (a world height), the palms' midpoint rises to
-    it first, crosses at that height and lowers last (over what stands on the way), if the
-    arms can hold the object up there: else it goes the straight way (lifted too high, a
-    carton in both hands was 5.3 cm off a palm: collaboration seed 15). Where the palms
+    shelf's bottom board). With `level` (world heights, low and high: `crossing_level`),
+    the palms' midpoint rises or lowers to within them first, crosses there and moves to
+    the end last (over what stands on the way, under a board over its end), if the arms
+    can hold the object there: else it goes the straight way (lifted too high, a carton in
+    both hands was 5.3 cm off a palm: collaboration seed 15). Where the palms
     cannot keep their orientation and their hold, they keep only their normals and turn
     about them (`_held_way`'s `turning`). Unreachable where the arms cannot hold it even on
     the straight way."""
@@ -119,12 +122,14 @@ def _way(body, clip, placed_pose, span, *way, over=None):
         times = tuple(np.linspace(*span, count))
         straight = []
         turnings = (False, True) if len(start) == 2 else (False,)
-        for height, turning in product(dict.fromkeys((over, None)), turnings):
-            route = _Route(body, clip, placed_pose, times, start, end, trunk_from, trunk_to, height)
+        for crossing, turning in product(dict.fromkeys((level, None)), turnings):
+            route = _Route(
+                body, clip, placed_pose, times, start, end, trunk_from, trunk_to, crossing
+            )
             offsets, slipped, missed = _held_way(route, arms, turning)
             if slipped <= HOLDING_SLIP and missed <= WAY_STRAY:
                 break
-            if height is None:
+            if crossing is None:
                 straight.append((slipped, missed, route, offsets))
         else:
             slipped, _, route, offsets = min(straight, key=lambda held: held[:2])
@@ -136,6 +141,34 @@ def _way(body, clip, placed_pose, span, *way, over=None):
         if count >= MOST_SAMPLES or not _strays_between(route, offsets):
             return times, offsets
         count = 2 * count - 1
+
+
+@dataclass(frozen=True)
+class _Phases:
+    """The parts of a way within a crossing level: the palms move to the level while it
+    holds to its start (up to `across`), cross (up to `lowering`) and move to its end."""
+
+    across: float
+    lowering: float
+
+    def crossing(self, s: float) -> float:
+        """How far across the way the hands are at s."""
+        return min(max((s - self.across) / (self.lowering - self.across), 0.0), 1.0)
+
+    def rising(self, s: float) -> float:
+        """How much the way holds to its start at s: all until it crosses, none from the
+        crossing's middle."""
+        return 1.0 - minimum_jerk(2.0 * self.crossing(s))
+
+    def lowering_weight(self, s: float) -> float:
+        """How much the way holds to its end at s: none to the crossing's middle, all once
+        it has crossed."""
+        return 1.0 - minimum_jerk(2.0 - 2.0 * self.crossing(s))
+
+    def plateau(self, s: float) -> float:
+        """How far to the level the hands are at s."""
+        to = minimum_jerk(min(s / self.across, 1.0))
+        return to * minimum_jerk(min((1.0 - s) / (1.0 - self.lowering), 1.0))
 
 
 @dataclass(frozen=True, eq=False)
@@ -151,7 +184,7 @@ class _Route:
     end: dict
     trunk_from: np.ndarray
     trunk_to: np.ndarray
-    over: float | None
+    level: tuple[float, float] | None
 
     def body_at(self, t: float, s: float) -> np.ndarray:
         """The pose under the arms a fraction s of the way, at clip time t."""
@@ -161,7 +194,7 @@ class _Route:
 
     def targets(self, q: np.ndarray, s: float) -> dict:
         """The hands' world targets a fraction s of the way, the body under them at q: laid
-        out in the chest's frame, over `over` in the middle, never lower than the way's
+        out in the chest's frame, within `level` in the middle, never lower than the way's
         lower end and, near an end it rises from or lowers onto, held over that end's place
         in the world (the chest swings as the trunk rises: a crate lifted off a pallet from
         between two others swung 8 cm into one, collaboration seed 0; a carton lifted off a
@@ -170,8 +203,9 @@ class _Route:
         targets = self._in_world(q, _between(self.start, self.end, self._progress(s)))
         middle = _midpoint(targets)
         shift = np.zeros(3)
-        if self.over is not None:
-            shift[2] = _plateau(s) * max(self.over - middle[2], 0.0)
+        if self.level is not None:
+            low, high = self.level
+            shift[2] = self.phases.plateau(s) * (min(max(middle[2], low), high) - middle[2])
         for end, weight in self._held_to(s):
             shift[:2] += weight * (_midpoint(end)[:2] - middle[:2])
         shift[2] = max(shift[2], self._lowest(s) - middle[2])
@@ -182,8 +216,8 @@ class _Route:
         while it rises and its end while it lowers; else its lower end until LIFTING of the
         way from it."""
         start, end = self.ends
-        if self.over is not None:
-            return [(start, _rising(s)), (end, _lowering(s))]
+        if self.level is not None:
+            return [(start, self.phases.rising(s)), (end, self.phases.lowering_weight(s))]
         low, off = (start, s) if self._low_first else (end, 1.0 - s)
         return [(low, 1.0 - minimum_jerk(off / LIFTING))]
 
@@ -200,7 +234,7 @@ class _Route:
         return a <= b
 
     def _progress(self, s: float) -> float:
-        return minimum_jerk(s if self.over is None else _crossing(s))
+        return minimum_jerk(s if self.level is None else self.phases.crossing(s))
 
     def _in_world(self, q: np.ndarray, local: dict) -> dict:
         chest = self.body.frame_pose(CHEST, q)
@@ -213,6 +247,22 @@ class _Route:
             self._in_world(self.body_at(t, s), _between(self.start, self.end, s))
             for t, s in ((self.times[0], 0.0), (self.times[-1], 1.0))
         )
+
+    @cached_property
+    def phases(self) -> _Phases:
+        """The parts of the way within its level, each as long as the palms go in it (each
+        at least MOVE_SHARE of the way): a tote carried 0.47 m
+        into a shelf under a board 4.5 cm below its carry height crossed in the middle half of
+        the way at up to 3 m/s."""
+        start, end = (_midpoint(e) for e in self.ends)
+        low, high = self.level
+        into, out_of = (np.array([*p[:2], min(max(p[2], low), high)]) for p in (start, end))
+        lengths = np.array(
+            [abs(into[2] - start[2]), np.linalg.norm(out_of - into), abs(end[2] - out_of[2])]
+        )
+        shares = np.maximum(lengths / max(lengths.sum(), 1e-9), MOVE_SHARE)
+        shares /= shares.sum()
+        return _Phases(float(shares[0]), float(shares[0] + shares[1]))
 
     def fractions(self) -> np.ndarray:
         return np.linspace(0.0, 1.0, len(self.times))
@@ -288,29 +338,6 @@ def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
     return abs(_spacing(_hands_at(body, tuple(targets), q)) - _spacing(aimed))
 
 
-def _crossing(s: float) -> float:
-    """How far across a way over something the hands are at s: in its middle half."""
-    return min(max(2.0 * s - 0.5, 0.0), 1.0)
-
-
-def _rising(s: float) -> float:
-    """How much of a way over something holds to its start: all while it rises (the first
-    quarter), none once it crosses (from the middle)."""
-    return 1.0 - minimum_jerk(4.0 * s - 1.0)
-
-
-def _lowering(s: float) -> float:
-    """How much of a way over something holds to its end: none up to the middle, all while
-    it lowers (the last quarter)."""
-    return 1.0 - minimum_jerk(3.0 - 4.0 * s)
-
-
-def _plateau(s: float) -> float:
-    """How far up to the crossing height the hands are at s: up in the first quarter of the
-    way, down in the last."""
-    return minimum_jerk(min(4.0 * s, 1.0)) * minimum_jerk(min(4.0 * (1.0 - s), 1.0))
-
-
 def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
     """The height the holding palms' midpoint keeps while it carries the object from `a` to
     `b` (the midpoint's world positions at the two ends): the object's bottom and the
@@ -332,14 +359,47 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     return None if top is None else top + CLEARANCE + lowest
 
 
+def crossing_level(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
+    """The heights (low, high) between which the holding palms' midpoint crosses from `a`
+    to `b`: over what stands beside its way (`crossing_height`) and CLEARANCE / 2 under
+    what stands over its lower end where the straight way would meet it (a tote carried at
+    the height of the board above the shelf compartment it is put into went through the
+    board's edge: it comes down first, then in). None: neither is in the way."""
+    over = crossing_height(body, furniture, carry, a, b, heading)
+    under = _under(body, furniture, carry, a, b, heading)
+    if over is None and under is None:
+        return None
+    return (-np.inf if over is None else over, np.inf if under is None else under)
+
+
+def _under(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
+    """The highest the palms' midpoint may cross at under what stands over the way's lower
+    end, when its higher end is above that (None: it is not). The way in the chest's frame
+    bulges up as the trunk leans in (4 cm putting a tote into a shelf from the carry
+    posture): checked against a straight line, a tote put on a shelf's middle board still
+    went 3.3 cm into the edge of the board above."""
+    low_end, high_end = sorted((a, b), key=lambda end: end[2])
+    ceiling = _over_the_end(body, furniture, carry, low_end, heading)
+    if not ceiling.pieces:
+        return None
+    _, _, highest = _held_outline(body, carry, heading)
+    under = ceiling.lowest() - highest - CLEARANCE / 2
+    return under if high_end[2] > under else None
+
+
 def headroom(body, furniture: Furniture, carry: CarryArms, middle, heading: float) -> float:
     """How far the held object, the palms' midpoint at `middle`, can rise before it or the
     hands meet what stands over it (the board above a shelf's compartment; inf: nothing)."""
+    lowest = _over_the_end(body, furniture, carry, middle, heading).lowest()
+    _, _, highest = _held_outline(body, carry, heading)
+    return np.inf if lowest is None else lowest - (middle[2] + highest)
+
+
+def _over_the_end(body, furniture: Furniture, carry: CarryArms, middle, heading: float):
+    """What stands over the held object, the palms' midpoint at `middle`."""
     around, _, highest = _held_outline(body, carry, heading)
-    top = middle[2] + highest
     area = MultiPoint([np.asarray(middle[:2]) + c for c in around]).convex_hull
-    ceiling = furniture.lowest_above(area, top)
-    return np.inf if ceiling is None else ceiling - top
+    return furniture.above(area, middle[2] + highest)
 
 
 def _held_outline(body, carry: CarryArms, heading: float):
@@ -386,11 +446,11 @@ def _palms_midpoint(body, carry: CarryArms, q: np.ndarray) -> np.ndarray:
     return np.mean(_hands_at(body, carry.hands, q), axis=0)
 
 
-def _over(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around) -> float | None:
-    """The crossing height of the way of the held object from pose a to pose b."""
+def _level(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around):
+    """The crossing level of the way of the held object from pose a to pose b."""
     furniture, heading = around
     middle = [_palms_midpoint(body, carry, q) for q in (a, b)]
-    return crossing_height(body, furniture, carry, *middle, heading)
+    return crossing_level(body, furniture, carry, *middle, heading)
 
 
 def _hands_of(carry: CarryArms) -> str:
@@ -423,11 +483,11 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
         offset = way[-1]
     held = placed_pose(clip.sample(start)) + offset
     way_from, way_to = _in_chest(body, held, sides), _in_chest(body, carried, sides)
-    over = _over(body, carry, held, carried, around)
+    level = _level(body, carry, held, carried, around)
     zero = np.zeros_like(on_target)
     span = (start, clip.duration)
     times, way = _way(
-        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, over=over
+        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, level=level
     )
     way[0], way[-1] = offset, carried - end_pose
     joined = int(out is not None)  # the drawn-out way's last key is this way's first
@@ -483,9 +543,11 @@ def put_down(
     start, end = _in_chest(body, held, sides), _in_chest(body, above, sides)
     zero = np.zeros_like(on_target)
     arms = arm_indices(body, sides)
-    over = _over(body, carry, held, above, around)
+    level = _level(body, carry, held, above, around)
     span = (0.0, approach_time)
-    times, way = _way(body, clip, placed_pose, span, start, end, zero, near_offset, arms, over=over)
+    times, way = _way(
+        body, clip, placed_pose, span, start, end, zero, near_offset, arms, level=level
+    )
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
     _add_way(keys, times, way)

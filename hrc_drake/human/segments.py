@@ -53,6 +53,14 @@ class ClipSegment:
             return clip_time
         return min(max(clip_time, 0.0), self._played(performer))
 
+    def putting_down(self, performer: Performer, t: float) -> CarryArms | None:
+        """The carry of what an aimed put-down holds at t (None: it holds nothing to put
+        down, or has let go)."""
+        events = performer.clips[self.clip].events
+        if self.aim is None or self.carry is None or "release" not in events:
+            return None
+        return self.carry if self.clip_time(performer, t) < events["release"] else None
+
     def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
         """The sides whose hands must stay where they are at t: aimed at their targets or
         holding what they took."""

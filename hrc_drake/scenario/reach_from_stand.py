@@ -14,6 +14,7 @@ nothing is said.
 """
 
 from collections.abc import Callable, Iterator
+from functools import partial
 
 import numpy as np
 
@@ -37,10 +38,11 @@ Taken = Callable[[TreeNode], list[tuple[str, np.ndarray, Callable]]]
 """The objects a pick node may take, as far as known before the run: a label, the centre,
 and what keeps the person from taking it from a place to stand (the walk's known target,
 None: the person's start): why the hands cannot get there, or ""."""
-Placing = Callable[[TreeNode, np.ndarray], Callable | None]
-"""For the last pick before a place node and the place's target point: what keeps the
-person from putting down there what that pick took, from a place to stand (as `Taken`'s),
-or None when what the hands hold is not known before the run."""
+Placing = Callable[[TreeNode, np.ndarray, list], Callable | None]
+"""For the last pick before a place node, the place's target point and where the person
+may stand at the pick (as `_stand_points`; [] when not known): what keeps the person from
+putting down there what that pick took, from a place to stand (as `Taken`'s), or None when
+what the hands hold is not known before the run."""
 
 
 def clip_step_back(clips: dict) -> float:
@@ -75,7 +77,8 @@ def reach_findings(
             port = "target"
             targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
             if isinstance(node, ActorPlace) and placing is not None:
-                targets = _placings(node, parents, targets, placing)
+                at_pick = partial(_stands_before, parents=parents, known=known, resolve=resolve)
+                targets = _placings(node, parents, targets, placing, partial(at_pick, start=start))
         elif isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
             targets = taken(node)
@@ -107,13 +110,21 @@ def reach_findings(
                     yield Locator.node(node, port, message, target)
 
 
-def _placings(place, parents, targets, placing: Placing) -> list:
+def _placings(place, parents, targets, placing: Placing, stands_at) -> list:
     """`targets` of a place node with what keeps the person from putting down there what
-    the last pick before it took (unchanged when no pick is known to come before)."""
+    the last pick before it took (unchanged when no pick is known to come before);
+    `stands_at(pick)`: where the person may stand at that pick."""
     pick = _last_before(place, parents, ActorPick)
     if not isinstance(pick, ActorPick):
         return targets
-    return [(v, p, None if p is None else placing(pick, p)) for v, p, _ in targets]
+    at_pick = stands_at(pick)
+    return [(v, p, None if p is None else placing(pick, p, at_pick)) for v, p, _ in targets]
+
+
+def _stands_before(node, parents, known, resolve, start) -> list:
+    """Where the person may stand when `node` starts ([] when not known)."""
+    stand = _last_before(node, parents, ActorMovement)
+    return [] if stand is UNKNOWN else _stand_points(stand, known, resolve, start)
 
 
 def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str, Known | None]]:

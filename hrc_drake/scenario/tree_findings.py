@@ -20,7 +20,7 @@ from hrc_drake.human.body import human_body
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
 from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
-from hrc_drake.human.messages import AnimateCommand, Box, Grasp
+from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
 from hrc_drake.human.navigation import FLOOR_LEVEL
 from hrc_drake.human.performer import Performer, place
 from hrc_drake.human.planning import plan_animation
@@ -116,26 +116,26 @@ class _Checks:
         def taken(pick):
             return self._taken(tree.node_list, known, pick, agent)
 
-        def placing(pick, target):
-            return self._placing(tree.node_list, known, pick, target, agent)
+        def placing(pick, target, at_pick):
+            return self._placing(tree.node_list, known, pick, target, agent, at_pick)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
 
     def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
-        """The objects at the start that a pick may take: those of the type a NextObject
-        filters for (by type alone) in its area, where it writes the entry the pick reads."""
-        found = []
+        """The objects at the start that a pick may take, each with its label, centre and
+        what keeps the person from taking it (`_lying_in`)."""
         hands = _hands(known, pick)
-        for finder in _finders(nodes, pick):
-            for area in known.get((id(finder), "area"), ()):
-                for wanted in known.get((id(finder), "filter"), ()):
-                    found += self._lying_in(area, wanted.value, finder, agent, hands)
-        return found
+        return [
+            (label, obj.pose.translation(), partial(self._pick_problem, obj, agent, hands))
+            for label, obj in self._lying_in(nodes, known, pick)
+        ]
 
-    def _placing(self, nodes, known, pick, target, agent):
+    def _placing(self, nodes, known, pick, target, agent, at_pick):
         """What keeps the person from putting down at `target` what `pick` took: an object
-        of the one type the NextObjects it takes from filter for (None: not known)."""
+        of the one type the NextObjects it takes from filter for (None: not known), held
+        as the pick takes those of them lying in its area from where the person stands
+        there (`at_pick`), when that is one way."""
         types = {
             parse_filter(wanted.value).get("type")
             for finder in _finders(nodes, pick)
@@ -144,37 +144,68 @@ class _Checks:
         if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
             return None
         (kind,) = types
-        return partial(self._place_problem, kind, _hands(known, pick), target, agent)
+        hands = _hands(known, pick)
+        holds = {
+            self._held_as(obj, agent, hands, stand)
+            for _, obj in self._lying_in(nodes, known, pick)
+            for _, _, stand in at_pick
+        }
+        held = holds.pop() if len(holds) == 1 else None
+        return partial(self._place_problem, kind, hands, target, agent, held=held)
 
-    def _place_problem(self, kind: str, hands: str, target, agent, stand: Known | None) -> str:
+    def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
+        """How `hands` hold `obj` once taken from `stand` (its extents along the person's
+        forward, sideways and up)."""
+        _, _, yaw = self._standing_at(agent, stand, obj.pose.translation())
+        kind = self.scenario.workpieces.types[obj.type]
+        center, heading, size = box_at(obj.pose, kind.shape, kind.size)
+        if hands == "auto":
+            hands = grasp_hands(size, kind.mass, kind.attributes)
+        hold = hold_of(Grasp(hands, center, heading, size), yaw)
+        return Hold(hold.hands, tuple(round(v, 6) for v in hold.size))
+
+    def _place_problem(
+        self, kind: str, hands: str, target, agent, stand: Known | None, held: Hold | None = None
+    ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
-        `hands`, down at `target`, as the run would plan it; "" when they can."""
+        `hands` (as `held` says, when known; else as if taken facing it as they stand
+        there), down at `target`, as the run would plan it; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
         if hands == "auto":
             hands = grasp_hands(size, shape.mass, shape.attributes)
         target = tuple(target)
-        hold = hold_of(Grasp(hands, target, yaw, size), yaw)
+        hold = held or hold_of(Grasp(hands, target, yaw, size), yaw)
         clip = "place_table" if target[2] >= TABLE_HEIGHT else "place_floor"
         command = AnimateCommand(0, clip, target=target, hold=hold, nearby=self._near(target))
         return self._planned_problem(command, (x, y, yaw))
 
-    def _lying_in(self, area: Known, wanted: str, finder, agent, hands: str) -> list[tuple]:
+    def _lying_in(self, nodes, known, pick) -> list[tuple]:
+        """The objects at the start that `pick` may take, with their labels: those of the
+        type a NextObject filters for (by type alone) in its known area, where it writes the
+        entry the pick reads."""
+        found = []
+        for finder in _finders(nodes, pick):
+            where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
+            for area in known.get((id(finder), "area"), ()):
+                for wanted in known.get((id(finder), "filter"), ()):
+                    condition = parse_filter(wanted.value)
+                    found += [
+                        (f"{obj.label} in area '{area.value.name}' ({where})", obj)
+                        for obj in self._in_area(area, condition)
+                    ]
+        return found
+
+    def _in_area(self, area: Known, condition: dict) -> list:
         """The initial objects in a known area that a filter of their type alone takes."""
-        condition = parse_filter(wanted)
         if set(condition) - {"type"} or not isinstance(area.value, AreaRef):
             return []
         if area.value.name not in self.scenario.areas:
             return []
         region = self.scenario.area(area.value.name)
-        where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
         return [
-            (
-                f"{obj.label} in area '{area.value.name}' ({where})",
-                obj.pose.translation(),
-                partial(self._pick_problem, obj, agent, hands),
-            )
+            obj
             for obj in self.scene.objects
             if condition.get("type", obj.type) == obj.type
             and region.contains(obj.pose.translation()[:2])

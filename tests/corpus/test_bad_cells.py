@@ -478,7 +478,7 @@ CASES = {
             ),
         ],
     ),
-    "a put-down into a shelf's compartment the head cannot get to": person(
+    "a put-down into a shelf from where the tote carried there is in its board": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
         '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
@@ -486,8 +486,8 @@ CASES = {
         (
             "port 'target': '3.0;0.6;0.676' at (3.00, 0.60, 0.68), put down where the person "
             "stands (location 'shelf_front', ActorMovement at ",
-            "): the head would go ",
-            " cm into 'shelf' ",
+            "): what the hands hold would go ",
+            " cm into 'shelf' 0.0 s in",
         ),
         "ActorPlace",
         changes=[

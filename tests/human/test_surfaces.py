@@ -322,8 +322,10 @@ STACKED_CARTON = (0.4, 0.3, 0.2)
 
 def test_a_carton_put_on_a_column_at_head_height_stays_between_the_palms():
     """The top carton of a column of eight on a pallet (its bottom at 1.55 m, the person's
-    head height) lifted off and put back. Both forearms went in front of its near corners;
-    pushed out across its faces, the palms came apart, 4 cm off the faces at the put-down.
+    head height) lifted off and put back, the person 0.65 m from the column (from 0.55 m the
+    carton in the carry posture is in the column: such a put-down is refused now). Both
+    forearms went in front of its near corners; pushed out across its faces, the palms came
+    apart, 4 cm off the faces at the put-down.
     They keep their places on the faces: the arms are moved out along them, and the two
     hands move together."""
     base = 0.245  # the centre of a carton standing on the pallet's top
@@ -341,7 +343,7 @@ def test_a_carton_put_on_a_column_at_head_height_stays_between_the_palms():
     ]
     boxes = [(STACKED_CARTON, RigidTransform(c)) for c in column]
     pallet = furniture("euro_pallet", 0.0, 0.75)
-    run = Run(schedule, (0.0, 0.0, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
+    run = Run(schedule, (0.0, -0.1, np.pi / 2), [FLOOR, pallet], ARMS, objects=boxes)
     run.record(put_down)
     run.overlap = (0.0, "", 0.0)  # measured from the put-down on (the lift-off sets the scene)
     _put_down_between_the_palms(run, put_down, STACKED_CARTON[0])
@@ -503,11 +505,14 @@ def test_a_tote_put_into_a_shelf_compartment_is_left_without_bending_lower():
     Leaving it, the hands went 0.25 m down outside the board's edge as off a table top: the
     person bent so low that the face went 2.6 cm into the board above, then rose 0.2 m in a
     thirtieth of a second. Over a top lower than hanging fingertips the hands swing back to
-    the sides above it: nothing goes into the shelf, the head rises at a person's pace."""
-    center = (0.0, 0.55, 0.601 + TOTE[2] / 2)
+    the sides above it: nothing goes into the shelf, the head rises at a person's pace. The
+    shelf's front is 0.4 m ahead (0.35 m: the tote in the carry posture, its top above the
+    board over the compartment, went into the board's edge as it went in, or, brought down
+    first, the forearms did: refused)."""
+    center = (0.0, 0.6, 0.601 + TOTE[2] / 2)
     hold = Hold("both", (TOTE[1], TOTE[0], TOTE[2]))
     schedule = [(0.1, AnimateCommand(1, "place_table", target=center, hold=hold))]
-    run = Run(schedule, STANDING, [FLOOR, furniture("shelf", 0.0, 0.55)], ("",))
+    run = Run(schedule, STANDING, [FLOOR, furniture("shelf", 0.0, 0.6)], ("",))
     _, poses = run.record(0.1 + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
@@ -516,10 +521,12 @@ def test_a_tote_put_into_a_shelf_compartment_is_left_without_bending_lower():
 
 
 def test_a_tote_carried_to_a_shelf_goes_in_under_the_board_above_onto_another():
-    """A cell of our own: a tote 0.4 m deep carried 0.9 m to our shelf and put onto another
-    on its middle board. Carried in at chest height, its top was above the next board's
-    underside: the way rose over that board as over a stack beside it and came down through
-    it (a forearm 10.9 cm in). Nothing of the arms goes into the shelf."""
+    """A cell of our own: a tote 0.4 m deep carried 0.7 m to 0.55 m in front of our shelf and
+    put onto another on its middle board. Carried in at chest height, its top was above the
+    next board's underside: the way rose over that board as over a stack beside it and came
+    down through it (a forearm 10.9 cm in). Nothing of the arms goes into the shelf. (The
+    walk ended 0.35 m in front of it, where the tote in the carry posture is 4.5 cm into
+    the board at its height: such a put-down is refused now.)"""
     tote = (0.3, 0.4, 0.15)
     below = (0.0, 0.59, 0.601 + tote[2] / 2)
     on_top = (0.0, 0.59, below[2] + tote[2])
@@ -527,7 +534,7 @@ def test_a_tote_carried_to_a_shelf_goes_in_under_the_board_above_onto_another():
     facing_the_shelf = (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4))
 
     def carried_in(put_down_at=None) -> Run:
-        schedule = [(0.1, MoveCommand(1, (0.0, 0.0), facing_the_shelf, "carry", hold=hold))]
+        schedule = [(0.1, MoveCommand(1, (0.0, -0.2), facing_the_shelf, "carry", hold=hold))]
         if put_down_at is not None:
             nearby = (Box(below, 0.0, tote),)
             put = AnimateCommand(2, "place_table", target=on_top, hold=hold, nearby=nearby)
@@ -550,18 +557,10 @@ def test_a_tote_put_onto_a_stack_under_the_board_above_stays_under_it():
     middle board, 3 cm under the board above, a carton on that board. The hands came 6 cm
     over the stack before they lowered it, higher than the board's underside: the way took
     the board and the carton on it for something beside the way, rose over the carton and
-    came down through the board (a forearm 6.8 cm in, the hands 25 cm in one frame). The
-    hands stay under the board and nothing of the arms goes into the shelf."""
-    tote, shelf_y = (0.3, 0.4, 0.15), 0.65
-    stack = [(0.0, 0.7, 0.601 + tote[2] / 2), (0.0, 0.7, 0.601 + 1.5 * tote[2])]
-    carton = ((0.0, shelf_y, 1.201), (0.3, 0.25, 0.2))
-    hold = Hold("both", (tote[1], tote[0], tote[2]))
-    nearby = (*(Box(c, 0.0, tote) for c in stack), Box(carton[0], 0.0, carton[1]))
-    target = (0.0, 0.7, 0.601 + 2.5 * tote[2])
-    put = AnimateCommand(1, "place_table", target=target, hold=hold, nearby=nearby)
-    objects = [(tote, RigidTransform(c)) for c in stack] + [(carton[1], RigidTransform(carton[0]))]
-    shelf = furniture("shelf", 0.0, shelf_y)
-    run = Run([(0.1, put)], STANDING, [FLOOR, shelf], ARMS, objects=objects)
+    came down through the board (a forearm 6.8 cm in, the hands 25 cm in one frame). Carried
+    at the board's height, the tote comes down first and then goes in under the board:
+    the hands stay under it and nothing of the arms goes into the shelf."""
+    run = _put_onto_the_stack(shelf_y=0.75)
     board_above = 1.08
     for t in np.arange(0.1, 0.1 + load_clips()["place_table"].events["release"], 1.0 / 60.0):
         run.record(t)
@@ -571,6 +570,34 @@ def test_a_tote_put_onto_a_stack_under_the_board_above_stays_under_it():
     run.record(0.1 + _duration("place_table") + 0.2)
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_put_down_from_where_the_carried_box_is_in_the_shelf_is_refused():
+    """The same stack, the person 0.1 m closer (a cell of our own): the tote in the carry
+    posture, 0.52 m ahead of the person at the height of the board above, is 4.5 cm into the
+    board's edge before the put-down begins. The put-down fails at once, saying so."""
+    run = _put_onto_the_stack(shelf_y=0.65)
+    run.record(0.3)
+    last = run.status().results.last
+    assert last.outcome == "failed", last
+    assert last.reason.startswith("what the hands hold would go") and "'shelf'" in last.reason
+
+
+def _put_onto_the_stack(shelf_y: float) -> Run:
+    """The person at the origin, facing +y, puts a tote (0.4 m deep) onto a stack of two on
+    the middle board of our shelf, whose centre is `shelf_y` ahead; a carton on the board
+    above."""
+    tote = (0.3, 0.4, 0.15)
+    middle = shelf_y + 0.05
+    stack = [(0.0, middle, 0.601 + tote[2] / 2), (0.0, middle, 0.601 + 1.5 * tote[2])]
+    carton = ((0.0, shelf_y, 1.201), (0.3, 0.25, 0.2))
+    hold = Hold("both", (tote[1], tote[0], tote[2]))
+    nearby = (*(Box(c, 0.0, tote) for c in stack), Box(carton[0], 0.0, carton[1]))
+    target = (0.0, middle, 0.601 + 2.5 * tote[2])
+    put = AnimateCommand(1, "place_table", target=target, hold=hold, nearby=nearby)
+    objects = [(tote, RigidTransform(c)) for c in stack] + [(carton[1], RigidTransform(carton[0]))]
+    shelf = furniture("shelf", 0.0, shelf_y)
+    return Run([(0.1, put)], STANDING, [FLOOR, shelf], ARMS, objects=objects)
 
 
 def _picked_up_between_the_palms(
