@@ -221,9 +221,10 @@ class MotionStateMachine:
         progress = state.progress
         if state.path is not None:
             progress = progress.at(inputs.t, state.path.duration)
+        tool_pose, tool_speed = self._model.tool_pose_and_speed(inputs.q, inputs.v)
         return state.replace(
-            tool_pose=self._model.tool_pose(inputs.q),
-            tool_speed=self._model.tool_speed(inputs.q, inputs.v),
+            tool_pose=tool_pose,
+            tool_speed=tool_speed,
             safety_scale=inputs.safety_scale,
             progress=progress,
         )
@@ -267,7 +268,9 @@ class MotionStateMachine:
         if status is None:
             return state
         held = status.held_by(ROBOT_HOLDER)
-        state = state.replace(held_object=held.id if held is not None else None)
+        held_object = held.id if held is not None else None
+        if held_object != state.held_object:
+            state = state.replace(held_object=held_object)
         if not state.gripper_waiting:
             return state
         seq = state.gripper_command.seq
