@@ -5,9 +5,10 @@ It replaces MoveIt, ros_control and the re-planning workaround of the thesis sys
 timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
 product of the SetSpeed fraction and the safety monitor's scale. Each update also writes the
 desired motion until the next update as a quintic segment per joint (state, `desired_segment`);
-while the robot holds still or cruises at a constant rate, one segment runs STEADY_HORIZON ahead
-and the updates within it are left out unless a command, the safety scale or the held object
-changes (`MotionStateMachine.horizon`, `unchanged`);
+while the robot cruises at a constant rate, one segment runs STEADY_HORIZON ahead, and while it
+holds still one runs until something changes; the updates within it are left out unless a
+command, the safety scale or the held object changes (`MotionStateMachine.horizon`,
+`unchanged`);
 the update also samples it at every plant step it covers (`desired_samples`), and Drake's C++
 systems hand each step its sample for the inverse-dynamics controller (`add_desired_motion`),
 so no Python runs between updates and nothing feeds through.
@@ -34,6 +35,7 @@ from hrc_drake.motion.execution import faithful_segment, hermite_segment, step_s
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import (
+    HOLDING_HORIZON,
     STEADY_HORIZON,
     MotionInputs,
     MotionState,
@@ -139,6 +141,8 @@ class RobotMotion(LeafSystem):
         period = self._options.period
         start = state.motion_at(t)
         horizon = self._machine.horizon(state)
+        if horizon == HOLDING_HORIZON:  # a constant: its quintic holds beyond any duration
+            return np.concatenate([[t], hermite_segment(start, start, period).ravel()]), horizon
         if horizon > period:
             coefficients = hermite_segment(start, state.motion_at(t + horizon), horizon)
             if faithful_segment(coefficients, state.motion_at(t + horizon / 2), horizon):
