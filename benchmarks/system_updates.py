@@ -49,15 +49,16 @@ CALLBACKS = (
 
 
 class Timed:
-    """Replaces each callback by one that counts and times it, until the block ends."""
+    """Replaces each callback (class, method name) by one that counts and times it, until
+    the block ends."""
 
-    def __init__(self):
+    def __init__(self, callbacks=CALLBACKS):
         self.calls = defaultdict(int)
         self.idle = defaultdict(int)
         self.seconds = defaultdict(float)
         self._nested = [0.0]
         """CPU seconds of the timed callbacks called inside the one running now."""
-        self._originals = {(cls, name): getattr(cls, name) for cls, name in CALLBACKS}
+        self._originals = {(cls, name): getattr(cls, name) for cls, name in callbacks}
 
     def __enter__(self):
         for (cls, name), original in self._originals.items():
@@ -87,7 +88,7 @@ class Timed:
         return timed
 
 
-def measured(name: str, duration: float) -> tuple[Timed, float]:
+def measured(name: str, duration: float, callbacks=CALLBACKS) -> tuple[Timed, float]:
     """The callbacks' counts and times over a run, and the simulation's CPU seconds."""
     advance = runner._advance
     total = [0.0]
@@ -99,18 +100,23 @@ def measured(name: str, duration: float) -> tuple[Timed, float]:
 
     runner._advance = timed_advance
     try:
-        with Timed() as timed:
+        with Timed(callbacks) as timed:
             runner.run(load_scenario(name), duration=duration)
     finally:
         runner._advance = advance
     return timed, total[0]
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def scenario_arguments(doc: str) -> argparse.Namespace:
+    """The scenarios to run (all bundled ones by default) and the simulated seconds."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("scenarios", nargs="*", default=SCENARIOS)
     parser.add_argument("--duration", type=float, default=30.0)
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main() -> None:
+    args = scenario_arguments(__doc__)
     for name in args.scenarios:
         timed, total = measured(name, args.duration)
         print(f"\n{name} ({args.duration:g} s simulated, {total:.2f} s CPU)")

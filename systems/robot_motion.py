@@ -5,9 +5,10 @@ It replaces MoveIt, ros_control and the re-planning workaround of the thesis sys
 timing) inside a periodic update, then executed by advancing a path parameter whose rate is the
 product of the SetSpeed fraction and the safety monitor's scale. Each update also writes the
 desired motion until the next update as a quintic segment per joint (state, `desired_segment`);
-while the robot holds still or cruises at a constant rate, one segment runs STEADY_HORIZON ahead
-and the updates within it are left out unless a command, the safety scale or the held object
-changes (`MotionStateMachine.horizon`, `unchanged`);
+while the robot cruises at a constant rate, one segment runs STEADY_HORIZON ahead, and while it
+holds still one runs until something changes; the updates within it are left out unless a
+command, the safety scale or the held object changes (`MotionStateMachine.horizon`,
+`unchanged`);
 the update also samples it at every plant step it covers (`desired_samples`), and Drake's C++
 systems hand each step its sample for the inverse-dynamics controller (`add_desired_motion`),
 so no Python runs between updates and nothing feeds through.
@@ -34,6 +35,7 @@ from hrc_drake.motion.execution import faithful_segment, hermite_segment, step_s
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import (
+    HOLDING_HORIZON,
     STEADY_HORIZON,
     MotionInputs,
     MotionState,
@@ -90,7 +92,8 @@ class RobotMotion(LeafSystem):
         self._n = len(VARIANTS[station.variant].joint_names)
         initial = self._machine.initial(station.initial_positions)
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
-        segment = self._segment_of(initial, 0.0, self._options.period)
+        self._slot_numbers = np.arange(self.sample_slots)
+        segment, _ = self._segment_ahead(initial, 0.0)
         self._segment = self.DeclareDiscreteState(segment)
         self._samples = self.DeclareDiscreteState(self._samples_of(segment))
         self._segment_end = self.DeclareDiscreteState(np.zeros(1))
@@ -131,32 +134,30 @@ class RobotMotion(LeafSystem):
     def _state(self, context) -> MotionState:
         return context.get_abstract_state(self._state_index).get_value()
 
-    def _segment_of(self, state: MotionState, t: float, horizon: float) -> np.ndarray:
-        """The desired motion from `t` for `horizon` seconds, as `desired_segment` holds it."""
-        ends = (state.motion_at(t), state.motion_at(t + horizon))
-        return np.concatenate([[t], hermite_segment(*ends, horizon).ravel()])
-
     def _segment_ahead(self, state: MotionState, t: float) -> tuple[np.ndarray, float]:
-        """The desired segment from `t` and how long it runs: as long as the state machine
-        knows the motion ahead where one quintic follows it (`faithful_segment`), else one
-        period."""
+        """The desired segment from `t` (`desired_segment`) and how long it runs: as long as
+        the state machine knows the motion ahead where one quintic follows it
+        (`faithful_segment`), else one period."""
         period = self._options.period
+        start = state.motion_at(t)
         horizon = self._machine.horizon(state)
+        if horizon == HOLDING_HORIZON:  # a constant: its quintic holds beyond any duration
+            return np.concatenate([[t], hermite_segment(start, start, period).ravel()]), horizon
         if horizon > period:
-            ends = (state.motion_at(t), state.motion_at(t + horizon))
-            coefficients = hermite_segment(*ends, horizon)
+            coefficients = hermite_segment(start, state.motion_at(t + horizon), horizon)
             if faithful_segment(coefficients, state.motion_at(t + horizon / 2), horizon):
                 return np.concatenate([[t], coefficients.ravel()]), horizon
-        return self._segment_of(state, t, period), period
+        coefficients = hermite_segment(start, state.motion_at(t + period), period)
+        return np.concatenate([[t], coefficients.ravel()]), period
 
     def _samples_of(self, segment: np.ndarray) -> np.ndarray:
         """`desired_samples` of `segment`: its steps from the one before its start on, each
-        in its slot (the steps of a segment and their neighbours never share a slot)."""
+        in its slot n mod `sample_slots` (the steps of a segment and their neighbours never
+        share a slot)."""
         h, slots = self.sample_step, self.sample_slots
         first = round(segment[0] / h) - 1
-        times = np.arange(first, first + slots) * h
-        samples = step_samples(segment[0], segment[1:].reshape(self._n, -1), h, times)
-        return np.roll(samples, first, axis=0).ravel()
+        steps = first + (self._slot_numbers - first) % slots
+        return step_samples(segment[0], segment[1:].reshape(self._n, -1), h, steps * h).ravel()
 
     def _calc_path_rate(self, context, output: BasicVector) -> None:
         output.SetAtIndex(0, self._state(context).path_rate_at(context.get_time()))

@@ -14,7 +14,6 @@ by the target when speeding up, in full when braking (see `next_progress`).
 """
 
 import dataclasses
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,24 +84,25 @@ def next_progress(
     speeding_up = target >= progress.rate
     limit_scale = target if speeding_up else 1.0
     wanted = (target - progress.rate) / period
-    slowest, fastest = sorted((progress.rate, target))
     limits = ACCELERATION_MARGIN * limit_scale * acceleration_limits
-    ahead = min(path.duration, progress.tau + fastest * period)
-    low, high = -np.inf, np.inf
-    derivatives = {
-        tau: (path.velocity(tau), path.acceleration(tau)) for tau in (progress.tau, ahead)
-    }
-    for tau, rate in itertools.product((progress.tau, ahead), (slowest, fastest)):
-        dq, ddq = derivatives[tau]
-        curvature_term = ddq * rate * rate
-        moving = np.abs(dq) > 1e-9
-        bound_a = (-limits - curvature_term)[moving] / dq[moving]
-        bound_b = (limits - curvature_term)[moving] / dq[moving]
-        low = max(low, np.max(np.minimum(bound_a, bound_b), initial=-np.inf))
-        high = min(high, np.min(np.maximum(bound_a, bound_b), initial=np.inf))
+    ahead = min(path.duration, progress.tau + max(progress.rate, target) * period)
+    dq = np.array([path.velocity(tau) for tau in (progress.tau, ahead)])[:, None, :]
+    ddq = np.array([path.acceleration(tau) for tau in (progress.tau, ahead)])[:, None, :]
+    rates = np.array(sorted((progress.rate, target)))[None, :, None]
+    curvature_term = ddq * rates * rates
+    moving = np.broadcast_to(np.abs(dq) > 1e-9, curvature_term.shape)
+    bound_a = _divided(-limits - curvature_term, dq, moving)
+    bound_b = _divided(limits - curvature_term, dq, moving)
+    low = np.max(np.minimum(bound_a, bound_b), where=moving, initial=-np.inf)
+    high = np.min(np.maximum(bound_a, bound_b), where=moving, initial=np.inf)
     chosen = min(max(wanted, low), high) if low <= high else 0.5 * (low + high)
     change = min(chosen, wanted) if speeding_up else max(chosen, wanted)
     return dataclasses.replace(progress, rate_change=change)
+
+
+def _divided(numerator: np.ndarray, denominator: np.ndarray, where: np.ndarray) -> np.ndarray:
+    """numerator / denominator where `where` holds (0 elsewhere, never divided)."""
+    return np.divide(numerator, denominator, out=np.zeros(numerator.shape), where=where)
 
 
 SEGMENT_COEFFICIENTS = 6
@@ -118,8 +118,8 @@ def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.n
     over one period is known at the update: this segment carries it to the plant steps
     until the next update (`step_samples`; exact at the updates, where ṙ changes; between
     them within the error of a quintic over one period)."""
-    q0, v0, a0 = np.split(np.asarray(start, dtype=float), 3)
-    q1, v1, a1 = np.split(np.asarray(end, dtype=float), 3)
+    q0, v0, a0 = np.reshape(start, (3, -1))
+    q1, v1, a1 = np.reshape(end, (3, -1))
     T = duration
     h = q1 - q0 - v0 * T - 0.5 * a0 * T * T
     dv = (v1 - v0 - a0 * T) * T
@@ -127,7 +127,7 @@ def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.n
     c3 = (10.0 * h - 4.0 * dv + 0.5 * da) / T**3
     c4 = (-15.0 * h + 7.0 * dv - da) / T**4
     c5 = (6.0 * h - 3.0 * dv + 0.5 * da) / T**5
-    return np.column_stack([q0, v0, 0.5 * a0, c3, c4, c5])
+    return np.stack([q0, v0, 0.5 * a0, c3, c4, c5], axis=1)
 
 
 SEGMENT_TOLERANCES = np.array([1e-6, 1e-4, 1e-2])
@@ -152,10 +152,11 @@ def step_samples(start: float, coefficients: np.ndarray, step: float, times: np.
     Each in Horner form at ((k h + t) - start), k = -1, 0, 1: at t = n h as Drake's periodic
     events compute it, the bits that a SymbolicVectorSystem gave at every plant step
     before RobotMotion sampled its segments itself."""
-    since = (np.array([-step, 0.0, step])[None, :] + np.asarray(times)[:, None]) - start
-    value = np.broadcast_to(coefficients[:, -1], (*since.shape, len(coefficients)))
+    offsets = np.array([-step, 0.0, step])[None, :]
+    since = ((offsets + np.asarray(times)[:, None]) - start)[..., None]
+    value = coefficients[:, -1]
     for c in coefficients[:, -2::-1].T:
-        value = c + since[..., None] * value
+        value = c + since * value
     return value.reshape(len(since), -1)
 
 

@@ -83,12 +83,13 @@ class PlanningModel:
         self.plant.SetPositions(self.plant_context, q)
         return self.tcp.CalcPoseInWorld(self.plant_context)
 
-    def tool_speed(self, q, v) -> float:
-        """Translational speed (m/s) of the tool centre point."""
-        self.plant.SetPositions(self.plant_context, q)
-        self.plant.SetVelocities(self.plant_context, v)
+    def tool_pose_and_speed(self, q, v) -> tuple[RigidTransform, float]:
+        """`tool_pose` and the tool centre point's translational speed (m/s), from one
+        setting of the plant's state (each setting recomputes the kinematics)."""
+        self.plant.SetPositionsAndVelocities(self.plant_context, np.concatenate([q, v]))
         velocity = self.tcp.CalcSpatialVelocityInWorld(self.plant_context)
-        return float(np.linalg.norm(velocity.translational()))
+        pose = self.tcp.CalcPoseInWorld(self.plant_context)
+        return pose, float(np.linalg.norm(velocity.translational()))
 
     def apart(self, q) -> bool:
         """Whether the robot at q is apart from the cell and from itself by more than the

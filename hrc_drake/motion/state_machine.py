@@ -20,6 +20,7 @@ The state is immutable and replaced at every update, so Drake's context copies s
 
 import dataclasses
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -59,10 +60,13 @@ from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, Workpiec
 ARRIVAL_SPEED = 0.01
 """rad/s: joint speeds below which a finished move counts as at rest."""
 STEADY_HORIZON = 0.05
-"""s an update may plan ahead while the robot holds still or moves along its path at a
-constant rate with nothing to wait for: the updates in between would change nothing but the
-status's measured tool pose and speed, so RobotMotion skips them unless an input changes
+"""s an update may plan ahead while the robot moves along its path at a constant rate with
+nothing to wait for: the updates in between would change nothing but the status's measured
+tool pose and speed, so RobotMotion skips them unless an input changes
 (`MotionStateMachine.unchanged`)."""
+HOLDING_HORIZON = math.inf
+"""Holding still with nothing to wait for, the motion is known until an input changes:
+the same at every step."""
 
 
 @dataclass(frozen=True)
@@ -189,12 +193,12 @@ class MotionStateMachine:
 
     def horizon(self, state: MotionState) -> float:
         """How long the motion after an update that left `state` is known in advance:
-        STEADY_HORIZON while holding still or moving at a constant rate short of the path's
-        end (nothing to wait for, plan or settle), else one period."""
+        HOLDING_HORIZON while holding still, STEADY_HORIZON while moving at a constant rate
+        short of the path's end (nothing to wait for, plan or settle), else one period."""
         if state.pending is not None or state.gripper_waiting:
             return self._options.period
         if state.path is None:
-            return STEADY_HORIZON
+            return HOLDING_HORIZON
         progress = state.progress
         cruising = (
             state.stop_seq is None
@@ -221,9 +225,10 @@ class MotionStateMachine:
         progress = state.progress
         if state.path is not None:
             progress = progress.at(inputs.t, state.path.duration)
+        tool_pose, tool_speed = self._model.tool_pose_and_speed(inputs.q, inputs.v)
         return state.replace(
-            tool_pose=self._model.tool_pose(inputs.q),
-            tool_speed=self._model.tool_speed(inputs.q, inputs.v),
+            tool_pose=tool_pose,
+            tool_speed=tool_speed,
             safety_scale=inputs.safety_scale,
             progress=progress,
         )
@@ -267,7 +272,9 @@ class MotionStateMachine:
         if status is None:
             return state
         held = status.held_by(ROBOT_HOLDER)
-        state = state.replace(held_object=held.id if held is not None else None)
+        held_object = held.id if held is not None else None
+        if held_object != state.held_object:
+            state = state.replace(held_object=held_object)
         if not state.gripper_waiting:
             return state
         seq = state.gripper_command.seq
