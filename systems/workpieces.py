@@ -201,11 +201,11 @@ class Workpieces(LeafSystem):
             poses.set_value(frame_id, drift.after(dt))
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
-        """The world at the context's time: the objects at rest are made once per World
-        (`StatusOfWorld`), not at every evaluation."""
+        """The world at the context's time: an object at rest is made once, not at every
+        evaluation or update (`StatusOfWorld`)."""
         world = self.world(context)
         if self._status_of.world is not world:
-            self._status_of = StatusOfWorld(self.cell, world, self.geometry_ids)
+            self._status_of = StatusOfWorld(self.cell, world, self.geometry_ids, self._status_of)
         output.set_value(self._status_of.at(context.get_time()))
 
 

@@ -203,18 +203,30 @@ class Workcell:
 
 
 class StatusOfWorld:
-    """One world's status at any time: the objects that do not move are made once, only the
-    moving ones again at each time (the status port is evaluated at many times per world,
-    mostly while one object is carried)."""
+    """One world's status at any time: only the moving objects are made again at each time
+    (the status port is evaluated at many times), and the objects at rest only when their
+    piece changed since the `before` world's (while an object is carried, the world changes
+    at every update, the others stay the same pieces)."""
 
-    def __init__(self, cell: Workcell, world: World, geometry_ids=()):
+    def __init__(self, cell: Workcell, world: World, geometry_ids=(), before=None):
         self.world = world
         self._cell, self._geometry_ids = cell, geometry_ids
-        pieces = list(world.pieces.values())
-        self._objects = [cell.object_status(p, world, world.time, geometry_ids) for p in pieces]
-        self._moving = [(k, p) for k, p in enumerate(pieces) if p.moving]
+        made = before._resting if before is not None else {}
+        self._resting = {}
+        """piece id: (the piece, its status) for every piece at rest"""
+        self._objects, self._moving = [], []
+        for k, piece in enumerate(world.pieces.values()):
+            if piece.moving:
+                self._moving.append((k, piece))
+                self._objects.append(None)
+                continue
+            known, status = made.get(piece.id, (None, None))
+            if known is not piece:
+                status = cell.object_status(piece, world, world.time, geometry_ids)
+            self._resting[piece.id] = (piece, status)
+            self._objects.append(status)
         self._results = dict(world.results)
-        used = [p.type for p in pieces]
+        used = [p.type for p in world.pieces.values()]
         self._free = {name: len(kind.slots) - used.count(name) for name, kind in cell.kinds.items()}
 
     def at(self, time: float) -> WorkpiecesStatus:
