@@ -14,8 +14,6 @@ construction. A slot without a live object is parked far below the floor, 10 m f
 next, and is not reported.
 """
 
-import dataclasses
-
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import (
@@ -41,7 +39,14 @@ from hrc_drake.workpieces.config import WorkpiecesConfig
 from hrc_drake.workpieces.messages import HandPoses
 from hrc_drake.workpieces.surfaces import Surface, cell_surfaces, named_surfaces
 from hrc_drake.workpieces.update import initial_world, next_world, still
-from hrc_drake.workpieces.world import Workcell, World, holder_frames, since
+from hrc_drake.workpieces.world import (
+    StatusOfWorld,
+    Workcell,
+    World,
+    holder_frames,
+    person_frames,
+    since,
+)
 
 PARKING_DEPTH = -1000.0
 PARKING_SPACING = 10.0
@@ -86,9 +91,10 @@ class Workpieces(LeafSystem):
         for frame_id, X_WS in zip(self.frame_ids, self._parked, strict=True):
             self._poses.set_value(frame_id, X_WS)
         self._written = [None] * len(self.frame_ids)  # the piece each slot's pose is of
+        self._person = (None, {})  # the hands input's last value and its grasp frames
         self._resting = (None, [])
-        self._still_status = (None, None)
         initial = initial_world(self.cell)
+        self._status_of = StatusOfWorld(self.cell, initial, self.geometry_ids)
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._commands = {
             issuer: self.DeclareAbstractInputPort(command_input(issuer), message_value())
@@ -148,11 +154,19 @@ class Workpieces(LeafSystem):
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
         if still(self.cell, self.world(context), commands):
             return EventStatus.DidNothing()
-        tool, hands = value_or_none(self._tool, context), value_or_none(self._hands, context)
-        frames = holder_frames(tool, hands)
+        frames = holder_frames(value_or_none(self._tool, context), self._person_frames(context))
         world = next_world(self.cell, self.world(context), context.get_time(), commands, frames)
         state.get_mutable_abstract_state(self._state).set_value(world)
         return EventStatus.Succeeded()
+
+    def _person_frames(self, context: Context) -> dict:
+        """`person_frames` of the hands input, made again only when its value is a new one:
+        the person's pose changes at their own rate (60 Hz), below the objects' (100 Hz).
+        The last value is kept, so a new one is never taken for it."""
+        hands = value_or_none(self._hands, context)
+        if hands is not self._person[0]:
+            self._person = (hands, person_frames(hands))
+        return self._person[1]
 
     def _resting_poses(self, world: World) -> tuple[FramePoseVector, list]:
         """Every slot's pose while `world` lasts, but for the moving pieces, and their drifts.
@@ -187,16 +201,12 @@ class Workpieces(LeafSystem):
             poses.set_value(frame_id, drift.after(dt))
 
     def _calc_status(self, context: Context, output: AbstractValue) -> None:
-        """The world at the context's time. While no piece moves (the usual case: they rest,
-        or are held by a holder at rest) the objects are the same at every time, so they are
-        made once per World, not at every evaluation."""
-        world, time = self.world(context), context.get_time()
-        if self._still_status[0] is world:
-            output.set_value(dataclasses.replace(self._still_status[1], time=time))
-            return
-        status = self.cell.status(world, time, self.geometry_ids)
-        self._still_status = (world if world.none_moving else None, status)
-        output.set_value(status)
+        """The world at the context's time: an object at rest is made once, not at every
+        evaluation or update (`StatusOfWorld`)."""
+        world = self.world(context)
+        if self._status_of.world is not world:
+            self._status_of = StatusOfWorld(self.cell, world, self.geometry_ids, self._status_of)
+        output.set_value(self._status_of.at(context.get_time()))
 
 
 def add_workpieces(

@@ -76,10 +76,19 @@ class Judge:
         if status.scale < 1.0 or status.contact or status.sensing is not None:
             return config.period
         room = status.separation - config.hysteresis
-        for period, model in self.slower_models:
-            if max_safe_scale(room, 0.0, model) >= 1.0:
+        for (period, model), least in zip(self.slower_models, self._full_speed_rooms, strict=True):
+            if room > least + ROOM_TOLERANCE:
+                return period
+            if room >= least - ROOM_TOLERANCE and max_safe_scale(room, 0.0, model) >= 1.0:
                 return period
         return config.period
+
+    @functools.cached_property
+    def _full_speed_rooms(self) -> tuple[float, ...]:
+        """For each of `slower_models`, about the least room at which it keeps full speed:
+        `next_period` compares with it and asks `max_safe_scale` only within
+        ROOM_TOLERANCE of it (at every update of a far person it was most of the cost)."""
+        return tuple(_least_full_speed_room(model) for _, model in self.slower_models)
 
     def far(self, status: SafetyStatus) -> bool:
         """Whether the monitor may measure less often than every `period` after `status`."""
@@ -107,12 +116,17 @@ class Judge:
             terms = protective_separation(self.model, path_rate, reading.robot_speed, v_r, v_h)
         if sensing is None:
             safe = max_safe_scale(separation, v_h, self.model)
-            safe_with_margin = max_safe_scale(separation - config.hysteresis, v_h, self.model)
             sensed_protective = math.nan
         else:
             safe = self._sensed_scale(sensing, 0.0)
-            safe_with_margin = self._sensed_scale(sensing, config.hysteresis)
             sensed_protective = self._sensed_protective(sensing, path_rate, reading.robot_speed)
+        safe_with_margin = safe  # all `next_scale` needs when the scale drops to `safe`
+        if safe >= before.scale:
+            safe_with_margin = (
+                max_safe_scale(separation - config.hysteresis, v_h, self.model)
+                if sensing is None
+                else self._sensed_scale(sensing, config.hysteresis)
+            )
         scale = next_scale(before.scale, safe, safe_with_margin, config.min_scale)
         scale = scale if config.ssm else 1.0
         robot_mass = self.robot_mass + payload
@@ -174,6 +188,23 @@ class Judge:
         nearest = min(seen, key=lambda view: view.separation)
         model = self.sensed[nearest.name]
         return protective_separation(model, path_rate, robot_speed, robot_speed, 0.0).total
+
+
+ROOM_TOLERANCE = 1e-9
+"""m either side of `_least_full_speed_room` where `next_period` asks the exact test."""
+
+
+def _least_full_speed_room(model: SsmModel) -> float:
+    """The separation above which `max_safe_scale` (for a person at rest) is 1, by
+    bisection: the scale grows with the separation far beyond ISO 13855's near distance,
+    where full speed becomes safe."""
+    low, high = 0.0, 1.0
+    while max_safe_scale(high, 0.0, model) < 1.0:
+        low, high = high, 2.0 * high
+    while high - low > ROOM_TOLERANCE / 4:
+        middle = (low + high) / 2
+        low, high = (low, middle) if max_safe_scale(middle, 0.0, model) >= 1.0 else (middle, high)
+    return high
 
 
 def updated_totals(before: SafetyStatus, now: SafetyStatus, moving_speed: float) -> SafetyTotals:

@@ -200,8 +200,8 @@ class ProximityMeter:
         """World poses (frames × 3 × 4) of `frames`; NaN for the others (SceneGraph's pose
         lookups are most of the meter's cost)."""
         poses = np.full((len(self.frames), 3, 4), np.nan)
-        for f in frames:
-            poses[f] = query_object.GetPoseInWorld(self.frames[f]).GetAsMatrix34()
+        ids = self.frames
+        poses[frames] = [query_object.GetPoseInWorld(ids[f]).GetAsMatrix34() for f in frames]
         return poses
 
     def _current_poses(self, query_object, memory, person_time: float, active: ActiveParts):
@@ -283,7 +283,7 @@ class ProximityMeter:
         human_is_a = result.id_A == self.geometries[i]
         p_H, p_R = (result.p_ACa, result.p_BCb) if human_is_a else (result.p_BCb, result.p_ACa)
         towards_human = result.nhat_BA_W if human_is_a else -result.nhat_BA_W
-        v_h, v_r = self._point_velocities([i, k], [p_H, p_R], rates)
+        (v_h, v_r), (p_WH, _) = self._world_points([i, k], [p_H, p_R], rates, poses)
         return PairReading(
             region=self.human[i].name,
             part=self.robot[k - self.n_human].name,
@@ -293,7 +293,7 @@ class ProximityMeter:
             human_part=i,
             robot_part=k - self.n_human,
             normal=np.asarray(towards_human, dtype=float),
-            human_point=self._world_points([i], [p_H], poses)[0],
+            human_point=p_WH,
         )
 
     def pinned(self, query_object, contact: PairReading, active: ActiveParts) -> bool:
@@ -312,17 +312,13 @@ class ProximityMeter:
                 return True
         return False
 
-    def _point_velocities(self, parts: list, points_G: list, rates: np.ndarray) -> np.ndarray:
-        """World velocities (parts × 3) of points fixed in the parts' geometry frames."""
-        return self._world_points(parts, points_G, rates)
-
-    def _world_points(self, parts: list, points_G: list, poses: np.ndarray) -> np.ndarray:
-        """`poses` (or their rates) applied to points fixed in the parts' geometry frames:
-        world positions (or velocities), parts × 3."""
+    def _world_points(self, parts: list, points_G: list, *poses: np.ndarray) -> np.ndarray:
+        """Each of `poses` (or their rates) applied to points fixed in the parts' geometry
+        frames: world positions (or velocities), len(poses) × parts × 3."""
         X_FG = self.X_FG[parts]
         p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
-        pose = poses[self.part_frame[parts]]
-        return (pose[:, :, :3] @ p_F + pose[:, :, 3:])[:, :, 0]
+        pose = np.stack(poses)[:, self.part_frame[parts]]
+        return (pose[..., :3] @ p_F + pose[..., 3:])[..., 0]
 
 
 def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:

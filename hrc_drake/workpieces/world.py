@@ -8,8 +8,8 @@ last grasp-frame samples, each issuer's last command and results) and is immutab
 Drake keeps it as abstract state without copying; between updates every piece moves on with
 the velocity planned for it (`Piece.drift`, `since`), so outputs are smooth without reading
 inputs (no direct feedthrough). How an update changes the world: hrc_drake.workpieces.update.
-`holder_frames` turns the robot's tool pose and the person's hands into the grasp frames
-the holders carry by.
+`holder_frames` and `person_frames` turn the robot's tool pose and the person's hands into
+the grasp frames the holders carry by.
 """
 
 from dataclasses import dataclass
@@ -141,11 +141,6 @@ class World:
             for piece in self.pieces.values()
         )
 
-    @cached_property
-    def none_moving(self) -> bool:
-        """Whether no object has a planned velocity (held ones move only with their holder)."""
-        return not any(piece.moving for piece in self.pieces.values())
-
 
 def since(world: World, time: float) -> float:
     """How long the world's objects have moved on from their poses at `time` (never back)."""
@@ -189,25 +184,58 @@ class Workcell:
 
     def status(self, world: World, time: float, geometry_ids=()) -> WorkpiecesStatus:
         """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
-        objects = tuple(
-            ObjectStatus(
-                id=p.id,
-                type=p.type,
-                pose=self.pose_at(p, world, time),
-                velocity=p.velocity,
-                holder=p.holder,
-                support=p.support,
-                attributes=p.attributes,
-                mass=self.kinds[p.type].mass,
-                geometry_id=geometry_ids[p.slot] if geometry_ids else None,
-                size=p.solid.size,
-                shape=p.solid.shape,
-            )
-            for p in world.pieces.values()
+        return StatusOfWorld(self, world, geometry_ids).at(time)
+
+    def object_status(self, piece: Piece, world: World, time: float, geometry_ids) -> ObjectStatus:
+        return ObjectStatus(
+            id=piece.id,
+            type=piece.type,
+            pose=self.pose_at(piece, world, time),
+            velocity=piece.velocity,
+            holder=piece.holder,
+            support=piece.support,
+            attributes=piece.attributes,
+            mass=self.kinds[piece.type].mass,
+            geometry_id=geometry_ids[piece.slot] if geometry_ids else None,
+            size=piece.solid.size,
+            shape=piece.solid.shape,
         )
+
+
+class StatusOfWorld:
+    """One world's status at any time: only the moving objects are made again at each time
+    (the status port is evaluated at many times), and the objects at rest only when their
+    piece changed since the `before` world's (while an object is carried, the world changes
+    at every update, the others stay the same pieces)."""
+
+    def __init__(self, cell: Workcell, world: World, geometry_ids=(), before=None):
+        self.world = world
+        self._cell, self._geometry_ids = cell, geometry_ids
+        made = before._resting if before is not None else {}
+        self._resting = {}
+        """piece id: (the piece, its status) for every piece at rest"""
+        self._objects, self._moving = [], []
+        for k, piece in enumerate(world.pieces.values()):
+            if piece.moving:
+                self._moving.append((k, piece))
+                self._objects.append(None)
+                continue
+            known, status = made.get(piece.id, (None, None))
+            if known is not piece:
+                status = cell.object_status(piece, world, world.time, geometry_ids)
+            self._resting[piece.id] = (piece, status)
+            self._objects.append(status)
+        self._results = dict(world.results)
         used = [p.type for p in world.pieces.values()]
-        free = {name: len(kind.slots) - used.count(name) for name, kind in self.kinds.items()}
-        return WorkpiecesStatus(time, objects, dict(world.results), free)
+        self._free = {name: len(kind.slots) - used.count(name) for name, kind in cell.kinds.items()}
+
+    def at(self, time: float) -> WorkpiecesStatus:
+        objects = self._objects
+        if self._moving:
+            objects = list(objects)
+            for k, piece in self._moving:
+                objects[k] = self._cell.object_status(piece, self.world, time, self._geometry_ids)
+        return WorkpiecesStatus(time, tuple(objects), self._results, self._free)
 
 
 def _kinds(config: WorkpiecesConfig) -> dict[str, Kind]:
@@ -219,23 +247,25 @@ def _kinds(config: WorkpiecesConfig) -> dict[str, Kind]:
     return kinds
 
 
-def holder_frames(
-    tool: RigidTransform | None, hands: HandPoses | tuple | None
-) -> dict[str, Sampled]:
-    """Grasp frame of every present holder. The person's frames are level (objects in the
-    hands stay upright): one hand's at its grasp point facing the person's heading, both
-    hands' at their midpoint, facing away from the body (x), y from the right hand to the
-    left, z up. `hands` is empty or None while the person has none. The poses are copied:
-    an input port's value may be overwritten in place when it is evaluated again."""
+def holder_frames(tool: RigidTransform | None, person: dict[str, Sampled]) -> dict[str, Sampled]:
+    """Grasp frame of every present holder: the robot's tool pose, copied (an input port's
+    value may be overwritten in place when it is evaluated again), and the person's
+    (`person_frames`)."""
     frames = {} if tool is None else {ROBOT_HOLDER: (RigidTransform(tool), None)}
-    if hands:
-        facing = RotationMatrix.MakeZRotation(hands.heading)
-        left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
-        both = _between(left, right)
-        frames |= {
-            h: (X, hands.time) for h, X in zip(PERSON_HOLDERS, (left, right, both), strict=True)
-        }
-    return frames
+    return frames | person
+
+
+def person_frames(hands: HandPoses | tuple | None) -> dict[str, Sampled]:
+    """The person's grasp frames, level (objects in the hands stay upright): one hand's at
+    its grasp point facing the person's heading, both hands' at their midpoint, facing away
+    from the body (x), y from the right hand to the left, z up; none while `hands` is
+    empty or None (the person has none)."""
+    if not hands:
+        return {}
+    facing = RotationMatrix.MakeZRotation(hands.heading)
+    left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
+    both = _between(left, right)
+    return {h: (X, hands.time) for h, X in zip(PERSON_HOLDERS, (left, right, both), strict=True)}
 
 
 def _between(left: RigidTransform, right: RigidTransform) -> RigidTransform:

@@ -3,7 +3,11 @@ its answer: wherever it lets a longer period pass (`Judge.next_period`: `far_per
 multiple of its period below it), a person coming at ISO 13855's walking speed (1.6 m/s: the
 monitor goes slow only well beyond ISO 13855's 0.5 m, where that speed applies) and the
 robot's fastest point coming at full speed for that whole period still leave a separation
-at which the monitor, measuring at its own period, keeps full speed."""
+at which the monitor, measuring at its own period, keeps full speed; and in the loop, a person
+walking in at that speed meets a robot that moves exactly as it would under a monitor
+measuring every period."""
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -13,6 +17,7 @@ from hrc_drake.safety.judge import Judge
 from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.safety.ssm import SsmModel, max_safe_scale
 from hrc_drake.safety.stopping import StopModel
+from tests.safety.walk_in import Case, simulate
 
 STOP = StopModel(speeds=(0.0, 0.33, 0.66, 1.0), times=(0.01, 0.2, 0.4, 0.6), distance_factor=0.5)
 LATENCY = 0.01
@@ -71,3 +76,18 @@ def test_near_or_slowed_or_touching_measures_every_period():
 def test_far_period_at_or_below_the_period_never_goes_slow():
     j = judge(SafetyConfig(far_period=0.0))
     assert far_separations(j).size == 0
+
+
+def test_the_robot_walked_in_on_moves_as_if_every_period_were_measured():
+    """Closed loop (tests/safety/walk_in.py): the person walks in from 3 m at 1.6 m/s and
+    reaches in at 2.0 m/s while the arm sweeps at full speed, once with the monitor at its
+    far rate and once measuring every period. The robot's joints are the same at every
+    period: no measurement left out would have slowed it, so none of the violations a
+    monitor measuring every period would find was missed (and that one finds none)."""
+    walk_in = Case("lbr_iisy3_r760", 90.0, 3.0, 0.5)
+    far = simulate(walk_in)
+    every = simulate(dataclasses.replace(walk_in, far_period=0.0))
+    assert len(far.times) < 0.8 * len(every.times)  # it measured less often while far
+    np.testing.assert_array_equal(far.robot_every_period, every.robot_every_period)
+    assert every.status.totals.violations == 0 == far.status.totals.violations
+    assert every.status.totals.stopped_time > 0.5  # the person came near enough to stop it

@@ -116,6 +116,8 @@ class Case:
     sensor: str = ""
     """"": the monitor knows the body; SEEN or OCCLUDED: it sees the person through
     SCANNER, CURTAIN through LIGHT_CURTAIN"""
+    far_period: float = SafetyConfig.far_period
+    """the monitor's `far_period` (0: it measures every period)"""
 
     @property
     def id(self) -> str:
@@ -124,7 +126,8 @@ class Case:
         where = f"{self.start:.1f}-{self.stand:.2f}m"
         held = "" if self.hold == HOLD else f"-hold{self.hold:.1f}s"
         scanned = f"-{self.sensor}" if self.sensor else ""
-        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}{scanned}"
+        far = "" if self.far_period == SafetyConfig.far_period else f"-far{self.far_period:g}s"
+        return f"{name}-{self.bearing:.0f}deg-{where}-{self.delay:.1f}s{held}-{ssm}{scanned}{far}"
 
     @property
     def person(self) -> PiecewisePolynomial:
@@ -141,6 +144,8 @@ class Outcome:
     """SIGNALS × times"""
     robot_q: np.ndarray
     """joint positions × times (the plant's)"""
+    robot_every_period: np.ndarray
+    """joint positions at every monitor period, measured or not (the plant's)"""
     person_q: np.ndarray
     """the person's plant positions × times"""
     config: SafetyConfig
@@ -253,7 +258,9 @@ def duration(case: Case) -> float:
 def build(case: Case):
     scene = scenario(case.variant, case.sensor == OCCLUDED)
     sensors = sensors_of(case.sensor)
-    config = SafetyConfig(ssm=case.ssm, robot_speed=ROBOT_SPEED, sensors=sensors)
+    config = SafetyConfig(
+        ssm=case.ssm, robot_speed=ROBOT_SPEED, sensors=sensors, far_period=case.far_period
+    )
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(scene.plant, builder)
     arm, _ = add_station_models(plant, model_parser(plant), scene.station)
@@ -360,6 +367,7 @@ def simulate(case: Case) -> Outcome:
         times=times,
         signals=signals,
         robot_q=robot,
+        robot_every_period=robot_log.data()[:6],
         person_q=np.column_stack([path.value(t).ravel() for t in times]),
         config=config,
         part_names=monitor.part_names,
