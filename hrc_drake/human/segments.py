@@ -54,12 +54,15 @@ class ClipSegment:
         return min(max(clip_time, 0.0), self._played(performer))
 
     def putting_down(self, performer: Performer, t: float) -> CarryArms | None:
-        """The carry of what an aimed put-down holds at t (None: it holds nothing to put
-        down, or has let go)."""
+        """The carry of what an aimed put-down holds at t on its way from the carry posture
+        to above its place (None: it holds nothing to put down, or is lowering it onto its
+        place, where it meets what it is put on)."""
         events = performer.clips[self.clip].events
         if self.aim is None or self.carry is None or "release" not in events:
             return None
-        return self.carry if self.clip_time(performer, t) < events["release"] else None
+        _, way_end = self.aim.paths[0]  # a put-down's first path is its way (held_ways)
+        on_its_way = self.clip_time(performer, t) <= self.aim.times[way_end]
+        return self.carry if on_its_way else None
 
     def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
         """The sides whose hands must stay where they are at t: aimed at their targets or
