@@ -4,6 +4,10 @@ on its faces all the way, in the chest's frame so that the arms follow the trunk
 object rises over whatever stands beside its way before it crosses (`crossing_height`).
 Each way is keys of the clip (hrc_drake.human.hand_ways.Keys) that
 hrc_drake.human.targeting lays out round the clip's event.
+
+Longer than 400 lines: the way's route (`_Route`, its phases) and the room it has (the
+crossing level under and over what stands about it) are both read by the pick's and the
+put-down's ways and by nothing else; split off, each would import the other's privates.
 """
 
 from dataclasses import dataclass
@@ -69,8 +73,9 @@ keep a carton over the crate it was lifted off: 2.7 cm low); the pelvis and legs
 the clip has them."""
 REACH_TOLERANCE = 0.005
 """m: a holding hand further than this from its target on the way is short of it."""
-MOVE_SHARE = 0.1
-"""Share of a way at least given to each of its parts within a crossing level."""
+FIRST_SHARE, MOVE_SHARE = 0.25, 0.1
+"""Shares of a way within a crossing level at least given to moving to the level and to
+moving from it to the end."""
 LIFT, LIFTING = 0.01, 0.15
 """m, share of the way: an object held on its way keeps this far above where it was taken
 (or is put) once it is this share of the way from there."""
@@ -250,19 +255,23 @@ class _Route:
 
     @cached_property
     def phases(self) -> _Phases:
-        """The parts of the way within its level, each as long as the palms go in it (each
-        at least MOVE_SHARE of the way): a tote carried 0.47 m
-        into a shelf under a board 4.5 cm below its carry height crossed in the middle half of
-        the way at up to 3 m/s."""
+        """The parts of the way within its level: moving to it takes its share of how far
+        the palms go, or a quarter of the way if that is more (a tenth: material lifted off
+        a shelf's board reached its level too soon and went 3.4 cm into the board,
+        coexistence seeds 4, 8 and 9); crossing and moving to the end share the rest as the
+        palms go in them, the last at least MOVE_SHARE (in fixed quarters a tote carried
+        0.47 m into a shelf crossed at up to 3 m/s and a forearm went 2.9 cm into the board
+        above)."""
         start, end = (_midpoint(e) for e in self.ends)
         low, high = self.level
         into, out_of = (np.array([*p[:2], min(max(p[2], low), high)]) for p in (start, end))
         lengths = np.array(
             [abs(into[2] - start[2]), np.linalg.norm(out_of - into), abs(end[2] - out_of[2])]
         )
-        shares = np.maximum(lengths / max(lengths.sum(), 1e-9), MOVE_SHARE)
-        shares /= shares.sum()
-        return _Phases(float(shares[0]), float(shares[0] + shares[1]))
+        shares = lengths / max(lengths.sum(), 1e-9)
+        across = max(float(shares[0]), FIRST_SHARE)
+        crossing = (1.0 - across) * float(shares[1] / max(shares[1] + shares[2], 1e-9))
+        return _Phases(across, min(across + crossing, 1.0 - MOVE_SHARE))
 
     def fractions(self) -> np.ndarray:
         return np.linspace(0.0, 1.0, len(self.times))

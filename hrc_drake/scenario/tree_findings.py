@@ -5,6 +5,10 @@ animation against the person's clips, every place the person walks to for room t
 every place the person puts down or reaches to against where they stand then
 (hrc_drake.scenario.reach_from_stand), every named configuration, object type and area
 against the scenario.
+
+Longer than 400 lines: every check reads the same scenario, scene, planner and person,
+built once per validate (`_Checks`); the picks and put-downs planned from where the person
+stands share its object lookups.
 """
 
 import math
