@@ -255,6 +255,11 @@ class CarryArms:
     size: tuple[float, float, float]
     """The held object's extents along the person's forward, sideways and up directions."""
 
+    @property
+    def hold(self) -> Hold:
+        """What the hands hold, as a put-down is told it."""
+        return Hold(BOTH_HANDS if len(self.hands) == 2 else ONE_HAND, self.size)
+
     def over(self, q: np.ndarray, weight: float = 1.0) -> np.ndarray:
         """`q` with its arms moved `weight` of the way to the carry posture."""
         if weight <= 0.0:
@@ -276,10 +281,12 @@ def held_corners(body: HumanBody, carry: CarryArms, q: np.ndarray) -> np.ndarray
     else:
         yaw = q[body.index("base_yaw")]
     R = RotationMatrix.MakeZRotation(yaw).matrix()
-    hands_word = BOTH_HANDS if len(hands) == 2 else ONE_HAND
-    center = np.mean(hands, axis=0) + R @ object_center_in_holder(Hold(hands_word, carry.size))
-    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    return center + (signs * np.asarray(carry.size) / 2) @ R.T
+    center = np.mean(hands, axis=0) + R @ object_center_in_holder(carry.hold)
+    return center + (BOX_CORNERS * np.asarray(carry.size) / 2) @ R.T
+
+
+BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+"""A box's corners, in units of its half extents."""
 
 
 def carry_arms(body: HumanBody, hold: Hold) -> CarryArms:

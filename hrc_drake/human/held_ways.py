@@ -35,7 +35,6 @@ from hrc_drake.human.grasp import (
 from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys, below_the_top
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.legs import legs_of
-from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Hold
 
 CARRY_SAMPLES = 8
 """Points of the way between the grasp and the carry posture at which the palms are put on
@@ -233,7 +232,7 @@ class _Route:
         off = s if self._low_first else 1.0 - s
         return min(a, b) + LIFT * minimum_jerk(off / LIFTING)
 
-    @property
+    @cached_property
     def _low_first(self) -> bool:
         a, b = (_midpoint(end)[2] for end in self.ends)
         return a <= b
@@ -331,20 +330,15 @@ def _held_way(route: _Route, arms: np.ndarray, turning: bool):
             spine = np.concatenate([arms, _spine(route.body)])
             solved = route.body.solve(q, tasks, spine, iterations=60, posture_weight=1e-4)
         offsets.append(solved - route.placed_pose(route.clip.sample(t)))
-        slipped = max(slipped, _spacing_error(route.body, solved, targets))
-        held = np.mean(_hands_at(route.body, tuple(targets), solved), axis=0)
-        missed = max(missed, float(np.linalg.norm(held - _midpoint(targets))))
+        hands = _hands_at(route.body, tuple(targets), solved)
+        aimed = [p for p, _ in targets.values()]
+        slipped = max(slipped, abs(_spacing(hands) - _spacing(aimed)))
+        missed = max(missed, float(np.linalg.norm(np.mean(hands, axis=0) - _midpoint(targets))))
     return offsets, slipped, missed
 
 
 def _spine(body) -> np.ndarray:
     return np.array([body.index(name) for name in SPINE])
-
-
-def _spacing_error(body, q: np.ndarray, targets: dict) -> float:
-    """How far the holding palms' spacing at q is from their targets' (0: one hand)."""
-    aimed = [p for p, _ in targets.values()]
-    return abs(_spacing(_hands_at(body, tuple(targets), q)) - _spacing(aimed))
 
 
 def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
@@ -371,9 +365,9 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
 def crossing_level(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
     """The heights (low, high) between which the holding palms' midpoint crosses from `a`
     to `b`: over what stands beside its way (`crossing_height`) and CLEARANCE / 2 under
-    what stands over its lower end where the straight way would meet it (a tote carried at
-    the height of the board above the shelf compartment it is put into went through the
-    board's edge: it comes down first, then in). None: neither is in the way."""
+    what stands over its lower end (`_under`: a tote carried at the height of the board
+    above the shelf compartment it is put into went through the board's edge; it comes down
+    first, then in). None: neither is in the way."""
     over = crossing_height(body, furniture, carry, a, b, heading)
     under = _under(body, furniture, carry, a, b, heading)
     if over is None and under is None:
@@ -415,7 +409,7 @@ def _held_outline(body, carry: CarryArms, heading: float):
     """The held object with the hands at its sides, round the palms' midpoint: the corners
     of its outline on the floor (offsets), and how far it reaches below and above."""
     depth, width, height = carry.size
-    ahead, aside, below = object_center_in_holder(Hold(_hands_of(carry), carry.size))
+    ahead, aside, below = object_center_in_holder(carry.hold)
     R = facing(heading, "sides_fingers_forward")
     hand = max(hand_extent(body, R, outward(side, R), side) for side in carry.hands)
     lowest = max(-below + height / 2, *(hand_below(body, R, side) for side in carry.hands))
@@ -460,10 +454,6 @@ def _level(body, carry: CarryArms, a: np.ndarray, b: np.ndarray, around):
     furniture, heading = around
     middle = [_palms_midpoint(body, carry, q) for q in (a, b)]
     return crossing_level(body, furniture, carry, *middle, heading)
-
-
-def _hands_of(carry: CarryArms) -> str:
-    return BOTH_HANDS if len(carry.hands) == 2 else ONE_HAND
 
 
 def _in_chest(body: HumanBody, q: np.ndarray, sides) -> dict:

@@ -77,8 +77,8 @@ def reach_findings(
             port = "target"
             targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
             if isinstance(node, ActorPlace) and placing is not None:
-                at_pick = partial(_stands_before, parents=parents, known=known, resolve=resolve)
-                targets = _placings(node, parents, targets, placing, partial(at_pick, start=start))
+                stands_at = partial(_stands_before, parents, known, resolve, start)
+                targets = _placings(node, parents, targets, placing, stands_at)
         elif isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
             targets = taken(node)
@@ -121,7 +121,7 @@ def _placings(place, parents, targets, placing: Placing, stands_at) -> list:
     return [(v, p, None if p is None else placing(pick, p, at_pick)) for v, p, _ in targets]
 
 
-def _stands_before(node, parents, known, resolve, start) -> list:
+def _stands_before(parents, known, resolve, start, node) -> list:
     """Where the person may stand when `node` starts ([] when not known)."""
     stand = _last_before(node, parents, ActorMovement)
     return [] if stand is UNKNOWN else _stand_points(stand, known, resolve, start)

@@ -161,12 +161,16 @@ class _Checks:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
         forward, sideways and up)."""
         _, _, yaw = self._standing_at(agent, stand, obj.pose.translation())
+        hold = hold_of(self._grasp(obj, hands), yaw)
+        return Hold(hold.hands, tuple(round(v, 6) for v in hold.size))
+
+    def _grasp(self, obj, hands: str) -> Grasp:
+        """How `hands` (the pick's port; auto: by the object) take `obj` where it lies."""
         kind = self.scenario.workpieces.types[obj.type]
         center, heading, size = box_at(obj.pose, kind.shape, kind.size)
         if hands == "auto":
             hands = grasp_hands(size, kind.mass, kind.attributes)
-        hold = hold_of(Grasp(hands, center, heading, size), yaw)
-        return Hold(hold.hands, tuple(round(v, 6) for v in hold.size))
+        return Grasp(hands, center, heading, size)
 
     def _place_problem(
         self, kind: str, hands: str, target, agent, stand: Known | None, held: Hold | None = None
@@ -220,13 +224,9 @@ class _Checks:
         the object; None: their start) cannot take `obj` there with `hands` (the pick's
         port), as the run would plan the pick; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
-        kind = self.scenario.workpieces.types[obj.type]
-        center, heading, size = box_at(obj.pose, kind.shape, kind.size)
-        if hands == "auto":
-            hands = grasp_hands(size, kind.mass, kind.attributes)
-        clip = "pick_table" if center[2] >= TABLE_HEIGHT else "pick_floor"
-        grasp = Grasp(hands, center, heading, size)
-        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(center, obj))
+        grasp = self._grasp(obj, hands)
+        clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
+        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, obj))
         return self._planned_problem(command, (x, y, yaw))
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
