@@ -68,15 +68,18 @@ HELD = (3.0, 3.0, 3.0)
 
 def push_out(body: HumanBody, q: np.ndarray, side: str, check: ArmCheck, keep_hand: bool):
     """q with the `side` arm moved so that its deepest point is MARGIN clear of what it went
-    into the way `check` says (with `keep_hand` the hand's grasp frame kept where it is but
-    along that way, the world axis nearest it: a palm on a box's side may slide up off the
-    board under it, never sideways into the box)."""
+    into the way `check` says (with `keep_hand` the hand's grasp frame kept where it is, but
+    for rising when the way out is up: a palm on a box's side may slide up off the board
+    under it, never sideways into the box or down into what the box is lowered onto; freed
+    along a forearm's way down off a board above, the hands holding a tote rose 2.3 cm and
+    it went 5 cm into the board, freed along the way back, they drew it 7 cm out of its
+    place)."""
     target = check.at + (check.depth + MARGIN) * check.out
     tasks = [FrameTask(check.frame, target, point=tuple(check.point))]
     if keep_hand:
         X = body.frame_pose(f"{side}_hand_grasp", q)
-        along = np.abs(check.out) == np.abs(check.out).max()
-        weights = tuple(np.where(along, 0.0, HELD))
+        rising = int(np.argmax(np.abs(check.out))) == 2 and check.out[2] > 0
+        weights = (*HELD[:2], 0.0) if rising else HELD
         tasks.append(
             FrameTask(f"{side}_hand_grasp", X.translation(), X.rotation(), weights, (1.0,) * 3)
         )

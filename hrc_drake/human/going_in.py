@@ -10,12 +10,15 @@ where (the run's summary says so), and `hrc-drake validate` finds it before a ru
 (hrc_drake.scenario.tree_findings plans the picks it can know of)."""
 
 import numpy as np
+from pydrake.math import RotationMatrix
 
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.arm_shapes import HEAD, Prisms, corners_in_world, parts_shapes
 from hrc_drake.human.clearance import NEAR, SAMPLE
-from hrc_drake.human.grasp import held_corners
+from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.grasp import BOX_CORNERS, held_corners
+from hrc_drake.human.messages import Hold
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.skeleton import SIDES
 
@@ -93,6 +96,22 @@ def _held_going_in(performer: Performer, activity: Activity, prisms, times) -> s
         f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
         f"{t - times[0]:.1f} s in: no way to put it down from where the person stands"
     )
+
+
+def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) -> str:
+    """What an object held as `hold` and put down with its centre at `center`, facing the
+    person's `heading`, would be in deeper than DEPTH_LIMIT, and how deep ("" when
+    nothing): a tote put onto a stack that reaches the board above went 2.7 cm into the
+    board (a cell of our own: a fourth tote onto three)."""
+    if not furniture.pieces:
+        return ""
+    R = RotationMatrix.MakeZRotation(heading).matrix()
+    corners = np.asarray(center) + (BOX_CORNERS * np.asarray(hold.size) / 2) @ R.T
+    into = Prisms.of(furniture).shape_depths(corners[None], HELD_RADII, HELD_SHAPE)[0, :, 0]
+    if into.max() <= DEPTH_LIMIT:
+        return ""
+    where = furniture.pieces[int(np.argmax(into))].name
+    return f"what the hands hold would be {100 * into.max():.1f} cm into '{where}' where it is put"
 
 
 def _named(part: str) -> str:

@@ -258,15 +258,18 @@ class Keys:
             self.add(t, key)
         self.paths.append((first, len(self.times) - 1))
 
-    def straight(self, time: float, start: dict, end: dict, fallback: np.ndarray) -> None:
+    def straight(self, time: float, start: dict, end: dict, fallback: np.ndarray, landed=None):
         """Keys from the last one to `time` that take the hands straight from `start` to
         `end` (side: position, orientation), eased, as one movement; where they cannot get
-        to the end, `fallback` there. Letting go of a box, the clip's own arms and trunk
-        swung a palm back into it on its way out (coexistence seed 9 at 66.2 s, 1.2 cm)."""
+        to the end, `fallback` there; `landed`: the offset at the end, its hands already put
+        on it. Letting go of a box, the clip's own arms and trunk swung a palm back into it
+        on its way out (coexistence seed 9 at 66.2 s, 1.2 cm)."""
         first = len(self.times) - 1
         for t, s in self._eased_to(time):
             targets = {side: (p + s * (end[side][0] - p), R) for side, (p, R) in start.items()}
-            offset = self._solved(t, targets, self.offsets[-1], HAND_TOLERANCE)
+            offset = landed if t == time else None
+            if offset is None:
+                offset = self._solved(t, targets, self.offsets[-1], HAND_TOLERANCE)
             if offset is not None:
                 self.add(t, offset)
             elif t == time:

@@ -18,7 +18,7 @@ import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 from shapely.geometry import MultiPoint
 
-from hrc_drake.human.aiming import Unreachable
+from hrc_drake.human.aiming import Unreachable, offset_to
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
@@ -528,13 +528,15 @@ class _Still:
         return self.pose
 
 
-def put_down(
-    body, clip, placed_pose, hands, carry, near_offset, on_target, marks, opened, edge, around
-):
+def put_down(body, clip, placed_pose, hands, carry, near, on_target, marks, opened, edge, around):
     """Offsets of a clip that starts in the carry posture and puts the object down over
-    what stands on its way (`around`: the furniture and the person's heading): the hands
-    open to `opened` and, over a surface, leave it over its `edge`."""
+    what stands on its way (`around`: the furniture and the person's heading), lowered
+    straight from `near` onto its place: the hands open to `opened` and, over a surface,
+    leave it over its `edge`. Lowered by the clip's own motion under offsets eased from
+    `near` to the place, a part put into a bin went 4.6 cm below its place and came back
+    up to it (cooperation seed 0 at 133.2 s: 4.9 cm into the part it was put on)."""
     approach_time, event, hold_end = marks
+    near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
     sides = tuple(hands)
     start_pose = placed_pose(clip.sample(0.0))
     held = carry.over(start_pose)
@@ -550,7 +552,7 @@ def put_down(
     way[0], way[-1] = held - start_pose, near_offset
     keys = Keys(body, clip, placed_pose)
     _add_way(keys, times, way)
-    keys.add(event, on_target)
+    keys.straight(event, near, hands, on_target, landed=on_target)
     keys.add(hold_end, on_target)
     release_end = hold_end + 0.3 * (clip.duration - hold_end)
     keys.straight(release_end, hands, opened, on_target)

@@ -12,6 +12,7 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.furniture import Furniture
+from hrc_drake.human.going_in import placed_going_in
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -162,6 +163,9 @@ def _aimed_hands(
         center = room_for_the_palms(
             performer.body, furniture, command.hold, command.target, pose[2]
         )
+        problem = placed_going_in(furniture, command.hold, center, pose[2])
+        if problem:
+            raise Unreachable(problem)
         return release_targets(command.hold, center, pose[2]), False
     target = np.asarray(command.target, dtype=float)
     if clip.name == "reach":

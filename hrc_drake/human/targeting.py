@@ -149,7 +149,6 @@ def aim_clip(
     near = approached(
         hands, heading, reaching, not putting_down, None if putting_down else above, room, roof
     )
-    near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
     marks = (approach_time, event, hold_end)
     if putting_down:
         opened = approached(hands, heading, False, above=above, room=room)
@@ -159,13 +158,14 @@ def aim_clip(
             placed_pose,
             hands,
             carry,
-            near_offset,
+            near,
             on_target,
             marks,
             opened,
             over_the_edge(body, furniture, hands, opened, base, heading),
             (furniture, heading),
         )
+    near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
     edge = over_the_edge(body, furniture, hands, near, base, heading)
     keys = Keys(body, clip, placed_pose)
     keys.add(0.0, np.zeros_like(on_target))

@@ -48,6 +48,14 @@ A_SHELF_FRONT = (
 )
 """Where the person stands facing the shelf, 0.35 m from it."""
 
+A_TOTE_ON_THE_TABLE = (
+    "safety:\n",
+    "    tote: {shape: box, size: [0.3, 0.4, 0.15], mass: 1.5, capacity: 4}\n"
+    f"{OBJECTS}    - {{type: tote, pose: {{translation: [0.0, 0.6, 0.976]}}}}\n"
+    "safety:\n",
+)
+"""A tote (0.4 m deep) on the work table."""
+
 ON_A_PEDESTAL = GOOD_SCENARIO.replace(
     "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
 ).replace(
@@ -492,17 +500,35 @@ CASES = {
         "ActorPlace",
         changes=[
             A_SHELF,
-            (
-                "safety:\n",
-                "    tote: {shape: box, size: [0.3, 0.4, 0.15], mass: 1.5, capacity: 4}\n"
-                f"{OBJECTS}    - {{type: tote, pose: {{translation: [0.0, 0.6, 0.976]}}}}\n"
-                "safety:\n",
-            ),
+            A_TOTE_ON_THE_TABLE,
             A_SHELF_FRONT,
             (
                 "locations:\n",
                 "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
                 "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+            ),
+        ],
+    ),
+    "a put-down whose tote would be in the board above where it is put": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
+        '<ActorMovement target="shelf_back"/><ActorPlace target="3.0;0.6;1.06"/>',
+        (
+            "port 'target': '3.0;0.6;1.06' at (3.00, 0.60, 1.06), put down where the person "
+            "stands (location 'shelf_back', ActorMovement at ",
+            "): what the hands hold would be ",
+            " cm into 'shelf' where it is put",
+        ),
+        "ActorPlace",
+        changes=[
+            A_SHELF,
+            A_TOTE_ON_THE_TABLE,
+            (
+                "locations:\n",
+                "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, -90]}}\n"
+                "  shelf_back: {translation: [3.0, -0.2, 0.0], rotation: !Rpy {deg: [0, 0, 90]}}\n",
             ),
         ],
     ),

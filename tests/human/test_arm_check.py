@@ -5,9 +5,9 @@ stand exactly where the played walk has them and the check finds the same, for l
 import numpy as np
 import shapely
 
-from hrc_drake.human.arm_shapes import arms_in_world, check_arm
+from hrc_drake.human.arm_shapes import Prisms, arms_in_world, check_arm
 from hrc_drake.human.body import human_body
-from hrc_drake.human.clearance import _Keep, _tolerance
+from hrc_drake.human.clearance import _held_check, _Keep, _tolerance, push_out
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import arm_indices
@@ -71,3 +71,24 @@ def test_the_arms_checked_all_at_once_are_clear_where_each_arm_checked_alone_is(
     ]
     assert list(together) == alone
     assert 30 < sum(alone) < 270  # arms both in and out of the furniture
+
+
+def test_a_holding_hand_stays_where_it_holds_while_its_forearm_is_pushed_down_off_a_board():
+    """A forearm reaching under a shelf's board goes 2 cm into it: the arm is pushed down out
+    of it with the holding hand kept on what it holds. Free to slide along the way out, the
+    hand went 4 cm down with it (into what the held tote was being lowered onto; in a user's
+    cell, hands pushed so rose 2.3 cm and the tote went 5 cm into the board)."""
+    body = human_body()
+    q = body.standing_pose().copy()
+    q[body.index("right_shoulder_flexion")] = np.radians(60)
+    q[body.index("right_elbow_flexion")] = np.radians(30)
+    hand = body.frame_pose("right_hand_grasp", q).translation()
+    elbow = body.frame_pose("right_forearm", q).translation()
+    underside = elbow[2] + 0.02
+    outline = shapely.box(hand[0] - 0.3, elbow[1] - 0.3, hand[0] + 0.3, elbow[1] + 0.6)
+    near = Prisms.of(Furniture((Obstacle("board", outline, underside, underside + 0.04),)))
+    check = _held_check(body, near, q, "right")
+    assert check.depth > 0.02 and check.out[2] == -1.0
+    pushed = push_out(body, q, "right", check, keep_hand=True)
+    moved = body.frame_pose("right_hand_grasp", pushed).translation() - hand
+    assert np.linalg.norm(moved) <= 0.01, moved

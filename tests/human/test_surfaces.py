@@ -92,6 +92,42 @@ def test_picking_up_and_putting_down_keeps_the_hands_out_of_the_furniture(
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
+BIN = furniture("bin", 0.0, 0.57, 90.0)
+"""Cooperation's scrap bin as the person stands at it: its near wall 0.27 m in front of the
+pelvis, its floor 1.2 cm above the floor."""
+PART = (0.08, 0.08, 0.06)
+
+
+@pytest.mark.parametrize(
+    ("cell", "hands", "target", "size"),
+    [
+        (BIN, "right", (0.0, 0.52, 0.342), PART),
+        (PALLET, "both", (0.15, 0.35, ON_A_CRATE), CARTON),
+    ],
+    ids=["a part onto a stack in a bin", "a carton onto a crate"],
+)
+def test_what_is_put_down_is_lowered_onto_its_place_and_not_below_it(cell, hands, target, size):
+    """From above its place the object goes straight down onto it: the hands never go lower
+    than where they let go. Lowered by the clip's own bend, the hand holding a part went
+    4.6 cm below its place and came back up to it (cooperation seed 0 at 133.2 s: the part
+    4.9 cm into the one it was put on)."""
+    grasp = Grasp(hands, (0.0, 0.3, 0.9), STANDING[2], size)
+    place = AnimateCommand(1, "place_floor", target=target, hold=hold_of(grasp, STANDING[2]))
+    run = Run([(0.1, place)], STANDING, [FLOOR, cell], ARMS)
+    release = load_clips()["place_floor"].events["release"]
+    statuses, _ = run.record(0.1 + release)
+    lowering = statuses[int((0.1 + APPROACH_AT * release) / SAMPLE) :]
+    lowest = min(min(getattr(s, f"{side}_hand")[2] for side in _sides(hands)) for s in lowering)
+    let_go = min(getattr(statuses[-1], f"{side}_hand")[2] for side in _sides(hands))
+    assert lowest >= let_go - 0.005, (lowest, let_go)
+    run.record(0.1 + _duration("place_floor"))
+    assert run.status().results.outcome_of(1) == "succeeded"
+
+
+def _sides(hands: str) -> tuple[str, ...]:
+    return SIDES if hands == "both" else (hands,)
+
+
 def test_material_is_taken_off_a_shelf_board_at_chest_height():
     """The hands rise in front of the board's edge, where the arms must be kept out of it,
     then close on the material: a correction found for the arms on their way up must not
@@ -583,17 +619,28 @@ def test_a_put_down_from_where_the_carried_box_is_in_the_shelf_is_refused():
     assert last.reason.startswith("what the hands hold would go") and "'shelf'" in last.reason
 
 
-def _put_onto_the_stack(shelf_y: float) -> Run:
-    """The person at the origin, facing +y, puts a tote (0.4 m deep) onto a stack of two on
-    the middle board of our shelf, whose centre is `shelf_y` ahead; a carton on the board
+def test_a_put_down_onto_a_stack_that_reaches_the_board_above_is_refused():
+    """A fourth tote onto the stack (a cell of our own): on top of the third, it would be
+    in the board above and the carton on it (it was put there, 2.7 cm into the board). The
+    put-down fails at once, saying so."""
+    run = _put_onto_the_stack(shelf_y=0.75, totes=3)
+    run.record(0.3)
+    last = run.status().results.last
+    assert last.outcome == "failed", last
+    assert last.reason.startswith("what the hands hold would be"), last
+
+
+def _put_onto_the_stack(shelf_y: float, totes: int = 2) -> Run:
+    """The person at the origin, facing +y, puts a tote (0.4 m deep) onto a stack of `totes`
+    on the middle board of our shelf, whose centre is `shelf_y` ahead; a carton on the board
     above."""
     tote = (0.3, 0.4, 0.15)
     middle = shelf_y + 0.05
-    stack = [(0.0, middle, 0.601 + tote[2] / 2), (0.0, middle, 0.601 + 1.5 * tote[2])]
+    stack = [(0.0, middle, 0.601 + (k + 0.5) * tote[2]) for k in range(totes)]
     carton = ((0.0, shelf_y, 1.201), (0.3, 0.25, 0.2))
     hold = Hold("both", (tote[1], tote[0], tote[2]))
     nearby = (*(Box(c, 0.0, tote) for c in stack), Box(carton[0], 0.0, carton[1]))
-    target = (0.0, middle, 0.601 + 2.5 * tote[2])
+    target = (0.0, middle, 0.601 + (totes + 0.5) * tote[2])
     put = AnimateCommand(1, "place_table", target=target, hold=hold, nearby=nearby)
     objects = [(tote, RigidTransform(c)) for c in stack] + [(carton[1], RigidTransform(carton[0]))]
     shelf = furniture("shelf", 0.0, shelf_y)

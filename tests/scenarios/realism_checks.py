@@ -4,7 +4,7 @@ names every measure over its limit with what, where and when."""
 
 from hrc_drake.evaluation.realism import LIMITS, PELVIS_SPEED_SWING
 
-KEEPS_OUT = ("penetration_static", "penetration_objects")
+KEEPS_OUT = ("penetration_static", "penetration_objects", "penetration_carried")
 HOLDS = ("hand_object_gap", "carried_tilt_deg")
 WALKS = ("foot_slip",)
 
@@ -24,7 +24,7 @@ def _excesses(realism: dict, measures) -> list[str]:
 
 def assert_keeps_out_of_things(realism: dict) -> None:
     """No body segment goes into the cell's geometry or into an object it does not hold
-    deeper than the limit (what the person holds: not yet, see docs/realism.md)."""
+    deeper than the limit, nor does what the person holds."""
     excesses = _excesses(realism, KEEPS_OUT)
     assert not excesses, "; ".join(excesses)
 
