@@ -103,15 +103,28 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
     person's `heading`, would be in deeper than DEPTH_LIMIT, and how deep ("" when
     nothing): a tote put onto a stack that reaches the board above went 2.7 cm into the
     board (a cell of our own: a fourth tote onto three)."""
-    if not furniture.pieces:
-        return ""
     R = RotationMatrix.MakeZRotation(heading).matrix()
     corners = np.asarray(center) + (BOX_CORNERS * np.asarray(hold.size) / 2) @ R.T
+    return _box_going_in(furniture, corners, "where it is put")
+
+
+def arrived_going_in(performer: Performer, activity: Activity, carry, furniture) -> str:
+    """What the object the hands carry (`carry`) would be in deeper than DEPTH_LIMIT where
+    `activity`, a walk, ends ("" when nothing): a carton carried up to a column of cartons
+    stood 2.4 cm in its top one while its put-down was refused (a cell of our own)."""
+    q = activity.planned_pose(performer, activity.end)
+    return _box_going_in(furniture, held_corners(performer.body, carry, q), "where the walk ends")
+
+
+def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:
+    """What a box with `corners` is in deeper than DEPTH_LIMIT ("" when nothing)."""
+    if not furniture.pieces:
+        return ""
     into = Prisms.of(furniture).shape_depths(corners[None], HELD_RADII, HELD_SHAPE)[0, :, 0]
     if into.max() <= DEPTH_LIMIT:
         return ""
     where = furniture.pieces[int(np.argmax(into))].name
-    return f"what the hands hold would be {100 * into.max():.1f} cm into '{where}' where it is put"
+    return f"what the hands hold would be {100 * into.max():.1f} cm into '{where}' {where_then}"
 
 
 def _named(part: str) -> str:

@@ -69,6 +69,8 @@ class MoveCommand:
     waypoints: tuple[tuple[float, float], ...] = ()
     hold: Hold | None = None
     """What the hands hold meanwhile (they keep it in the carry posture)."""
+    nearby: tuple[Box, ...] = ()
+    """Objects near the target: what the hands hold keeps out of them where the walk ends."""
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,8 @@ hands hold, so they carry it in the carry posture. The targeted actions (pick, p
 reach, hand over) are in hrc_drake.nodes.targeted.
 """
 
+import numpy as np
+
 from hrc_drake.bt import ConditionNode, InputPort, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import hold_of
@@ -13,6 +15,8 @@ from hrc_drake.wiring import HUMAN
 from hrc_drake.workpieces import messages as wp
 from hrc_drake.workpieces.geometry import yaw_of
 
+NEARBY = 0.8
+"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
 
@@ -37,6 +41,20 @@ class PersonCommandNode(CommandNode):
         if obj is None:
             return None
         return hold_of(grasp_of(obj, HANDS_OF[obj.holder]), self._heading())
+
+    def objects_near(self, point, taken: int | None = None) -> tuple[human.Box, ...]:
+        """The free objects within NEARBY of `point` on the floor (not `taken`): what the
+        person's arms, and what the hands hold, keep out of there."""
+        status = self.agent.workpieces
+        if status is None:
+            return ()
+        return tuple(
+            human.Box(*box_of(obj))
+            for obj in status.objects
+            if obj.holder is None
+            and obj.id != taken
+            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
+        )
 
     def _heading(self) -> float:
         status = self.agent.human
@@ -102,13 +120,15 @@ class ActorMovement(PersonCommandNode):
     def command(self, seq: int):
         target = self.agent.resolve_pose(self.get_input("target"))
         distance = self.get_input("animation_distance")
+        hold = self.hold()
         return human.MoveCommand(
             seq,
             target_position=target.position,
             target_quaternion=target.quaternion or human.NULL_QUATERNION,
             animation_name=self.get_input("animation_name"),
             animation_distance=distance if distance > 0 else None,
-            hold=self.hold(),
+            hold=hold,
+            nearby=self.objects_near(target.position) if hold is not None else (),
         )
 
 

@@ -6,13 +6,11 @@ the hand is there. Which hands take an object follows from its size, mass and at
 
 from abc import abstractmethod
 
-import numpy as np
-
 from hrc_drake.bt import InputPort, OneOf, Status
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
-from hrc_drake.nodes.person import HOLDERS, PersonCommandNode, box_of, grasp_of
+from hrc_drake.nodes.person import HOLDERS, PersonCommandNode, grasp_of
 from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.tree_types import Pose
 from hrc_drake.wiring import HUMAN, WORKPIECES
@@ -20,8 +18,6 @@ from hrc_drake.workpieces import messages as wp
 
 TABLE_HEIGHT = 0.5
 """Targets below this height are picked or placed with the floor clips (a squat)."""
-NEARBY = 0.8
-"""m: objects closer than this (floor distance) to a target are ones the arms may touch."""
 
 
 class ObjectGone(Exception):
@@ -73,17 +69,7 @@ class TargetedAction(PersonCommandNode):
     def nearby(self, target) -> tuple[human.Box, ...]:
         """The free objects near `target` (not the one the action takes): the person's arms
         keep out of them."""
-        status = self.agent.workpieces
-        if status is None:
-            return ()
-        taken = self.taken_id()
-        return tuple(
-            human.Box(*box_of(obj))
-            for obj in status.objects
-            if obj.holder is None
-            and obj.id != taken
-            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(target[:2]))) <= NEARBY
-        )
+        return self.objects_near(target, self.taken_id())
 
     def grasp(self) -> human.Grasp | None:
         """What the clip takes (None: it takes nothing)."""

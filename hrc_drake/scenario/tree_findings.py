@@ -32,9 +32,9 @@ from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
-from hrc_drake.nodes.person import ActorAnimation, ActorMovement, box_at
+from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.nodes.targeted import NEARBY, TABLE_HEIGHT, ActorPlace, ActorReach
+from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
@@ -245,7 +245,7 @@ class _Checks:
 
     def _near(self, point, taken=None) -> tuple[Box, ...]:
         """The objects at the start near `point` but `taken`, as a node tells the person
-        (hrc_drake.nodes.targeted.NEARBY)."""
+        (hrc_drake.nodes.person.NEARBY)."""
         types = self.scenario.workpieces.types
         return tuple(
             Box(*box_at(obj.pose, types[obj.type].shape, types[obj.type].size))

@@ -703,3 +703,23 @@ def test_a_step_up_to_the_table_swings_the_arms_clear_of_it():
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.status().base_pose[:2] == pytest.approx(ROOM_TO_TURN, abs=0.03)  # idle sway
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+@pytest.mark.parametrize(("column_y", "outcome"), [(0.45, "failed"), (0.75, "succeeded")])
+def test_a_carry_that_would_end_with_the_box_in_an_object_is_refused(column_y, outcome):
+    """A carton carried up to a column of cartons (a cell of our own): where the walk
+    ended, the carton in the carry posture stood 2.4 cm in the column's top one while its
+    put-down was refused. A walk that would end so fails at once, saying so; one that ends
+    with room in front of the column is walked."""
+    column = (0.0, column_y, 0.6)
+    hold = Hold("both", (0.3, 0.4, 0.2))
+    facing = (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4))
+    nearby = (Box(column, 0.0, (0.3, 0.3, 1.2)),)
+    walk = MoveCommand(1, (0.0, 0.0), facing, "carry", hold=hold, nearby=nearby)
+    run = Run([(0.1, walk)], (0.0, -0.9, np.pi / 2), [FLOOR])
+    run.record(0.3 if outcome == "failed" else 4.0)
+    result = run.status().results.last
+    assert result.outcome == outcome, result
+    if outcome == "failed":
+        assert result.reason.startswith("what the hands hold would be"), result
+        assert result.reason.endswith("where the walk ends"), result
