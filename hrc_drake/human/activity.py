@@ -101,14 +101,13 @@ class Activity:
             box, until = self.reached_for
             early = (furniture.with_boxes((box,)), until)
         body = performer.body
-        head = head_correction(
-            body, furniture, lambda u: self._blended_pose(performer, u, arms_only=True), t, end
-        )
+        blended = _by_time(lambda u: self._blended_pose(performer, u, arms_only=True))
+        head = head_correction(body, furniture, blended, t, end)
         heads = () if head is None else (head,)
         arms = arm_correction(
             body,
             furniture,
-            lambda u: _corrected(heads, self._blended_pose(performer, u, arms_only=True), u),
+            lambda u: _corrected(heads, blended(u), u),
             t,
             end,
             lambda u: self._segment_at(u).holding(performer, u),
@@ -152,6 +151,20 @@ class Activity:
         if self.blend_offset is not None and t < self.blend_start + self.blend_time:
             q = q + fade(t - self.blend_start, self.blend_time) * self.blend_offset
         return q
+
+
+def _by_time(pose):
+    """`pose(t)` worked out once per t, read-only: the head's and the arms' checks sample
+    the same instants, the arms' verifications some of them again."""
+    poses = {}
+
+    def at(t: float) -> np.ndarray:
+        if t not in poses:
+            poses[t] = np.array(pose(t))
+            poses[t].flags.writeable = False
+        return poses[t]
+
+    return at
 
 
 def _corrected(corrections, q: np.ndarray, t: float) -> np.ndarray:

@@ -25,6 +25,12 @@ carton's side at head height swung its abduction to 180 degrees in five steps an
 1.1 m off)."""
 LIMIT_PASSES = 4
 """Times an IK step is solved again without the joints it pushes into their limits."""
+SETTLED = 1e-10
+"""rad (m for the pelvis): a solve stops once no joint moves further than this in a step.
+The posture term holds the damped least squares short of its tasks where it balances what
+is left of their error, which then stays above `tolerance` (a hand 0.1 mm off its target):
+such solves settled in 5 to 20 steps and ran on to their cap of 60 or 150, moving no joint
+by more than 1e-12."""
 
 
 def parse_human(plant: MultibodyPlant, height: float, mass: float, name: str = MODEL_NAME):
@@ -125,7 +131,8 @@ class HumanBody:
         """Damped least squares over the `free` joint indices, inside the joint limits.
 
         The posture term keeps unconstrained directions near the start pose `q`, so authored
-        style survives the correction.
+        style survives the correction. Stops within `tolerance`, once `SETTLED` or after
+        `iterations` steps.
         """
         q_ref = q.copy()
         q = q.copy()
@@ -134,7 +141,11 @@ class HumanBody:
             if np.linalg.norm(error) < tolerance:
                 break
             step = self._step(q, q_ref, free, error, jacobian, posture_weight)
-            q[free] = np.clip(q[free] + step, self.lower[free], self.upper[free])
+            moved = np.clip(q[free] + step, self.lower[free], self.upper[free])
+            settled = np.abs(moved - q[free]).max(initial=0.0) <= SETTLED
+            q[free] = moved
+            if settled:
+                break
         return q
 
     def _step(self, q, q_ref, free, error, jacobian, posture_weight) -> np.ndarray:

@@ -233,14 +233,19 @@ def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
     return (palm_back(hold.hands, hold.size[0]), 0.0, below)
 
 
-def arm_indices(body: HumanBody, sides) -> np.ndarray:
-    return np.array(
+@lru_cache(maxsize=64)
+def arm_indices(body: HumanBody, sides: tuple[str, ...]) -> np.ndarray:
+    """The joint indices of the `sides` arms, read-only: looked up once per body and sides
+    (planning one command asks hundreds of times, 90 us each by name)."""
+    indices = np.array(
         [
             i
             for i, name in enumerate(body.joint_names)
             if any(name.startswith(f"{side}_{joint}") for side in sides for joint in ARM_JOINTS)
         ]
     )
+    indices.flags.writeable = False
+    return indices
 
 
 @dataclass(frozen=True, eq=False)

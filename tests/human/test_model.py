@@ -130,6 +130,26 @@ def test_palms_on_the_sides_of_a_box_stay_flat_on_its_faces(height):
             assert normal >= np.cos(np.radians(2.0)), (side, iterations)
 
 
+def test_a_solve_stops_once_settled_where_running_to_its_cap_ends(monkeypatch):
+    """The posture term holds palms on a box's sides short of the solve's tolerance, so it
+    ran all its steps (a pick's aim 150, the last 140 moving no joint by 1e-12); it stops
+    once settled, where running on would have left it."""
+    body = human_body()
+    hands = palm_targets(Grasp("both", (0.0, 0.46, 1.2), 0.0, (0.4, 0.3, 0.2)), np.pi / 2)
+    q0 = body.standing_pose()
+    q0[body.index("base_yaw")] = np.pi / 2
+    tasks, arms = hand_tasks(hands, 1.0, turn_in_palm=True), arm_indices(body, tuple(hands))
+    steps = []
+    errors = body._task_errors
+    monkeypatch.setattr(body, "_task_errors", lambda q, t: steps.append(1) or errors(q, t))
+    settled = body.solve(q0, tasks, arms, iterations=150)
+    assert len(steps) <= 30
+    monkeypatch.setattr("hrc_drake.human.body.SETTLED", 0.0)
+    capped = body.solve(q0, tasks, arms, iterations=150)
+    assert np.linalg.norm(errors(settled, tasks)[0]) > 1e-5
+    assert np.abs(settled - capped).max() <= 1e-9
+
+
 @pytest.mark.parametrize("height", [1.7, 1.78, 1.85])
 def test_palms_reach_a_box_held_up_at_head_height(height):
     """Palms on the sides of a carton 0.55 m ahead at and above the head (a column of
