@@ -18,6 +18,7 @@ SMALLEST = {
     "ergonomics_cost.py": ["--duration", "0.5", "getting_started"],
     "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
+    "human_planning.py": ["--duration", "2", "--repeats", "1", "coexistence"],
     "human_update.py": ["--duration", "0.5", "coexistence"],
     "layout.py": ["--scenario", "getting_started", "--samples", "2"],
     "plant_contact.py": ["--duration", "0.5", "cooperation"],
