@@ -1,7 +1,8 @@
 """What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
 still goes into the furniture once the head and arms have been kept out of it as far as
-they can (hrc_drake.human.head_room, hrc_drake.human.clearance), or a put-down whose held
-object goes into it on its planned way.
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a put-down whose held
+object goes into it on its planned way or would be in it where it is put, or a carry that
+would end with the held object in it.
 
 Where the corrections cannot find a way, the person played it through the shelf: a stoop
 to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
