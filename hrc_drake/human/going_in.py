@@ -11,14 +11,13 @@ where (the run's summary says so), and `hrc-drake validate` finds it before a ru
 (hrc_drake.scenario.tree_findings plans the picks it can know of)."""
 
 import numpy as np
-from pydrake.math import RotationMatrix
 
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.arm_shapes import HEAD, Prisms, corners_in_world, parts_shapes
 from hrc_drake.human.clearance import NEAR, SAMPLE
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.grasp import BOX_CORNERS, held_corners
+from hrc_drake.human.grasp import box_corners, held_corners
 from hrc_drake.human.messages import Hold
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.skeleton import SIDES
@@ -104,9 +103,7 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
     person's `heading`, would be in deeper than DEPTH_LIMIT, and how deep ("" when
     nothing): a tote put onto a stack that reaches the board above went 2.7 cm into the
     board (a cell of our own: a fourth tote onto three)."""
-    R = RotationMatrix.MakeZRotation(heading).matrix()
-    corners = np.asarray(center) + (BOX_CORNERS * np.asarray(hold.size) / 2) @ R.T
-    return _box_going_in(furniture, corners, "where it is put")
+    return _box_going_in(furniture, box_corners(center, heading, hold.size), "where it is put")
 
 
 def arrived_going_in(performer: Performer, activity: Activity, carry, furniture) -> str:

@@ -286,8 +286,16 @@ def held_corners(body: HumanBody, carry: CarryArms, q: np.ndarray) -> np.ndarray
     else:
         yaw = q[body.index("base_yaw")]
     R = RotationMatrix.MakeZRotation(yaw).matrix()
-    center = np.mean(hands, axis=0) + R @ object_center_in_holder(carry.hold)
-    return center + (BOX_CORNERS * np.asarray(carry.size) / 2) @ R.T
+    return box_corners(
+        np.mean(hands, axis=0) + R @ object_center_in_holder(carry.hold), yaw, carry.size
+    )
+
+
+def box_corners(center, yaw: float, size) -> np.ndarray:
+    """The corners (8 x 3) of a level box of `size` (along its own x, y, z) turned by `yaw`
+    about its `center`."""
+    R = RotationMatrix.MakeZRotation(yaw).matrix()
+    return np.asarray(center) + (BOX_CORNERS * np.asarray(size) / 2) @ R.T
 
 
 BOX_CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
