@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from shapely.geometry import LineString, Point, box
+from shapely.geometry import LineString, MultiPoint, Point, box
 from shapely.ops import nearest_points
 
 from hrc_drake.cli import main
@@ -20,17 +20,20 @@ from hrc_drake.evaluation.realism import LIMITS
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.body import human_body
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.messages import MoveCommand
+from hrc_drake.human.grasp import carry_arms, held_corners
+from hrc_drake.human.messages import Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, Obstacle
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.planning import plan_movement
 from hrc_drake.human.segments import TurnSegment
 from tests.human.cell_walks import Cell, Furniture
+from tests.human.scene import FLOOR, Run, furniture
 from tests.human.test_actor import _stance_slip
 
 REPO = Path(__file__).resolve().parents[2]
 TABLE = Obstacle("table", box(-0.6, -0.4, 0.6, 0.4), 0.0, 0.9)
 LIMIT = LIMITS["penetration_static"]
+TABLE_MODEL = furniture("work_table", 0.0, 0.55)
 
 
 def test_a_walk_goes_round_a_table_with_the_bodys_clearance():
@@ -152,6 +155,26 @@ def test_a_walk_that_turns_keeps_the_feet_above_the_floor(start, goal):
     of its sole went 1.1-1.2 cm into the floor as the heel came down."""
     cell = Cell([Furniture("floor", "floor", 0.0, 0.0)])
     assert cell.walks(start, goal).depth <= LIMIT
+
+
+@pytest.mark.parametrize(
+    ("start", "goal"),
+    [((-1.2, -0.3, 0.0), (1.2, 1.3)), ((-1.2, 0.55, 0.0), (1.2, 0.55))],
+    ids=["round a corner", "along its long side"],
+)
+def test_a_carton_carried_past_a_table_stays_out_of_it(start, goal):
+    """A carton in both hands is carried at the height of a table's top (its bottom
+    0.87-0.92 m, the top 0.86-0.90 m) and 0.4 m in front of the belly: only the walk's room
+    round the table keeps it from going into the top. Carried round our work table model
+    (its top covers x -0.6..0.6, y 0.15..0.95), its footprint stays off the top's."""
+    carton = Hold("both", (0.4, 0.3, 0.2))
+    run = Run([(0.1, MoveCommand(1, goal, hold=carton))], start, [FLOOR, TABLE_MODEL])
+    _, poses = run.record(9.0)
+    carry = carry_arms(run.body, carton)
+    top = box(-0.6, 0.15, 0.6, 0.95)
+    footprints = [MultiPoint(held_corners(run.body, carry, q)[:, :2]).convex_hull for q in poses]
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert min(top.distance(footprint) for footprint in footprints) > 0.0
 
 
 def _standing_and_turning(cell: Cell, x: float, y: float, yaw: float) -> float:
