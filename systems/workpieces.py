@@ -152,10 +152,11 @@ class Workpieces(LeafSystem):
         """The next world, unless nothing moves, is held or is commanded (`still`): then
         the update did nothing, and Drake leaves the state as it is."""
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
-        if still(self.cell, self.world(context), commands):
+        world = self.world(context)
+        if still(self.cell, world, commands):
             return EventStatus.DidNothing()
         frames = holder_frames(value_or_none(self._tool, context), self._person_frames(context))
-        world = next_world(self.cell, self.world(context), context.get_time(), commands, frames)
+        world = next_world(self.cell, world, context.get_time(), commands, frames)
         state.get_mutable_abstract_state(self._state).set_value(world)
         return EventStatus.Succeeded()
 

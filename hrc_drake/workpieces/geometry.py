@@ -107,7 +107,7 @@ def overlaps(
     if b is None:
         return True
     a_normals, b_normals = normals or (edge_normals(a), edge_normals(b))
-    axes = np.vstack([a_normals, b_normals]).T
+    axes = np.concatenate([a_normals, b_normals]).T
     along_a, along_b = a @ axes, b @ axes
     apart = (along_a.max(axis=0) < along_b.min(axis=0) + margin) | (
         along_b.max(axis=0) < along_a.min(axis=0) + margin
@@ -143,14 +143,14 @@ class Drift:
     def __init__(self, X: RigidTransform, V: SpatialVelocity):
         self._R, self._p = X.rotation(), X.translation()
         self._v, self._w = V.translational(), V.rotational()
-        self._rate = float(np.linalg.norm(self._w))
+        self._rate = math.sqrt(self._w.dot(self._w))  # np.linalg.norm's float, cheaper
 
     def after(self, dt: float) -> RigidTransform:
         """The pose after dt (rotation about its own origin)."""
         angle = self._rate * dt
         R = self._R
         if angle > 0:
-            R = RotationMatrix(AngleAxis(angle, self._w / np.linalg.norm(self._w))) @ R
+            R = RotationMatrix(AngleAxis(angle, self._w / self._rate)) @ R
         return RigidTransform(R, self._p + self._v * dt)
 
 

@@ -131,20 +131,26 @@ class Supports:
 
     def under(self, outline: np.ndarray, below: float, others: list[Surface]) -> Surface:
         """The highest support overlapping `outline` with its top at most at `below` (a belt
-        wins over level fixed surfaces); the floor when nothing is below."""
+        wins over level fixed surfaces); the floor when nothing is below. The outline's edge
+        normals are worked out only when a bounded surface passes the bounding-box test."""
         low, high = outline.min(axis=0), outline.max(axis=0)
-        own_normals = edge_normals(outline)
-        movable = sorted(others, key=lambda s: -s.height)
+        own_normals = None
         level: list[Surface] = []
         fixed = self._fixed_candidates(low, high, below)
-        for surface in heapq.merge(fixed, movable, key=lambda s: -s.height):
+        candidates = fixed
+        if others:
+            movable = sorted(others, key=lambda s: -s.height)
+            candidates = heapq.merge(fixed, movable, key=lambda s: -s.height)
+        for surface in candidates:
             if surface.height > below:
                 continue
             if level and surface.height < level[0].height - TIE_TOLERANCE:
                 break
-            if surface.may_overlap(low, high) and overlaps(
-                outline, surface.outline, normals=(own_normals, surface.normals)
-            ):
+            if not surface.may_overlap(low, high):
+                continue
+            if surface.outline is not None and own_normals is None:
+                own_normals = edge_normals(outline)
+            if overlaps(outline, surface.outline, normals=(own_normals, surface.normals)):
                 level.append(surface)
         if not level:
             return FLOOR_SURFACE
