@@ -7,6 +7,7 @@ surfaces and of other objects' top faces, with separating-axis tests.
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from pydrake.common.eigen_geometry import AngleAxis
@@ -41,13 +42,21 @@ class Solid:
         return Box(*self.size) if self.shape == BOX else Cylinder(*self.size)
 
     def outline(self) -> np.ndarray:
-        """The footprint (= top face) in the object's x-y plane, counter-clockwise, (n, 2)."""
+        """The footprint (= top face) in the object's x-y plane, counter-clockwise, (n, 2),
+        read-only: made once per solid, as every moved piece's footprint starts from it."""
+        return self._outline
+
+    @cached_property
+    def _outline(self) -> np.ndarray:
         if self.shape == BOX:
             x, y = self.size[0] / 2, self.size[1] / 2
-            return np.array([[-x, -y], [x, -y], [x, y], [-x, y]])
-        radius = self.size[0] / math.cos(math.pi / CIRCLE_SIDES)
-        angles = np.arange(CIRCLE_SIDES) * 2 * math.pi / CIRCLE_SIDES
-        return radius * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+            outline = np.array([[-x, -y], [x, -y], [x, y], [-x, y]])
+        else:
+            radius = self.size[0] / math.cos(math.pi / CIRCLE_SIDES)
+            angles = np.arange(CIRCLE_SIDES) * 2 * math.pi / CIRCLE_SIDES
+            outline = radius * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        outline.setflags(write=False)
+        return outline
 
     def distance_to(self, p_O: np.ndarray) -> float:
         """Distance from a point (object frame) to the solid; zero inside."""
