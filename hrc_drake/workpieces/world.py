@@ -12,6 +12,7 @@ inputs (no direct feedthrough). How an update changes the world: hrc_drake.workp
 the grasp frames the holders carry by.
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -70,9 +71,18 @@ class Piece:
     support: str | None
     attributes: Attributes
 
-    @property
+    @cached_property
     def bottom(self) -> float:
         return self.pose.translation()[2] - self.solid.height / 2
+
+    def in_place(self, **changes) -> "Piece":
+        """The piece with `changes` that leave its place on the floor plane as it is (its
+        height, support or velocity): the new piece keeps this one's footprint, if made
+        (settling changes a conveyed piece three times an update)."""
+        piece = dataclasses.replace(self, **changes)
+        if "footprint" in self.__dict__:  # where cached_property keeps it
+            piece.__dict__["footprint"] = self.footprint
+        return piece
 
     @cached_property
     def footprint(self) -> np.ndarray:
