@@ -3,11 +3,12 @@ revision (`--base`) against the working tree, in one process.
 
 Both versions of the `hrc_drake` package are imported side by side (the base one from
 `git archive` of the revision, laid out as pyproject's package-dir; `sys.modules` is swapped
-while a version runs). Each repetition runs the scenario once per version, alternating, as a
-sweep runs it (`hrc_drake.runner.run`, no run directory), and times by this process's CPU
-time: Workpieces' update (what it evaluates included: the hands and tool pose adapters), the
-updates that acted and those that did nothing, its two outputs, and the whole run. Prints
-the best of the repetitions per figure and new / base ratios.
+while a version runs). Each repetition runs the scenario once per version as a sweep runs
+it (`hrc_drake.runner.run`, no run directory), each version first in every other
+repetition, and times by this process's CPU time: Workpieces' update (what it evaluates
+included: the hands and tool pose adapters), the updates that acted and those that did
+nothing, its two outputs, and the whole run. Prints the best of the repetitions per figure
+and new / base ratios.
 
     .venv/bin/python benchmarks/workpieces_update.py [--base HEAD] [--repeat 3]
         [--duration 20] [scenario ...]
@@ -111,9 +112,9 @@ def main() -> None:
         versions = (version_at(args.base, Path(folder)), Version("working tree"))
         for scenario in args.scenarios:
             best = [{}, {}]
-            for _ in range(args.repeat):
-                for k, version in enumerate(versions):
-                    figures = version.measure(scenario, args.duration)
+            for repetition in range(args.repeat):
+                for k in (0, 1) if repetition % 2 == 0 else (1, 0):
+                    figures = versions[k].measure(scenario, args.duration)
                     calls = figures.pop("calls")
                     best[k] = {n: min(v, best[k].get(n, v)) for n, v in figures.items()}
                     best[k]["calls"] = calls
