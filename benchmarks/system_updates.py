@@ -56,6 +56,8 @@ class Timed:
         self.calls = defaultdict(int)
         self.idle = defaultdict(int)
         self.seconds = defaultdict(float)
+        self.idle_seconds = defaultdict(float)
+        """CPU seconds of the calls that did nothing (part of `seconds`)."""
         self._nested = [0.0]
         """CPU seconds of the timed callbacks called inside the one running now."""
         self._originals = {(cls, name): getattr(cls, name) for cls, name in callbacks}
@@ -75,7 +77,8 @@ class Timed:
             start = time.process_time()
             result = original(system, *args)
             spent = time.process_time() - start
-            self.seconds[key] += spent - self._nested.pop()
+            own = spent - self._nested.pop()
+            self.seconds[key] += own
             self._nested[-1] += spent
             self.calls[key] += 1
             if (
@@ -83,6 +86,7 @@ class Timed:
                 and result.severity() == EventStatus.Severity.kDidNothing
             ):
                 self.idle[key] += 1
+                self.idle_seconds[key] += own
             return result
 
         return timed

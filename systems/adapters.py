@@ -7,6 +7,7 @@ another reads, with no state and no logic of its own.
   workpieces the hands carry.
 """
 
+import numpy as np
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
@@ -48,22 +49,30 @@ def hand_poses(status: HumanStatus | None) -> HandPoses | None:
 
 
 def _pose(values: tuple[float, ...]) -> RigidTransform:
+    """The pose; its position as an array: pybind11 takes a list for a vector 5x slower."""
     x, y, z, qw, qx, qy, qz = values
-    return RigidTransform(Quaternion(qw, qx, qy, qz), [x, y, z])
+    return RigidTransform(Quaternion(qw, qx, qy, qz), np.array([x, y, z]))
 
 
 class HumanHands(LeafSystem):
     """The person's hand grasp frames (HandPoses) from HumanActor's `human_status`; an empty
-    tuple before the person's first update (ports cannot carry None)."""
+    tuple before the person's first update (ports cannot carry None). The same HandPoses
+    object while the status is the same one (the person updates at 60 Hz, this is read at
+    100 Hz), so that Workpieces can tell a new pose of the person by its identity."""
 
     def __init__(self):
         super().__init__()
-        status = self.DeclareAbstractInputPort(status_port(HUMAN), message_value())
-        self.DeclareAbstractOutputPort(
-            "human_hands",
-            message_value,
-            lambda context, output: output.set_value(hand_poses(status.Eval(context)) or ()),
-        )
+        self._status = self.DeclareAbstractInputPort(status_port(HUMAN), message_value())
+        self._last = (None, ())
+        """The status last turned into hands (kept, so its identity is never reused), and
+        its hands."""
+        self.DeclareAbstractOutputPort("human_hands", message_value, self._calc)
+
+    def _calc(self, context: Context, output: AbstractValue) -> None:
+        status = self._status.Eval(context)
+        if status is not self._last[0]:
+            self._last = (status, hand_poses(status) or ())
+        output.set_value(self._last[1])
 
 
 def add_tool_pose(builder, tool_frame: Frame):

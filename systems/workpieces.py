@@ -14,6 +14,8 @@ construction. A slot without a live object is parked far below the floor, 10 m f
 next, and is not reported.
 """
 
+import operator
+
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.geometry import (
@@ -93,6 +95,7 @@ class Workpieces(LeafSystem):
         self._written = [None] * len(self.frame_ids)  # the piece each slot's pose is of
         self._person = (None, {})  # the hands input's last value and its grasp frames
         self._resting = (None, [])
+        self._still_for = None  # the world and commands last found still
         initial = initial_world(self.cell)
         self._status_of = StatusOfWorld(self.cell, initial, self.geometry_ids)
         self._state = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -152,12 +155,24 @@ class Workpieces(LeafSystem):
         """The next world, unless nothing moves, is held or is commanded (`still`): then
         the update did nothing, and Drake leaves the state as it is."""
         commands = {issuer: value_or_none(port, context) for issuer, port in self._commands.items()}
-        if still(self.cell, self.world(context), commands):
+        world = self.world(context)
+        if self._still(world, commands):
             return EventStatus.DidNothing()
         frames = holder_frames(value_or_none(self._tool, context), self._person_frames(context))
-        world = next_world(self.cell, self.world(context), context.get_time(), commands, frames)
+        world = next_world(self.cell, world, context.get_time(), commands, frames)
         state.get_mutable_abstract_state(self._state).set_value(world)
         return EventStatus.Succeeded()
+
+    def _still(self, world: World, commands: dict) -> bool:
+        """`still`, asked again only when the world or a command port's value is another
+        object than at the last update found still (all immutable): most updates of a
+        resting world find the same ones."""
+        inputs = (world, *commands.values())
+        if self._still_for is None or not all(map(operator.is_, inputs, self._still_for)):
+            if not still(self.cell, world, commands):
+                return False
+            self._still_for = inputs
+        return True
 
     def _person_frames(self, context: Context) -> dict:
         """`person_frames` of the hands input, made again only when its value is a new one:

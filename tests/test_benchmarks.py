@@ -36,6 +36,7 @@ SMALLEST = {
     "system_updates.py": ["--duration", "0.5", "getting_started"],
     "tracking.py": ["--duration", "0.5", "cooperation"],
     "update_events.py": ["--duration", "0.5"],
+    "workpieces_update.py": ["--duration", "0.5", "--repeat", "1", "cooperation"],
 }
 
 

@@ -8,6 +8,7 @@ queue behind each other). On a removing belt an object leaves once its centre pa
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -58,8 +59,9 @@ class Belt:
             queue_gap=config.queue_gap,
         )
 
-    @property
+    @cached_property
     def across(self) -> np.ndarray:
+        """The unit vector across the belt, to its left (every rider's extent uses it)."""
         return np.array([-self.axis[1], self.axis[0]])
 
     @property

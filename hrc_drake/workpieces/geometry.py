@@ -7,6 +7,7 @@ surfaces and of other objects' top faces, with separating-axis tests.
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from pydrake.common.eigen_geometry import AngleAxis
@@ -41,13 +42,21 @@ class Solid:
         return Box(*self.size) if self.shape == BOX else Cylinder(*self.size)
 
     def outline(self) -> np.ndarray:
-        """The footprint (= top face) in the object's x-y plane, counter-clockwise, (n, 2)."""
+        """The footprint (= top face) in the object's x-y plane, counter-clockwise, (n, 2),
+        read-only: made once per solid, as every moved piece's footprint starts from it."""
+        return self._outline
+
+    @cached_property
+    def _outline(self) -> np.ndarray:
         if self.shape == BOX:
             x, y = self.size[0] / 2, self.size[1] / 2
-            return np.array([[-x, -y], [x, -y], [x, y], [-x, y]])
-        radius = self.size[0] / math.cos(math.pi / CIRCLE_SIDES)
-        angles = np.arange(CIRCLE_SIDES) * 2 * math.pi / CIRCLE_SIDES
-        return radius * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+            outline = np.array([[-x, -y], [x, -y], [x, y], [-x, y]])
+        else:
+            radius = self.size[0] / math.cos(math.pi / CIRCLE_SIDES)
+            angles = np.arange(CIRCLE_SIDES) * 2 * math.pi / CIRCLE_SIDES
+            outline = radius * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        outline.setflags(write=False)
+        return outline
 
     def distance_to(self, p_O: np.ndarray) -> float:
         """Distance from a point (object frame) to the solid; zero inside."""
@@ -107,7 +116,7 @@ def overlaps(
     if b is None:
         return True
     a_normals, b_normals = normals or (edge_normals(a), edge_normals(b))
-    axes = np.vstack([a_normals, b_normals]).T
+    axes = np.concatenate([a_normals, b_normals]).T
     along_a, along_b = a @ axes, b @ axes
     apart = (along_a.max(axis=0) < along_b.min(axis=0) + margin) | (
         along_b.max(axis=0) < along_a.min(axis=0) + margin
@@ -143,14 +152,14 @@ class Drift:
     def __init__(self, X: RigidTransform, V: SpatialVelocity):
         self._R, self._p = X.rotation(), X.translation()
         self._v, self._w = V.translational(), V.rotational()
-        self._rate = float(np.linalg.norm(self._w))
+        self._rate = math.sqrt(self._w.dot(self._w))  # np.linalg.norm's float, cheaper
 
     def after(self, dt: float) -> RigidTransform:
         """The pose after dt (rotation about its own origin)."""
         angle = self._rate * dt
         R = self._R
         if angle > 0:
-            R = RotationMatrix(AngleAxis(angle, self._w / np.linalg.norm(self._w))) @ R
+            R = RotationMatrix(AngleAxis(angle, self._w / self._rate)) @ R
         return RigidTransform(R, self._p + self._v * dt)
 
 

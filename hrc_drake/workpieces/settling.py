@@ -4,8 +4,6 @@ the next update: its support's (a belt's speed as the belt queues its riders), o
 with gravity to land exactly on the support. A piece found below its support's top is
 lifted onto it (never sinks); pieces past the end of a removing belt leave."""
 
-import dataclasses
-
 import numpy as np
 from pydrake.multibody.math import SpatialVelocity
 
@@ -69,9 +67,9 @@ def _support(step: Step, piece: Piece, others: list[Surface], instantly: bool) -
     support = step.cell.supports.under(piece.footprint, top, others)
     if instantly or piece.bottom <= support.height + REST_TOLERANCE:
         pose = with_height(piece.pose, support.height + piece.solid.height / 2)
-        step.pieces[piece.id] = dataclasses.replace(piece, pose=pose, support=support.name)
+        step.pieces[piece.id] = piece.in_place(pose=pose, support=support.name)
     else:
-        step.pieces[piece.id] = dataclasses.replace(piece, support=None)
+        step.pieces[piece.id] = piece.in_place(support=None)
     return support
 
 
@@ -98,7 +96,7 @@ def _plan(step: Step, piece: Piece, support: Surface, belt_speeds: dict[int, flo
         accelerated = piece.velocity.translational()[2] - GRAVITY * dt
         v = np.array([0.0, 0.0, max(accelerated, (landing - piece.bottom) / dt)])
     velocity = SpatialVelocity(np.zeros(3), v)
-    step.pieces[piece.id] = dataclasses.replace(piece, velocity=velocity)
+    step.pieces[piece.id] = piece.in_place(velocity=velocity)
 
 
 def _support_velocity(step: Step, support: Surface, belt_speeds: dict, piece_id: int) -> np.ndarray:

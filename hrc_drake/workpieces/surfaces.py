@@ -131,20 +131,23 @@ class Supports:
 
     def under(self, outline: np.ndarray, below: float, others: list[Surface]) -> Surface:
         """The highest support overlapping `outline` with its top at most at `below` (a belt
-        wins over level fixed surfaces); the floor when nothing is below."""
+        wins over level fixed surfaces); the floor when nothing is below. Supports too high
+        or whose bounding boxes miss the outline's are left out before the exact tests, and
+        the outline's edge normals are worked out only for a bounded one."""
         low, high = outline.min(axis=0), outline.max(axis=0)
-        own_normals = edge_normals(outline)
-        movable = sorted(others, key=lambda s: -s.height)
+        candidates = self._fixed_candidates(low, high, below)
+        movable = [s for s in others if s.height <= below and s.may_overlap(low, high)]
+        if movable:
+            movable.sort(key=lambda s: -s.height)
+            candidates = heapq.merge(candidates, movable, key=lambda s: -s.height)
+        own_normals = None
         level: list[Surface] = []
-        fixed = self._fixed_candidates(low, high, below)
-        for surface in heapq.merge(fixed, movable, key=lambda s: -s.height):
-            if surface.height > below:
-                continue
+        for surface in candidates:
             if level and surface.height < level[0].height - TIE_TOLERANCE:
                 break
-            if surface.may_overlap(low, high) and overlaps(
-                outline, surface.outline, normals=(own_normals, surface.normals)
-            ):
+            if surface.outline is not None and own_normals is None:
+                own_normals = edge_normals(outline)
+            if overlaps(outline, surface.outline, normals=(own_normals, surface.normals)):
                 level.append(surface)
         if not level:
             return FLOOR_SURFACE

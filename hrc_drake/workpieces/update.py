@@ -60,9 +60,9 @@ def still(
     depends only on where its riders are, so riders that stand still stay where they are
     until a command changes the world. The holders' samples go stale meanwhile: a holder's
     first sample after the pause has no velocity (`hrc_drake.workpieces.step.PAUSE`)."""
-    if any(newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers):
-        return False
-    return world.at_rest
+    return world.at_rest and not any(
+        newer_commands(commands.get(i), world.seen.get(i, -1)) for i in cell.issuers
+    )
 
 
 def _empty_world() -> World:

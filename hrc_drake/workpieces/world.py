@@ -12,6 +12,8 @@ inputs (no direct feedthrough). How an update changes the world: hrc_drake.workp
 the grasp frames the holders carry by.
 """
 
+import dataclasses
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -69,9 +71,18 @@ class Piece:
     support: str | None
     attributes: Attributes
 
-    @property
+    @cached_property
     def bottom(self) -> float:
         return self.pose.translation()[2] - self.solid.height / 2
+
+    def in_place(self, **changes) -> "Piece":
+        """The piece with `changes` that leave its place on the floor plane as it is (its
+        height, support or velocity): the new piece keeps this one's footprint, if made
+        (settling changes a conveyed piece three times an update)."""
+        piece = dataclasses.replace(self, **changes)
+        if "footprint" in self.__dict__:  # where cached_property keeps it
+            piece.__dict__["footprint"] = self.footprint
+        return piece
 
     @cached_property
     def footprint(self) -> np.ndarray:
@@ -263,17 +274,20 @@ def person_frames(hands: HandPoses | tuple | None) -> dict[str, Sampled]:
     if not hands:
         return {}
     facing = RotationMatrix.MakeZRotation(hands.heading)
-    left, right = (RigidTransform(facing, X.translation()) for X in (hands.left, hands.right))
-    both = _between(left, right)
+    p_left, p_right = hands.left.translation(), hands.right.translation()
+    left, right = RigidTransform(facing, p_left), RigidTransform(facing, p_right)
+    both = RigidTransform(_level_between(p_left, p_right, facing), (p_left + p_right) / 2)
     return {h: (X, hands.time) for h, X in zip(PERSON_HOLDERS, (left, right, both), strict=True)}
 
 
-def _between(left: RigidTransform, right: RigidTransform) -> RigidTransform:
-    p_left, p_right = left.translation(), right.translation()
-    y = np.array([*(p_left - p_right)[:2], 0.0])
-    if np.linalg.norm(y) < 1e-9:
-        y = left.rotation().col(1) * [1.0, 1.0, 0.0]
-    y /= np.linalg.norm(y)
-    x = [y[1] * 1.0 - y[2] * 0.0, y[2] * 0.0 - y[0] * 1.0, y[0] * 0.0 - y[1] * 0.0]  # y × z
-    R = RotationMatrix(np.column_stack([x, y, [0.0, 0.0, 1.0]]))
-    return RigidTransform(R, (p_left + p_right) / 2)
+def _level_between(p_left: np.ndarray, p_right: np.ndarray, facing: RotationMatrix):
+    """The both-hands frame's rotation: y level from the right hand to the left (the
+    facing's y when the hands are one above the other), z up. In scalars: this runs at
+    every update that has a new pose of the person."""
+    y = np.array([p_left[0] - p_right[0], p_left[1] - p_right[1], 0.0])
+    if math.sqrt(y.dot(y)) < 1e-9:  # y.dot(y): the same float as np.linalg.norm's
+        y = facing.col(1) * [1.0, 1.0, 0.0]
+    y /= math.sqrt(y.dot(y))
+    y0, y1, y2 = y
+    x = (y1 * 1.0 - y2 * 0.0, y2 * 0.0 - y0 * 1.0, y0 * 0.0 - y1 * 0.0)  # y × z
+    return RotationMatrix(np.array([[x[0], y0, 0.0], [x[1], y1, 0.0], [x[2], y2, 1.0]]))

@@ -16,7 +16,7 @@ from hrc_drake.messages import NO_COMMANDS, SUCCEEDED, CommandResult
 from hrc_drake.paths import add_model_package
 from hrc_drake.seeding import stream
 from hrc_drake.station import StationSpec, add_robot
-from hrc_drake.systems.adapters import hand_poses
+from hrc_drake.systems.adapters import HumanHands, hand_poses
 from hrc_drake.systems.workpieces import add_workpieces
 from hrc_drake.wiring import TOOL_MODEL, WORKPIECES_SYSTEM
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Spawn
@@ -75,3 +75,21 @@ def test_human_status_hands_become_hand_poses():
     expected = RigidTransform(Quaternion(0, 0, 0, 1), [4, 5, 6])
     assert hands.right.IsNearlyEqualTo(expected, 1e-12)
     assert hand_poses(HumanStatus()) is None
+
+
+def test_the_hands_follow_each_new_status_and_stay_the_same_object_while_it_is_the_same():
+    """Workpieces takes hands of the same identity for an unchanged person (it keeps their
+    grasp frames), so a new status must give new hands and the same status the same."""
+    hands = HumanHands()
+    context = hands.CreateDefaultContext()
+    port, output = hands.get_input_port(), hands.get_output_port()
+    still = HumanStatus(left_hand=(1, 2, 3, 1, 0, 0, 0), right_hand=(4, 5, 6, 1, 0, 0, 0))
+    port.FixValue(context, still)
+    first = output.Eval(context)
+    port.FixValue(context, still)
+    assert output.Eval(context) is first
+    moved = HumanStatus(left_hand=(1, 2, 4, 1, 0, 0, 0), right_hand=(4, 5, 6, 1, 0, 0, 0))
+    port.FixValue(context, moved)
+    np.testing.assert_allclose(output.Eval(context).left.translation(), [1, 2, 4])
+    port.FixValue(context, HumanStatus())
+    assert output.Eval(context) == ()
