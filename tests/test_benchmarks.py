@@ -24,6 +24,7 @@ SMALLEST = {
     "plant_contact.py": ["--duration", "0.5", "cooperation"],
     "plant_step.py": ["--duration", "0.5", "cooperation"],
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
+    "proximity_cost.py": ["--duration", "0.5", "coexistence"],
     "python_systems.py": ["--duration", "0.5", "--systems", "0", "2"],
     "realism_cost.py": ["--duration", "0.5", "coexistence"],
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
