@@ -29,6 +29,7 @@ SMALLEST = {
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "robot_update.py": ["--duration", "0.5", "getting_started"],
+    "safety_measure.py": ["--duration", "0.5", "coexistence"],
     "safety_cost.py": ["--duration", "0.5", "--repeats", "1", "cooperation"],
     "scenarios.py": ["--duration", "0.5", "cooperation"],
     "sensing_cost.py": ["--duration", "0.5", "--repeats", "1"],

@@ -39,11 +39,12 @@ PIN_COS = 0.5
 """cos 60°: an obstacle within this angle of the direction the robot pushes a body region
 holds the region against the robot (a clamping, quasi-static contact)."""
 
-REFRESH_DISTANCE = 0.02
+REFRESH_DISTANCE = 0.04
 """m any part may move before the capsule gaps are computed afresh. Until then the gaps of
 the reference less both parts' displacements since bound the distances (a capsule moves no
-farther than its segment's ends); farther moves loosen them into more exact queries than
-the fresh gaps cost."""
+farther than its segment's ends). At 0.02 m a third of the coexistence's readings computed
+fresh gaps; at 0.04 m the exact queries stay as many (benchmarks/proximity_cost.py), farther
+moves loosen the bounds into more of them than the fresh gaps cost."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,6 +108,16 @@ class ActiveParts:
     """The frames whose poses the reading looks up."""
     robot_frames: np.ndarray
     """Those of them that are the robot's (the person's are looked up only when they moved)."""
+    frame_ids: list
+    """The SceneGraph ids of `frames`, and of `robot_frames`."""
+    robot_frame_ids: list
+    part_frames: np.ndarray
+    """The frame of each of `parts`, and their bounding segments' ends in it (`ends_F`)."""
+    ends_F: np.ndarray
+    radii: np.ndarray
+    """Sums of the radii (human × `robot`): the capsule gaps less these bound the distances."""
+    geometries: list
+    """The SceneGraph ids of `rows`."""
 
 
 class ProximityMeter:
@@ -152,7 +163,20 @@ class ProximityMeter:
         rows = self.n_human + robot
         parts = np.concatenate([np.arange(self.n_human), rows])
         frames = np.unique(self.part_frame[parts])
-        return ActiveParts(robot, rows, parts, frames, np.setdiff1d(frames, self.human_frames))
+        robot_frames = np.setdiff1d(frames, self.human_frames)
+        return ActiveParts(
+            robot,
+            rows,
+            parts,
+            frames,
+            robot_frames,
+            [self.frames[f] for f in frames],
+            [self.frames[f] for f in robot_frames],
+            self.part_frame[parts],
+            self.ends_F[parts],
+            self.radii[:, robot],
+            [self.geometries[k] for k in rows],
+        )
 
     def measure(
         self,
@@ -167,16 +191,12 @@ class ProximityMeter:
         sampled (None: continuously, at `time`)."""
         person_time = time if person_time is None else person_time
         poses = self._current_poses(query_object, memory, person_time, active)
-        if memory is None:
-            rates, reference = np.zeros_like(poses), None
-        else:
-            rates, reference = self._recall(memory, poses, time, person_time)
-        ends = self._ends(poses)
-        gaps, reference = self._gaps(ends, reference, active)
-        bound = gaps - self.radii[:, active.robot]
+        rates, reference = self._recall(memory, poses, time, person_time, active)
+        ends = poses[active.part_frames] @ active.ends_F
+        bound, reference = self._bounds(ends, reference, active)
         readings = [
             self._pair_reading(i, active.rows[j], result, poses, rates)
-            for i, j, result in self._exact_pairs(query_object, bound, active.rows)
+            for i, j, result in self._exact_pairs(query_object, bound, active.geometries)
         ]
         contacts = tuple(
             dataclasses.replace(x, pinned=self.pinned(query_object, x, active))
@@ -185,44 +205,49 @@ class ProximityMeter:
         )
         pelvis, pelvis_rate = poses[self.pelvis_frame, :2, 3], rates[self.pelvis_frame, :2, 3]
         memory = [[time, person_time], poses, rates[self.human_frames], *reference]
-        robot = ends[active.rows]
+        robot = ends[self.n_human :]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=contacts,
-            robot_speed=self._fastest(rates, active.rows),
-            walking_speed=math.hypot(*pelvis_rate),
+            robot_speed=self._fastest(rates, active),
+            walking_speed=math.hypot(*pelvis_rate.tolist()),
             person_xy=(float(pelvis[0]), float(pelvis[1])),
             memory=np.concatenate([np.ravel(m) for m in memory]),
             robot=(robot[:, :, 0], robot[:, :, 1] - robot[:, :, 0], self.part_radii[active.rows]),
         )
 
-    def _poses(self, query_object, frames: np.ndarray) -> np.ndarray:
-        """World poses (frames × 3 × 4) of `frames`; NaN for the others (SceneGraph's pose
-        lookups are most of the meter's cost)."""
+    def _poses(self, frames: np.ndarray, ids: list, query_object) -> np.ndarray:
+        """World poses (frames × 3 × 4) of `frames` (SceneGraph's `ids`); NaN for the others
+        (SceneGraph's pose lookups are most of the meter's cost)."""
         poses = np.full((len(self.frames), 3, 4), np.nan)
-        ids = self.frames
-        poses[frames] = [query_object.GetPoseInWorld(ids[f]).GetAsMatrix34() for f in frames]
+        poses[frames] = [query_object.GetPoseInWorld(f).GetAsMatrix34() for f in ids]
         return poses
 
     def _current_poses(self, query_object, memory, person_time: float, active: ActiveParts):
         """`_poses` of the active frames; the person's are the last reading's while the
         person has no newer pose sample (HumanActor holds its pose between samples)."""
-        if memory is None or person_time != memory[self._memory_parts[0]][1]:
-            return self._poses(query_object, active.frames)
-        poses = self._poses(query_object, active.robot_frames)
-        previous = memory[self._memory_parts[1]].reshape(poses.shape)
-        poses[self.human_frames] = previous[self.human_frames]
+        if memory is None or person_time != memory[1]:
+            return self._poses(active.frames, active.frame_ids, query_object)
+        poses = self._poses(active.robot_frames, active.robot_frame_ids, query_object)
+        humans = self.human_frames
+        poses[humans] = memory[self._memory_parts[1]].reshape(poses.shape)[humans]
         return poses
 
-    def _recall(self, memory: np.ndarray, poses: np.ndarray, time: float, person_time: float):
-        """Rates of change (frames × 3 × 4) of the poses since the last reading (zero for
-        frames not measured then), the person's since their last pose sample, and the gaps'
-        reference (part ends, gaps) stored in `memory`."""
+    def _recall(self, memory, poses: np.ndarray, time: float, person_time: float, active):
+        """Rates of change (frames × 3 × 4) of the active frames' poses since the last
+        reading (zero for frames not measured then, and before the first reading), the
+        person's since their last pose sample, and the gaps' reference (part ends, gaps)
+        stored in `memory` (None before the first reading)."""
+        rates = np.zeros_like(poses)
+        if memory is None:
+            return rates, None
         times, previous, person_rates, ends, gaps = (memory[part] for part in self._memory_parts)
         previous = previous.reshape(poses.shape)
-        previous = np.where(np.isnan(previous), poses, previous)
+        robot = active.robot_frames
         dt = time - times[0]
-        rates = (poses - previous) / dt if dt > 0.0 else np.zeros_like(poses)
+        if dt > 0.0:
+            now, before = poses[robot], previous[robot]
+            rates[robot] = (now - np.where(np.isnan(before), now, before)) / dt
         person_dt = person_time - times[1]
         humans = self.human_frames
         if person_dt > 0.0:
@@ -231,47 +256,47 @@ class ProximityMeter:
             rates[humans] = person_rates.reshape(-1, 3, 4)
         return rates, (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
 
-    def _ends(self, poses: np.ndarray, parts=slice(None)) -> np.ndarray:
-        """World end points (parts × 3 × 2) of the parts' bounding segments (NaN for parts
-        whose frame was not measured)."""
-        return poses[self.part_frame[parts]] @ self.ends_F[parts]
-
-    def _gaps(self, ends: np.ndarray, reference, active: ActiveParts) -> tuple:
-        """Lower bounds (human × active robot parts) of the distances between the bounding
-        segments, and their reference (part ends, gaps of all parts, NaN where not
-        computed): the last one while no active part moved far (or became active)."""
+    def _bounds(self, ends: np.ndarray, reference, active: ActiveParts) -> tuple:
+        """Lower bounds (human × active robot parts) of the distances, from the gaps between
+        the bounding segments (`ends`: the active parts'), and the gaps' reference (all
+        parts' ends, gaps of all pairs, NaN where not computed): the last one while no
+        active part moved far (or became active)."""
+        n = self.n_human
         if reference is not None:
-            moved = ends[active.parts] - reference[0][active.parts]
+            moved = ends - reference[0][active.parts]
             moved = np.sqrt((moved * moved).sum(axis=1).max(axis=1))
             if moved.max() <= REFRESH_DISTANCE:  # False when a part was not measured then
-                h, r = moved[: self.n_human, None], moved[None, self.n_human :]
-                return reference[1][:, active.robot] - h - r, reference
+                gaps = reference[1][:, active.robot] - moved[:n, None] - moved[None, n:]
+                return gaps - active.radii, reference
         starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        h, r = slice(0, self.n_human), active.rows
-        gaps = segment_distances(starts[h], directions[h], starts[r], directions[r])
-        all_gaps = np.full((self.n_human, len(self.robot)), np.nan)
+        gaps = segment_distances(starts[:n], directions[:n], starts[n:], directions[n:])
+        all_ends = np.full((len(self.geometries), 3, 2), np.nan)
+        all_ends[active.parts] = ends
+        all_gaps = np.full((n, len(self.robot)), np.nan)
         all_gaps[:, active.robot] = gaps
-        return gaps, (ends, all_gaps)
+        return gaps - active.radii, (all_ends, all_gaps)
 
-    def _fastest(self, rates: np.ndarray, parts: np.ndarray) -> float:
-        """Speed of the fastest end of the parts' bounding segments (the robot's tool tip,
-        or a carried object's corner)."""
-        velocities = self._ends(rates, parts)
+    def _fastest(self, rates: np.ndarray, active: ActiveParts) -> float:
+        """Speed of the fastest end of the active robot parts' bounding segments (the robot's
+        tool tip, or a carried object's corner)."""
+        n = self.n_human
+        velocities = rates[active.part_frames[n:]] @ active.ends_F[n:]
         return math.sqrt((velocities * velocities).sum(axis=1).max())
 
-    def _exact_pairs(self, query_object, bound: np.ndarray, robot_rows: np.ndarray) -> list:
+    def _exact_pairs(self, query_object, bound: np.ndarray, robot_geometries: list) -> list:
         """Exact signed distances of the pairs that can be the closest or in contact, as
         (human part, column of `bound`, result)."""
         flat = bound.ravel()
+        columns = bound.shape[1]
         best = math.inf
         pairs = []
-        for k in np.argsort(flat):
-            lower = flat[k]
+        for k in np.argsort(flat).tolist():
+            lower = float(flat[k])
             if lower >= best and (best > 0.0 or lower > 0.0):
                 break
-            i, j = divmod(int(k), bound.shape[1])
+            i, j = divmod(k, columns)
             result = query_object.ComputeSignedDistancePairClosestPoints(
-                self.geometries[i], self.geometries[robot_rows[j]]
+                self.geometries[i], robot_geometries[j]
             )
             pairs.append((i, j, result))
             best = min(best, result.distance)
@@ -317,7 +342,8 @@ class ProximityMeter:
         frames: world positions (or velocities), len(poses) × parts × 3."""
         X_FG = self.X_FG[parts]
         p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
-        pose = np.stack(poses)[:, self.part_frame[parts]]
+        frames = self.part_frame[parts]
+        pose = np.stack([p[frames] for p in poses])
         return (pose[..., :3] @ p_F + pose[..., 3:])[..., 0]
 
 

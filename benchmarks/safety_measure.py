@@ -1,0 +1,159 @@
+"""What the SafetyMonitor's measurements cost: the monitor of a git revision against the
+working tree's, on the same run, in one process.
+
+Each scenario is built twice, once with the revision's monitor (its `systems/safety_monitor.py`,
+`hrc_drake/safety/proximity.py` and `geometry.py`) and once with the working tree's, and
+the two simulations advance in turns of `--turn` simulated seconds. Timed by this
+process's CPU time: every monitor update, with all it makes Drake compute (posing a scene,
+the pose sources' kinematics, the objects' poses, the judge), and each simulation as a
+whole. The two monitors' `safety_signals` must agree bit for bit at every update (a
+logger at the monitor's period), or the benchmark stops. Prints, per scenario, the CPU per
+measuring update of each monitor and the ratio, and the whole simulation's.
+
+    .venv/bin/python benchmarks/safety_measure.py [--old REV] [--duration 20] [scenario ...]
+"""
+
+import argparse
+import subprocess
+import sys
+import time
+import types
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import EventStatus
+from pydrake.systems.primitives import LogVectorOutput
+
+from hrc_drake import builder as station_builder
+from hrc_drake.builder import build_diagram
+from hrc_drake.scenario import load_scenario
+from hrc_drake.systems import safety_monitor
+
+ROOT = Path(__file__).resolve().parents[1]
+BEFORE = "25e9476"
+"""main before the monitor's #28 changes of session 14."""
+SEEDS = {"coexistence": 0, "cooperation": 0, "collaboration": 15}
+
+
+def module_at(revision: str, path: str, name: str, replacing: dict | None = None):
+    """The module `path` as it was at `revision`; `replacing` stands in for the modules it
+    imports while it is loaded (name: module)."""
+    source = subprocess.run(
+        ["git", "show", f"{revision}:{path}"], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout
+    module = types.ModuleType(name)
+    saved = {key: sys.modules.get(key) for key in replacing or {}}
+    sys.modules.update(replacing or {})
+    try:
+        exec(compile(source, f"{revision}:{path}", "exec"), module.__dict__)
+    finally:
+        sys.modules.update(saved)
+    return module
+
+
+def monitor_at(revision: str):
+    """systems/safety_monitor.py at `revision`, with that revision's meter."""
+    geometry = module_at(revision, "hrc_drake/safety/geometry.py", "old_geometry")
+    replacing = {"hrc_drake.safety.geometry": geometry}
+    proximity = module_at(revision, "hrc_drake/safety/proximity.py", "old_proximity", replacing)
+    replacing["hrc_drake.safety.proximity"] = proximity
+    return module_at(revision, "systems/safety_monitor.py", "old_safety_monitor", replacing)
+
+
+class Timed:
+    """Times the `_update` of each monitor class given, inclusive, and counts those that
+    measured (did not return DidNothing)."""
+
+    def __init__(self, classes: dict):
+        self.seconds, self.measured = defaultdict(float), defaultdict(int)
+        self._originals = {key: cls._update for key, cls in classes.items()}
+        self._classes = classes
+
+    def __enter__(self):
+        for key, cls in self._classes.items():
+            cls._update = self._timed(key, self._originals[key])
+        return self
+
+    def __exit__(self, *exc):
+        for key, cls in self._classes.items():
+            cls._update = self._originals[key]
+
+    def _timed(self, key: str, update):
+        def timed(monitor, context, state):
+            start = time.process_time()
+            status = update(monitor, context, state)
+            self.seconds[key] += time.process_time() - start
+            self.measured[key] += status.severity() != EventStatus.Severity.kDidNothing
+            return status
+
+        return timed
+
+
+def built(name: str, add_monitor):
+    """The scenario's diagram with `add_monitor` as its `add_safety_monitor`, and a logger of
+    the monitor's signals."""
+    scenario = load_scenario(name, [("seed", SEEDS.get(name, 0))])
+    logs = {}
+
+    def attach(builder, station):
+        port = station.safety.GetOutputPort("safety_signals")
+        logs["signals"] = LogVectorOutput(port, builder, scenario.safety.period)
+
+    kept = station_builder.add_safety_monitor
+    station_builder.add_safety_monitor = add_monitor
+    try:
+        diagram = build_diagram(scenario, attach=attach)
+    finally:
+        station_builder.add_safety_monitor = kept
+    simulator = Simulator(diagram)
+    simulator.Initialize()
+    return simulator, logs["signals"]
+
+
+def compare(name: str, old, duration: float, turn: float) -> None:
+    total = defaultdict(float)
+    classes = {"old": old.SafetyMonitor, "new": safety_monitor.SafetyMonitor}
+    with Timed(classes) as timed:  # before the monitors declare their updates
+        runs = {
+            "old": built(name, old.add_safety_monitor),
+            "new": built(name, safety_monitor.add_safety_monitor),
+        }
+        now = 0.0
+        while now < duration - 1e-9:
+            now = min(now + turn, duration)
+            for key, (simulator, _) in runs.items():
+                start = time.process_time()
+                simulator.AdvanceTo(now)
+                total[key] += time.process_time() - start
+    signals = {
+        key: logger.FindLog(simulator.get_context()).data()
+        for key, (simulator, logger) in runs.items()
+    }
+    if not np.array_equal(signals["old"], signals["new"], equal_nan=True):
+        raise SystemExit(f"{name}: the monitors' signals differ")
+    per = {key: 1e6 * timed.seconds[key] / timed.measured[key] for key in runs}
+    print(
+        f"{name:14s} {timed.measured['new']:5d} measurements, same signals. Per measuring "
+        f"update: old {per['old']:6.1f} us, new {per['new']:6.1f} us "
+        f"({per['old'] / per['new']:4.2f}x); whole run: old {total['old']:5.2f} s, "
+        f"new {total['new']:5.2f} s CPU ({total['old'] / total['new']:4.2f}x)",
+        flush=True,
+    )
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scenarios", nargs="*", default=tuple(SEEDS))
+    parser.add_argument("--old", default=BEFORE, help="git revision of the old monitor")
+    parser.add_argument("--duration", type=float, default=20.0)
+    parser.add_argument("--turn", type=float, default=0.5, help="simulated seconds per turn")
+    args = parser.parse_args()
+    old = monitor_at(args.old)
+    for name in args.scenarios:
+        compare(name, old, args.duration, args.turn)
+
+
+if __name__ == "__main__":
+    main()
