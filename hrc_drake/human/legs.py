@@ -39,7 +39,7 @@ def rotation_y(a: float) -> np.ndarray:
 
 
 def _floats(v) -> tuple[float, ...]:
-    return tuple(float(x) for x in v)
+    return tuple(map(float, v))
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -60,6 +60,13 @@ def _unit_of(v) -> tuple[float, float, float]:
     x, y, z = v
     length = sqrt(x * x + y * y + z * z)
     return (x / length, y / length, z / length)
+
+
+def _level_up(forward) -> tuple[float, float, float]:
+    """The up axis of a foot along the unit `forward` that does not roll: the world's up
+    less its part along the foot."""
+    x, y, z = forward
+    return _unit_of((-z * x, -z * y, 1.0 - z * z))
 
 
 def _times(R, v) -> tuple[float, float, float]:
@@ -137,6 +144,8 @@ class Legs:
         index = body.index
         self.root = tuple(index(n) for n in ("base_x", "base_y", "base_yaw", "pelvis_height"))
         self.pelvis_angles = (index("pelvis_tilt"), index("pelvis_list"))
+        self._pelvis_columns = np.array([*self.root, *self.pelvis_angles])
+        """`root` and `pelvis_angles`, for reading them off q in one go."""
         self.joints = {side: tuple(index(f"{side}_{j}") for j in LEG_JOINTS) for side in SIDES}
         self.lower = {side: body.lower[list(self.joints[side])] for side in SIDES}
         self.upper = {side: body.upper[list(self.joints[side])] for side in SIDES}
@@ -157,8 +166,7 @@ class Legs:
 
     def _pelvis_rows(self, q) -> tuple[tuple, tuple[float, float, float]]:
         """`pelvis` as tuples: the rotation's rows, the position."""
-        x, y, yaw, height = (float(q[i]) for i in self.root)
-        tilt, tilt_list = (float(q[i]) for i in self.pelvis_angles)
+        x, y, yaw, height, tilt, tilt_list = np.asarray(q)[self._pelvis_columns].tolist()
         return self._pelvis_rotation(yaw, tilt, tilt_list)[0], (x, y, height)
 
     def _pelvis_rotation(self, yaw: float, tilt: float, tilt_list: float) -> tuple:
@@ -206,8 +214,8 @@ class Legs:
     def within_reach(self, q, side: str, position, forward, knee: float) -> np.ndarray:
         """`position` for the `side` sole, or where it would be had the leg moved it only as
         far from the hip as the knee bent `knee` allows (straight back towards the hip)."""
-        hip, ankle = self._hip_and_ankle(q, side, position, forward)
-        hip = [h + a for h, a in zip(hip, self._pelvis_rows(q)[1], strict=True)]
+        p, hip, ankle = self._hip_and_ankle(q, side, position, forward)
+        hip = [h + a for h, a in zip(hip, p, strict=True)]
         leg = [a - h for a, h in zip(ankle, hip, strict=True)]
         longest = sqrt(self._longest_squared(knee))
         length = sqrt(leg[0] * leg[0] + leg[1] * leg[1] + leg[2] * leg[2])
@@ -220,20 +228,19 @@ class Legs:
     def highest_pelvis(self, q, side: str, position, forward, knee: float) -> float:
         """The highest the pelvis may stand (pelvis_height, the rest of q kept) for the
         `side` leg to reach its sole's place with the knee bent at least `knee`."""
-        hip, ankle = self._hip_and_ankle(q, side, position, forward)
-        x, y, _ = self._pelvis_rows(q)[1]
+        (x, y, _), hip, ankle = self._hip_and_ankle(q, side, position, forward)
         across_squared = (x + hip[0] - ankle[0]) ** 2 + (y + hip[1] - ankle[1]) ** 2
         return ankle[2] - hip[2] + sqrt(max(self._longest_squared(knee) - across_squared, 0.0))
 
-    def _hip_and_ankle(self, q, side: str, position, forward) -> tuple[tuple, list]:
-        """The `side` hip's offset from the pelvis (world axes) and the ankle (world) of a
-        sole at `position` pointing along `forward`."""
-        R_p, _ = self._pelvis_rows(q)
+    def _hip_and_ankle(self, q, side: str, position, forward) -> tuple[tuple, tuple, list]:
+        """The pelvis's position, the `side` hip's offset from it (world axes) and the
+        ankle (world) of a sole at `position` pointing along `forward`."""
+        R_p, p = self._pelvis_rows(q)
         f = _floats(forward)
-        up = _unit_of((-f[2] * f[0], -f[2] * f[1], 1.0 - f[2] * f[2]))
+        up = _level_up(f)
         along, down = self._sole_offset[0], self._sole_offset[2]
         ankle = [t - along * v - down * u for t, v, u in zip(_floats(position), f, up, strict=True)]
-        return _times(R_p, self._hips[side]), ankle
+        return p, _times(R_p, self._hips[side]), ankle
 
     def _longest_squared(self, knee: float) -> float:
         """The squared hip-ankle distance of a leg with the knee bent `knee`."""
@@ -258,16 +265,15 @@ class Legs:
         q = np.array(q, dtype=float)
         R_p, p = self._pelvis_rows(q)
         forward = _unit_of(_floats(forward))
-        up = _unit_of([-forward[2] * v for v in forward[:2]] + [1.0 - forward[2] * forward[2]])
+        up = _level_up(forward)
         hip = [a + b for a, b in zip(p, _times(R_p, self._hips[side]), strict=True)]
         f = _transposed_times(R_p, forward)
-        along = [self._sole_offset[0] * v for v in forward]
-        down = self._sole_offset[2]
-        target = _floats(position)
+        ahead, down = self._sole_offset[0], self._sole_offset[2]
+        # the target less the sole's offset along the foot; each pass takes off the rest, along
+        # the foot's up axis as the pass before left it
+        aimed = [t - ahead * v for t, v in zip(_floats(position), forward, strict=True)]
         for k in range(passes):
-            ankle = [
-                t - a - down * u - h for t, a, u, h in zip(target, along, up, hip, strict=True)
-            ]
+            ankle = [a - down * u - h for a, u, h in zip(aimed, up, hip, strict=True)]
             R_hip, knee, pitch = self._leg(_transposed_times(R_p, ankle), f)
             if k + 1 < passes:
                 up = _times(R_p, _times(R_hip, (sin(pitch), 0.0, cos(pitch))))
@@ -365,8 +371,11 @@ class Legs:
         m = _crossed(n, d_hat)
         ux, _, uz = u_hat
         # (d_hat | n | m) @ (u_hat; (0, 1, 0); (uz, 0, -ux)), row by row
-        return tuple(
-            (d * ux + m * uz, n, d * uz - m * ux) for d, n, m in zip(d_hat, n, m, strict=True)
+        (d0, d1, d2), (n0, n1, n2), (m0, m1, m2) = d_hat, n, m
+        return (
+            (d0 * ux + m0 * uz, n0, d0 * uz - m0 * ux),
+            (d1 * ux + m1 * uz, n1, d1 * uz - m1 * ux),
+            (d2 * ux + m2 * uz, n2, d2 * uz - m2 * ux),
         )
 
     @staticmethod
