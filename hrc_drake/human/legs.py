@@ -176,7 +176,9 @@ class Legs:
         key = pack("3d", yaw, tilt, tilt_list)
         if key != self._rotation[0]:
             rows = _product(_product(_rows_z(yaw), _rows_y(tilt)), _rows_x(tilt_list))
-            self._rotation = (key, rows, np.array(rows))
+            array = np.array(rows)
+            array.flags.writeable = False  # shared by every caller until the pelvis turns
+            self._rotation = (key, rows, array)
         return self._rotation[1:]
 
     def sole(self, q, side: str) -> SolePose:
