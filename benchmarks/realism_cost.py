@@ -56,10 +56,15 @@ def audit_cost(name: str, duration: float):
 
 def short_runs_asked(doc: str) -> argparse.Namespace:
     """The scenarios (of SHORT_RUNS) and the duration a short-run benchmark is asked for."""
+    return short_runs_parser(doc).parse_args()
+
+
+def short_runs_parser(doc: str) -> argparse.ArgumentParser:
+    """`short_runs_asked`'s parser, for a benchmark that asks more."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("scenarios", nargs="*", default=list(SHORT_RUNS))
     parser.add_argument("--duration", type=float, default=30.0)
-    return parser.parse_args()
+    return parser
 
 
 def main() -> None:

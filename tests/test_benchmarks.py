@@ -19,7 +19,7 @@ SMALLEST = {
     "groot_cost.py": ["--duration", "0.5", "--repeats", "1", "getting_started"],
     "human_cost.py": ["--duration", "0.5", "--repeats", "1"],
     "human_planning.py": ["--duration", "2", "--repeats", "1", "coexistence"],
-    "human_update.py": ["--duration", "0.5", "coexistence"],
+    "human_update.py": ["--duration", "0.5", "--against", "HEAD", "--repeats", "1", "coexistence"],
     "layout.py": ["--scenario", "getting_started", "--samples", "2"],
     "plant_contact.py": ["--duration", "0.5", "cooperation"],
     "plant_step.py": ["--duration", "0.5", "cooperation"],

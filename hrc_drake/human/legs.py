@@ -17,6 +17,7 @@ about y, the ankle about -y.
 from dataclasses import dataclass
 from functools import lru_cache
 from math import acos, asin, atan2, cos, pi, sin, sqrt
+from struct import pack
 
 import numpy as np
 
@@ -33,30 +34,22 @@ STRAIGHTEST_KNEE = 0.02
 """rad: the knee never quite locks (a straight knee is singular)."""
 
 
-def rotation_x(a: float) -> np.ndarray:
-    return np.array(_rows_x(a))
-
-
 def rotation_y(a: float) -> np.ndarray:
     return np.array(_rows_y(a))
 
 
-def rotation_z(a: float) -> np.ndarray:
-    return np.array(_rows_z(a))
+def _floats(v) -> tuple[float, ...]:
+    return tuple(map(float, v))
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
     return v / sqrt(float(v @ v))
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a x b of two 3-vectors (numpy's cross costs twenty times more for one pair)."""
-    return np.array(_crossed(a, b))
-
-
-# The closed-form solve runs a few times per foot at every update of a walking person: its
-# 3-vectors and 3 × 3 rotations are plain tuples of floats (rows for a matrix), which
-# Python multiplies several times faster than numpy does arrays this small.
+# The closed-form solve and the legs' forward kinematics run a few times per foot at every
+# update of a walking person: their 3-vectors and 3 × 3 rotations are plain tuples of floats
+# (rows for a matrix), which Python multiplies several times faster than numpy does arrays
+# this small (and the same on every machine: no BLAS kernel rounds them its own way).
 
 
 def _crossed(a, b) -> tuple[float, float, float]:
@@ -67,6 +60,13 @@ def _unit_of(v) -> tuple[float, float, float]:
     x, y, z = v
     length = sqrt(x * x + y * y + z * z)
     return (x / length, y / length, z / length)
+
+
+def _level_up(forward) -> tuple[float, float, float]:
+    """The up axis of a foot along the unit `forward` that does not roll: the world's up
+    less its part along the foot."""
+    x, y, z = forward
+    return _unit_of((-z * x, -z * y, 1.0 - z * z))
 
 
 def _times(R, v) -> tuple[float, float, float]:
@@ -84,8 +84,14 @@ def _transposed_times(R, v) -> tuple[float, float, float]:
 
 
 def _product(A, B) -> tuple:
-    """A @ B, row by row."""
-    return tuple(_transposed_times(B, row) for row in A)
+    """A @ B, row by row (each row `_transposed_times(B, row)`, written out)."""
+    (a, b, c), (d, e, f), (g, h, i) = B
+    (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = A
+    return (
+        (a * x0 + d * y0 + g * z0, b * x0 + e * y0 + h * z0, c * x0 + f * y0 + i * z0),
+        (a * x1 + d * y1 + g * z1, b * x1 + e * y1 + h * z1, c * x1 + f * y1 + i * z1),
+        (a * x2 + d * y2 + g * z2, b * x2 + e * y2 + h * z2, c * x2 + f * y2 + i * z2),
+    )
 
 
 def _rows_x(a: float) -> tuple:
@@ -131,78 +137,117 @@ class Legs:
         )
         self._hips = {side: tuple(map(float, hip)) for side, hip in self.hip.items()}
         """`hip` as tuples, for `solve`."""
+        self._sole_offset = tuple(self.sole_offset.tolist())
         self.half_foot = sizes["foot"] / 2
         (foot,) = body.skeleton.body("left_foot").collisions
         self.half_foot_width = foot.shape.size[1] / 2
         index = body.index
         self.root = tuple(index(n) for n in ("base_x", "base_y", "base_yaw", "pelvis_height"))
         self.pelvis_angles = (index("pelvis_tilt"), index("pelvis_list"))
+        self._pelvis_columns = np.array([*self.root, *self.pelvis_angles])
+        """`root` and `pelvis_angles`, for reading them off q in one go."""
         self.joints = {side: tuple(index(f"{side}_{j}") for j in LEG_JOINTS) for side in SIDES}
         self.lower = {side: body.lower[list(self.joints[side])] for side in SIDES}
         self.upper = {side: body.upper[list(self.joints[side])] for side in SIDES}
+        self._columns = {side: np.array(self.joints[side]) for side in SIDES}
+        """`joints` as index arrays, for `solve`."""
+        self._limits = {
+            side: tuple(zip(self.lower[side].tolist(), self.upper[side].tolist(), strict=True))
+            for side in SIDES
+        }
+        """Per side, each leg joint's (lower, upper) limit as floats, for `solve`."""
+        self._rotation = (b"", (), np.empty((3, 3)))
+        """The last pelvis rotation worked out: (its angles' bytes, rows, array)."""
 
     def pelvis(self, q) -> tuple[np.ndarray, np.ndarray]:
         """World rotation and position of the pelvis frame (the hip joints' midpoint)."""
-        R, p = self._pelvis_rows(q)
-        return np.array(R), np.array(p)
+        _, p = self._pelvis_rows(q)
+        return self._rotation[2], np.array(p)  # the rotation just worked out, as an array
 
     def _pelvis_rows(self, q) -> tuple[tuple, tuple[float, float, float]]:
         """`pelvis` as tuples: the rotation's rows, the position."""
-        x, y, yaw, height = (float(q[i]) for i in self.root)
-        tilt, tilt_list = (float(q[i]) for i in self.pelvis_angles)
-        return _product(_product(_rows_z(yaw), _rows_y(tilt)), _rows_x(tilt_list)), (x, y, height)
+        x, y, yaw, height, tilt, tilt_list = np.asarray(q)[self._pelvis_columns].tolist()
+        return self._pelvis_rotation(yaw, tilt, tilt_list)[0], (x, y, height)
 
-    @staticmethod
-    def _hip_rotation(side: str, flexion: float, abduction: float, rotation: float):
-        sign = 1.0 if side == "left" else -1.0
-        return rotation_y(-flexion) @ rotation_x(sign * abduction) @ rotation_z(-sign * rotation)
+    def _pelvis_rotation(self, yaw: float, tilt: float, tilt_list: float) -> tuple:
+        """The pelvis rotation's rows and array, the last one remembered: placing a walking
+        person's feet asks for it some eight times, for the same pelvis (keyed by the
+        angles' bytes, so that a -0.0 is never taken for a 0.0)."""
+        key = pack("3d", yaw, tilt, tilt_list)
+        if key != self._rotation[0]:
+            rows = _product(_product(_rows_z(yaw), _rows_y(tilt)), _rows_x(tilt_list))
+            array = np.array(rows)
+            array.flags.writeable = False  # shared by every caller until the pelvis turns
+            self._rotation = (key, rows, array)
+        return self._rotation[1:]
 
     def sole(self, q, side: str) -> SolePose:
         """Where the `side` sole is at the joint positions q."""
-        R_p, p = self.pelvis(q)
+        return SolePose(*map(np.array, self._sole_rows(q, side)))
+
+    def _sole_rows(self, q, side: str) -> tuple[tuple, tuple, tuple]:
+        """`sole` as tuples: position, forward, up (a walking pose asks twice)."""
+        R_p, p = self._pelvis_rows(q)
         flexion, abduction, rotation, knee, ankle = (float(q[i]) for i in self.joints[side])
-        R_thigh = R_p @ self._hip_rotation(side, flexion, abduction, rotation)
-        R_shank = R_thigh @ rotation_y(knee)
-        R_foot = R_shank @ rotation_y(-ankle)
-        ankle_at = p + R_p @ self.hip[side] + R_thigh @ [0.0, 0.0, -self.thigh]
-        ankle_at = ankle_at + R_shank @ [0.0, 0.0, -self.shank]
-        return SolePose(ankle_at + R_foot @ self.sole_offset, R_foot[:, 0], R_foot[:, 2])
+        sign = 1.0 if side == "left" else -1.0
+        hip = _product(_rows_y(-flexion), _rows_x(sign * abduction))
+        R_thigh = _product(R_p, _product(hip, _rows_z(-sign * rotation)))
+        R_shank = _product(R_thigh, _rows_y(knee))
+        R_foot = _product(R_shank, _rows_y(-ankle))
+        offsets = (
+            _times(R_p, self._hips[side]),
+            _times(R_thigh, (0.0, 0.0, -self.thigh)),
+            _times(R_shank, (0.0, 0.0, -self.shank)),
+            _times(R_foot, self._sole_offset),
+        )
+        position = tuple(x + a + b + c + d for x, a, b, c, d in zip(p, *offsets, strict=True))
+        forward, _, up = zip(*R_foot, strict=True)
+        return position, forward, up
 
     def under_the_floor(self, q, side: str) -> float:
         """How far the `side` foot's sole reaches under the floor (0: it does not). The leg
         gives the foot its roll (there is no ankle to roll it back): a foot swung round a
         turn lands rolled, and the edge of a pitched and rolled sole dips below its heel."""
-        sole = self.sole(q, side)
-        across = _cross(sole.up, sole.forward)
-        drop = self.half_foot * abs(sole.forward[2]) + self.half_foot_width * abs(across[2])
-        return max(drop - float(sole.position[2]), 0.0)
+        position, forward, up = self._sole_rows(q, side)
+        across = _crossed(up, forward)
+        drop = self.half_foot * abs(forward[2]) + self.half_foot_width * abs(across[2])
+        return max(drop - position[2], 0.0)
 
     def within_reach(self, q, side: str, position, forward, knee: float) -> np.ndarray:
         """`position` for the `side` sole, or where it would be had the leg moved it only as
         far from the hip as the knee bent `knee` allows (straight back towards the hip)."""
-        R_p, p = self.pelvis(q)
-        forward = np.asarray(forward, dtype=float)
-        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
-        offset = self.sole_offset[0] * forward + self.sole_offset[2] * up
-        hip = p + R_p @ self.hip[side]
-        leg = np.asarray(position) - offset - hip
-        L1, L2 = self.thigh, self.shank
-        longest = sqrt(L1 * L1 + L2 * L2 + 2 * L1 * L2 * cos(knee))
-        length = sqrt(float(leg @ leg))
-        return np.asarray(position) if length <= longest else hip + leg * longest / length + offset
+        p, hip, ankle = self._hip_and_ankle(q, side, position, forward)
+        hip = [h + a for h, a in zip(hip, p, strict=True)]
+        leg = [a - h for a, h in zip(ankle, hip, strict=True)]
+        longest = sqrt(self._longest_squared(knee))
+        length = sqrt(leg[0] * leg[0] + leg[1] * leg[1] + leg[2] * leg[2])
+        if length <= longest:
+            return np.asarray(position)
+        offset = [t - a for t, a in zip(_floats(position), ankle, strict=True)]
+        scale = longest / length
+        return np.array([h + v * scale + o for h, v, o in zip(hip, leg, offset, strict=True)])
 
     def highest_pelvis(self, q, side: str, position, forward, knee: float) -> float:
         """The highest the pelvis may stand (pelvis_height, the rest of q kept) for the
         `side` leg to reach its sole's place with the knee bent at least `knee`."""
-        R_p, p = self.pelvis(q)
-        forward = np.asarray(forward, dtype=float)
-        up = _unit(np.array([0.0, 0.0, 1.0]) - forward[2] * forward)
-        ankle = np.asarray(position) - self.sole_offset[0] * forward - self.sole_offset[2] * up
-        hip = R_p @ self.hip[side]
+        (x, y, _), hip, ankle = self._hip_and_ankle(q, side, position, forward)
+        across_squared = (x + hip[0] - ankle[0]) ** 2 + (y + hip[1] - ankle[1]) ** 2
+        return ankle[2] - hip[2] + sqrt(max(self._longest_squared(knee) - across_squared, 0.0))
+
+    def _hip_and_ankle(self, q, side: str, position, forward) -> tuple[tuple, tuple, list]:
+        """The pelvis's position, the `side` hip's offset from it (world axes) and the
+        ankle (world) of a sole at `position` pointing along `forward`."""
+        R_p, p = self._pelvis_rows(q)
+        f = _floats(forward)
+        up = _level_up(f)
+        along, down = self._sole_offset[0], self._sole_offset[2]
+        ankle = [t - along * v - down * u for t, v, u in zip(_floats(position), f, up, strict=True)]
+        return p, _times(R_p, self._hips[side]), ankle
+
+    def _longest_squared(self, knee: float) -> float:
+        """The squared hip-ankle distance of a leg with the knee bent `knee`."""
         L1, L2 = self.thigh, self.shank
-        longest_squared = L1 * L1 + L2 * L2 + 2 * L1 * L2 * cos(knee)
-        across_squared = (p[0] + hip[0] - ankle[0]) ** 2 + (p[1] + hip[1] - ankle[1]) ** 2
-        return float(ankle[2] - hip[2] + sqrt(max(longest_squared - across_squared, 0.0)))
+        return L1 * L1 + L2 * L2 + 2 * L1 * L2 * cos(knee)
 
     def planted(self, q, stance) -> np.ndarray:
         """q with both soles put back where the pose `stance` has them: the pelvis moved by
@@ -215,23 +260,30 @@ class Legs:
     def solve(self, q, side: str, position, forward, passes: int = 3) -> np.ndarray:
         """q with the `side` leg's joints set so its sole frame is at `position` (world)
         with the foot pointing along `forward` (a unit vector; its roll is what the leg
-        gives). A target out of reach leaves the leg straight towards it."""
+        gives). A target out of reach leaves the leg straight towards it.
+
+        Each pass aims the ankle with the foot's up axis the previous pass gave; only the
+        last pass's hip angles are read off."""
         q = np.array(q, dtype=float)
         R_p, p = self._pelvis_rows(q)
-        forward = _unit_of([float(v) for v in forward])
-        up = _unit_of([-forward[2] * v for v in forward[:2]] + [1.0 - forward[2] * forward[2]])
+        forward = _unit_of(_floats(forward))
+        up = _level_up(forward)
         hip = [a + b for a, b in zip(p, _times(R_p, self._hips[side]), strict=True)]
         f = _transposed_times(R_p, forward)
-        along = [float(self.sole_offset[0]) * v for v in forward]
-        down = float(self.sole_offset[2])
-        target = [float(v) for v in position]
-        for _ in range(passes):
-            ankle = [
-                t - a - down * u - h for t, a, u, h in zip(target, along, up, hip, strict=True)
-            ]
-            joints, up_in_pelvis = self._leg(side, _transposed_times(R_p, ankle), f)
-            up = _times(R_p, up_in_pelvis)
-        q[list(self.joints[side])] = np.clip(joints, self.lower[side], self.upper[side])
+        ahead, down = self._sole_offset[0], self._sole_offset[2]
+        # the target less the sole's offset along the foot; each pass takes off the rest, along
+        # the foot's up axis as the pass before left it
+        aimed = [t - ahead * v for t, v in zip(_floats(position), forward, strict=True)]
+        for k in range(passes):
+            ankle = [a - down * u - h for a, u, h in zip(aimed, up, hip, strict=True)]
+            R_hip, knee, pitch = self._leg(_transposed_times(R_p, ankle), f)
+            if k + 1 < passes:
+                up = _times(R_p, _times(R_hip, (sin(pitch), 0.0, cos(pitch))))
+        joints = (*self._hip_angles(side, R_hip), knee, knee - pitch)
+        q[self._columns[side]] = [
+            min(max(joint, lower), upper)
+            for joint, (lower, upper) in zip(joints, self._limits[side], strict=True)
+        ]
         return q
 
     def place_foot(self, q, side: str, position, forward) -> np.ndarray:
@@ -321,8 +373,11 @@ class Legs:
         m = _crossed(n, d_hat)
         ux, _, uz = u_hat
         # (d_hat | n | m) @ (u_hat; (0, 1, 0); (uz, 0, -ux)), row by row
-        return tuple(
-            (d * ux + m * uz, n, d * uz - m * ux) for d, n, m in zip(d_hat, n, m, strict=True)
+        (d0, d1, d2), (n0, n1, n2), (m0, m1, m2) = d_hat, n, m
+        return (
+            (d0 * ux + m0 * uz, n0, d0 * uz - m0 * ux),
+            (d1 * ux + m1 * uz, n1, d1 * uz - m1 * ux),
+            (d2 * ux + m2 * uz, n2, d2 * uz - m2 * ux),
         )
 
     @staticmethod
@@ -334,9 +389,10 @@ class Legs:
         c = atan2(R_hip[1][0], R_hip[1][1])
         return -a, sign * b, -sign * c
 
-    def _leg(self, side: str, d, f):
-        """Joint angles putting the ankle at d from the hip with the foot along f (both in
-        the pelvis frame), and the foot's up axis they give (pelvis frame)."""
+    def _leg(self, d, f):
+        """The hip's rotation (rows), the knee angle and the foot's pitch (in the leg's
+        plane) putting the ankle at d from the hip with the foot along f (both in the
+        pelvis frame)."""
         L1, L2 = self.thigh, self.shank
         reach = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
         c = (reach * reach - L1 * L1 - L2 * L2) / (2 * L1 * L2)
@@ -344,9 +400,7 @@ class Legs:
         u = (-L2 * sin(knee), 0.0, -L1 - L2 * cos(knee))
         R_hip = self._hip_frame(d, u, f)
         g = _transposed_times(R_hip, f)
-        pitch = atan2(-g[2], g[0])
-        joints = (*self._hip_angles(side, R_hip), knee, knee - pitch)
-        return joints, _times(R_hip, (sin(pitch), 0.0, cos(pitch)))
+        return R_hip, knee, atan2(-g[2], g[0])
 
 
 @lru_cache(maxsize=4)

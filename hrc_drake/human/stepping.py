@@ -329,10 +329,12 @@ def sole_target(
 
 def _sole_on(x: float, y: float, z: float, yaw: float, pitch: float, half_foot: float):
     """The sole (origin, forward axis) of a foot whose spot is (x, y, z), heading yaw and
-    pitched round its heel (pitch > 0) or toe (pitch < 0)."""
+    pitched round its heel (pitch > 0) or toe (pitch < 0); as tuples of floats (the legs
+    take them apart again, twice a walking pose)."""
     c, s = cos(yaw), sin(yaw)
     level = sqrt(1.0 - pitch * pitch)
-    forward = np.array([level * c, level * s, pitch])
+    forward = (level * c, level * s, pitch)
     pivot = _pivot(pitch, half_foot)
-    origin = np.array([x + pivot * c, y + pivot * s, z]) - pivot * forward
+    rolled_from = (x + pivot * c, y + pivot * s, z)
+    origin = tuple(a - pivot * f for a, f in zip(rolled_from, forward, strict=True))
     return origin, forward

@@ -235,12 +235,12 @@ class WalkSegment:
         dt = 1e-3
         return (self.distance(t + dt) - self.distance(t - dt)) / (2 * dt)
 
-    def _pace(self, t: float) -> float:
-        """How far into walking the body is: its speed as a fraction of the cruising speed
-        (0 standing, 1 at full pace)."""
+    def _pace(self, speed: float) -> float:
+        """How far into walking the body is at `speed` along the path: as a fraction of
+        the cruising speed (0 standing, 1 at full pace)."""
         total = self.lengths[-1]
         cruise = min(self.speed, total / SPEED_RAMP) if total > 0 else 1.0
-        return self.speed_at(t) / cruise
+        return speed / cruise
 
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         return self._pose(performer, t, feet=True)
@@ -256,17 +256,19 @@ class WalkSegment:
         clip_time = self.clip_time(performer, t)
         gait = clip.sample(clip_time)
         standing = performer.standing
-        pace = min(max(self._pace(t), 0.0), 1.0)
+        pelvis, speed = self.distance(t), self.speed_at(t)  # each worked out once a pose
+        pace = min(max(self._pace(speed), 0.0), 1.0)
         q = standing + pace * (gait - standing)
         ix, iy, iyaw = performer.root
         surge = float(gait[ix]) - clip_time / clip.duration * clip.animation_distance
-        along = self.distance(t) + pace * surge
+        along = pelvis + pace * surge
         heading = self.heading(along) + pace * float(gait[iyaw])
         sideways = pace * float(gait[iy])
         x, y = self.point(along)
         q[ix], q[iy], q[iyaw] = 0.0, 0.0, 0.0
         q = place(performer, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
         gait_profile = performer.gait(clip)
+        clip_pace = min(speed / (clip.animation_distance / clip.duration), 1.0)
         targets = {}
         for side, (stances, strikes) in self.steps.items():
             k = max(bisect_right(strikes, t) - 1, 0)
@@ -278,8 +280,8 @@ class WalkSegment:
                 t,
                 clip.duration,
                 performer.legs.half_foot,
-                self.distance(t),
-                min(self.speed_at(t) / (clip.animation_distance / clip.duration), 1.0),
+                pelvis,
+                clip_pace,
                 self.spot,
             )
         iz = performer.index("pelvis_height")
