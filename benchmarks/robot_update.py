@@ -83,7 +83,29 @@ class Causes:
             return "a steady segment ended"
         if horizon > period:
             return "a steady horizon, one quintic strays: one period"
-        return "the motion changes each period"
+        return "one period: " + Causes.short_horizon(state)
+
+    @staticmethod
+    def short_horizon(state) -> str:
+        """Why the last update knew its motion one period ahead only."""
+        if state.pending is not None:
+            return "planning"
+        if state.gripper_waiting:
+            return "gripper waiting"
+        progress = state.progress
+        if state.stop_seq is not None:
+            return "stopping" if not progress.at_rest else "stopped"
+        if state.move_seq is None:
+            return "stopped on a path"
+        if state.arrived_since is not None or progress.finished(state.path.duration):
+            return "arriving (settling)"
+        if progress.rate_change > 0.0:
+            return "rate ramping up"
+        if progress.rate_change < 0.0:
+            return "rate ramping down"
+        if progress.rate != state.speed_fraction * state.safety_scale:
+            return "rate off target, no change"
+        return "path's end within the horizon"
 
 
 def main() -> None:

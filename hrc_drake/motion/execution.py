@@ -13,7 +13,6 @@ joint acceleration limits allow (the second term uses what the first leaves over
 by the target when speeding up, in full when braking (see `next_progress`).
 """
 
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -86,23 +85,19 @@ def next_progress(
     wanted = (target - progress.rate) / period
     limits = ACCELERATION_MARGIN * limit_scale * acceleration_limits
     ahead = min(path.duration, progress.tau + max(progress.rate, target) * period)
-    dq = np.array([path.velocity(tau) for tau in (progress.tau, ahead)])[:, None, :]
-    ddq = np.array([path.acceleration(tau) for tau in (progress.tau, ahead)])[:, None, :]
-    rates = np.array(sorted((progress.rate, target)))[None, :, None]
+    dq = np.array((path.velocity(progress.tau), path.velocity(ahead)))
+    ddq = np.array((path.acceleration(progress.tau), path.acceleration(ahead)))
+    moving = np.abs(dq) > 1e-9  # the joints' bounds where they move, over both rates
+    dq, ddq, limits = dq[moving], ddq[moving], np.broadcast_to(limits, moving.shape)[moving]
+    rates = np.array(sorted((progress.rate, target)))[:, None]
     curvature_term = ddq * rates * rates
-    moving = np.broadcast_to(np.abs(dq) > 1e-9, curvature_term.shape)
-    bound_a = _divided(-limits - curvature_term, dq, moving)
-    bound_b = _divided(limits - curvature_term, dq, moving)
-    low = np.max(np.minimum(bound_a, bound_b), where=moving, initial=-np.inf)
-    high = np.min(np.maximum(bound_a, bound_b), where=moving, initial=np.inf)
+    bound_a = (-limits - curvature_term) / dq
+    bound_b = (limits - curvature_term) / dq
+    low = np.max(np.minimum(bound_a, bound_b), initial=-np.inf)
+    high = np.min(np.maximum(bound_a, bound_b), initial=np.inf)
     chosen = min(max(wanted, low), high) if low <= high else 0.5 * (low + high)
     change = min(chosen, wanted) if speeding_up else max(chosen, wanted)
-    return dataclasses.replace(progress, rate_change=change)
-
-
-def _divided(numerator: np.ndarray, denominator: np.ndarray, where: np.ndarray) -> np.ndarray:
-    """numerator / denominator where `where` holds (0 elsewhere, never divided)."""
-    return np.divide(numerator, denominator, out=np.zeros(numerator.shape), where=where)
+    return Progress(progress.tau, progress.rate, change, progress.since)
 
 
 SEGMENT_COEFFICIENTS = 6
@@ -127,7 +122,7 @@ def hermite_segment(start: np.ndarray, end: np.ndarray, duration: float) -> np.n
     c3 = (10.0 * h - 4.0 * dv + 0.5 * da) / T**3
     c4 = (-15.0 * h + 7.0 * dv - da) / T**4
     c5 = (6.0 * h - 3.0 * dv + 0.5 * da) / T**5
-    return np.stack([q0, v0, 0.5 * a0, c3, c4, c5], axis=1)
+    return np.array((q0, v0, 0.5 * a0, c3, c4, c5)).T.copy()  # np.stack's cost a third
 
 
 SEGMENT_TOLERANCES = np.array([1e-6, 1e-4, 1e-2])
