@@ -12,6 +12,10 @@ pelvis_height (the hip joints' midpoint above the floor), pelvis_tilt (about y) 
 pelvis_list (about x); each hip is half the hip width to the side; flexion turns about -y,
 abduction about x (-x on the right) and rotation about -z (+z on the right); the knee turns
 about y, the ankle about -y.
+
+Longer than 400 lines: the solve and the legs' forward kinematics are written out in plain
+floats (a walking pose calls them dozens of times; small numpy arrays cost 1.7x more,
+benchmarks/human_update.py), and they share the conventions above.
 """
 
 from dataclasses import dataclass

@@ -16,6 +16,9 @@ building a diagram, as the person's is (hrc_drake.human.protocol). One update:
    failed to arrive).
 
 The state is immutable and replaced at every update, so Drake's context copies share it.
+
+Longer than 400 lines: the state and the machine that replaces it are one protocol, read
+and tested together (splitting them would split each step's rule from the fields it sets).
 """
 
 import dataclasses
