@@ -1,9 +1,10 @@
-"""Which geometries the monitor watches, and a cheap numpy broad phase for their distances.
+"""Which geometries the monitor watches, and a cheap broad phase for their distances.
 
 Every watched geometry is wrapped in a bounding capsule (a segment plus a radius) in its
-SceneGraph frame. Segment-to-segment distances minus the radii are lower bounds of the
-true signed distances (exact for capsule pairs), so the monitor asks SceneGraph for exact
-distances only for the few pairs that can still be the closest or touching.
+SceneGraph frame. Segment-to-segment distances (`kernels.segment_distances`) minus the
+radii are lower bounds of the true signed distances (exact for capsule pairs), so the
+monitor asks SceneGraph for exact distances only for the few pairs that can still be the
+closest or touching.
 """
 
 from dataclasses import dataclass
@@ -13,8 +14,6 @@ from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, GeometryId, Sphe
 
 from hrc_drake.human.sdf import REGION_SEPARATOR
 from hrc_drake.human.skeleton import REGIONS
-
-EPS = 1e-12
 
 
 @dataclass(frozen=True)
@@ -78,43 +77,3 @@ def _capsule_about_longest_axis(half_sizes: np.ndarray, cross_radius, shrink: bo
 
 def _segment(direction: np.ndarray, half_length: float, radius: float):
     return -half_length * direction, half_length * direction, float(radius)
-
-
-def segment_distances(a_start, a_dir, b_start, b_dir) -> np.ndarray:
-    """Distances between every segment a (n, 3) and every segment b (m, 3): an (n, m) array.
-
-    Segment a_i is p_i + s u_i and b_j is q_j + t w_j, s and t in [0, 1]. Ericson, Real-Time
-    Collision Detection, 5.1.9, vectorized; every dot product comes from one Gram matrix, as
-    numpy's cost here is per call, not per element.
-    """
-    n, m = len(a_start), len(b_start)
-    stacked = np.concatenate([a_start, a_dir, b_start, b_dir])
-    gram = stacked @ stacked.T
-    pp, uu, qq, ww = np.split(np.diagonal(gram), [n, 2 * n, 2 * n + m])
-    pu = np.diagonal(gram, offset=n)[:n]
-    qw = np.diagonal(gram, offset=m)[2 * n : 2 * n + m]
-    p_rows, u_rows = slice(0, n), slice(n, 2 * n)
-    q_cols, w_cols = slice(2 * n, 2 * n + m), slice(2 * n + m, None)
-    pq, pw = gram[p_rows, q_cols], gram[p_rows, w_cols]
-    uq, uw = gram[u_rows, q_cols], gram[u_rows, w_cols]
-    a, e = uu[:, None], ww[None, :]
-    c = pu[:, None] - uq  # u · (p - q)
-    f = pw - qw[None, :]  # w · (p - q)
-    denom = a * e - uw * uw
-    s = _unit_clamp((uw * f - c * e) / np.where(denom > EPS, denom, np.inf))
-    t = _unit_clamp((uw * s + f) * _inverse_or_zero(e))
-    s = _unit_clamp((uw * t - c) * _inverse_or_zero(a))
-    # |p - q + s u - t w|², expanded into the dot products above
-    squared = pp[:, None] + qq[None, :] - 2.0 * pq
-    squared += s * (a * s + 2.0 * (c - uw * t)) + t * (e * t - 2.0 * f)
-    return np.sqrt(np.maximum(squared, 0.0, out=squared), out=squared)
-
-
-def _unit_clamp(x: np.ndarray) -> np.ndarray:
-    """x clamped to [0, 1] in place (np.clip is several times slower on small arrays)."""
-    return np.minimum(np.maximum(x, 0.0, out=x), 1.0, out=x)
-
-
-def _inverse_or_zero(squared_lengths: np.ndarray) -> np.ndarray:
-    """1 / |d|², and 0 for degenerate (point) segments, which then keep their start."""
-    return 1.0 / np.where(squared_lengths > EPS, squared_lengths, np.inf)

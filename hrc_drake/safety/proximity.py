@@ -26,7 +26,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hrc_drake.safety.geometry import Part, bounding_segment, segment_distances
+from hrc_drake.safety import kernels
+from hrc_drake.safety.geometry import Part, bounding_segment
 
 PELVIS = "pelvis"
 """The body region whose motion along the floor is the person's walking."""
@@ -156,6 +157,17 @@ class ProximityMeter:
         bounds = np.cumsum([0, *sizes, 6 * len(self.geometries), self.radii.size])
         self._memory_parts = [slice(a, b) for a, b in itertools.pairwise(bounds)]
         self.memory_size = int(bounds[-1])
+        self._blank_memory = self._blank(self.memory_size, self._memory_parts[2])
+
+    @staticmethod
+    def _blank(size: int, person_rates: slice) -> np.ndarray:
+        """The memory before the first reading: no times, poses or gaps (NaN), so every
+        rate is zero and every gap fresh; the person's rates 0 stand for the missing
+        pose samples. Read-only, as the monitor's state is (one compiled kernel each)."""
+        memory = np.full(size, np.nan)
+        memory[person_rates] = 0.0
+        memory.flags.writeable = False
+        return memory
 
     def active(self, robot: np.ndarray) -> ActiveParts:
         """The parts to watch while the robot parts `robot` (indices into `robot`) are."""
@@ -190,10 +202,22 @@ class ProximityMeter:
         now: carried objects come and go. `person_time` is when the person's pose was
         sampled (None: continuously, at `time`)."""
         person_time = time if person_time is None else person_time
+        memory = self._blank_memory if memory is None else memory
         poses = self._current_poses(query_object, memory, person_time, active)
-        rates, reference = self._recall(memory, poses, time, person_time, active)
-        ends = poses[active.part_frames] @ active.ends_F
-        bound, reference = self._bounds(ends, reference, active)
+        rates, ends, bound, memory, robot_speed = kernels.kinematics(
+            poses,
+            *self._recalled(memory, poses.shape),
+            time,
+            person_time,
+            active.robot_frames,
+            self.human_frames,
+            active.parts,
+            active.part_frames,
+            active.ends_F,
+            active.robot,
+            active.radii,
+            REFRESH_DISTANCE,
+        )
         readings = [
             self._pair_reading(i, active.rows[j], result, poses, rates)
             for i, j, result in self._exact_pairs(query_object, bound, active.geometries)
@@ -204,15 +228,15 @@ class ProximityMeter:
             if x.distance <= 0.0
         )
         pelvis, pelvis_rate = poses[self.pelvis_frame, :2, 3], rates[self.pelvis_frame, :2, 3]
-        memory = [[time, person_time], poses, rates[self.human_frames], *reference]
+        memory.flags.writeable = False  # as the monitor's state is (see `_blank`)
         robot = ends[self.n_human :]
         return Reading(
             closest=min(readings, key=lambda x: x.distance, default=None),
             contacts=contacts,
-            robot_speed=self._fastest(rates, active),
+            robot_speed=robot_speed,
             walking_speed=math.hypot(*pelvis_rate.tolist()),
             person_xy=(float(pelvis[0]), float(pelvis[1])),
-            memory=np.concatenate([np.ravel(m) for m in memory]),
+            memory=memory,
             robot=(robot[:, :, 0], robot[:, :, 1] - robot[:, :, 0], self.part_radii[active.rows]),
         )
 
@@ -226,62 +250,25 @@ class ProximityMeter:
     def _current_poses(self, query_object, memory, person_time: float, active: ActiveParts):
         """`_poses` of the active frames; the person's are the last reading's while the
         person has no newer pose sample (HumanActor holds its pose between samples)."""
-        if memory is None or person_time != memory[1]:
+        if person_time != memory[1]:  # NaN before the first reading
             return self._poses(active.frames, active.frame_ids, query_object)
         poses = self._poses(active.robot_frames, active.robot_frame_ids, query_object)
         humans = self.human_frames
         poses[humans] = memory[self._memory_parts[1]].reshape(poses.shape)[humans]
         return poses
 
-    def _recall(self, memory, poses: np.ndarray, time: float, person_time: float, active):
-        """Rates of change (frames × 3 × 4) of the active frames' poses since the last
-        reading (zero for frames not measured then, and before the first reading), the
-        person's since their last pose sample, and the gaps' reference (part ends, gaps)
-        stored in `memory` (None before the first reading)."""
-        rates = np.zeros_like(poses)
-        if memory is None:
-            return rates, None
-        times, previous, person_rates, ends, gaps = (memory[part] for part in self._memory_parts)
-        previous = previous.reshape(poses.shape)
-        robot = active.robot_frames
-        dt = time - times[0]
-        if dt > 0.0:
-            now, before = poses[robot], previous[robot]
-            rates[robot] = (now - np.where(np.isnan(before), now, before)) / dt
-        person_dt = person_time - times[1]
-        humans = self.human_frames
-        if person_dt > 0.0:
-            rates[humans] = (poses[humans] - previous[humans]) / person_dt
-        else:
-            rates[humans] = person_rates.reshape(-1, 3, 4)
-        return rates, (ends.reshape(-1, 3, 2), gaps.reshape(self.n_human, -1))
-
-    def _bounds(self, ends: np.ndarray, reference, active: ActiveParts) -> tuple:
-        """Lower bounds (human × active robot parts) of the distances, from the gaps between
-        the bounding segments (`ends`: the active parts'), and the gaps' reference (all
-        parts' ends, gaps of all pairs, NaN where not computed): the last one while no
-        active part moved far (or became active)."""
-        n = self.n_human
-        if reference is not None:
-            moved = ends - reference[0][active.parts]
-            moved = np.sqrt((moved * moved).sum(axis=1).max(axis=1))
-            if moved.max() <= REFRESH_DISTANCE:  # False when a part was not measured then
-                gaps = reference[1][:, active.robot] - moved[:n, None] - moved[None, n:]
-                return gaps - active.radii, reference
-        starts, directions = ends[:, :, 0], ends[:, :, 1] - ends[:, :, 0]
-        gaps = segment_distances(starts[:n], directions[:n], starts[n:], directions[n:])
-        all_ends = np.full((len(self.geometries), 3, 2), np.nan)
-        all_ends[active.parts] = ends
-        all_gaps = np.full((n, len(self.robot)), np.nan)
-        all_gaps[:, active.robot] = gaps
-        return gaps - active.radii, (all_ends, all_gaps)
-
-    def _fastest(self, rates: np.ndarray, active: ActiveParts) -> float:
-        """Speed of the fastest end of the active robot parts' bounding segments (the robot's
-        tool tip, or a carried object's corner)."""
-        n = self.n_human
-        velocities = rates[active.part_frames[n:]] @ active.ends_F[n:]
-        return math.sqrt((velocities * velocities).sum(axis=1).max())
+    def _recalled(self, memory: np.ndarray, poses_shape: tuple) -> tuple:
+        """`memory`'s parts: times (of the reading and of the person's pose sample), the
+        frames' poses, the person's frames' rates, all parts' segment ends and all gaps
+        (NaN where not computed)."""
+        times, poses, person_rates, ends, gaps = (memory[part] for part in self._memory_parts)
+        return (
+            times,
+            poses.reshape(poses_shape),
+            person_rates.reshape(-1, 3, 4),
+            ends.reshape(-1, 3, 2),
+            gaps.reshape(self.n_human, -1),
+        )
 
     def _exact_pairs(self, query_object, bound: np.ndarray, robot_geometries: list) -> list:
         """Exact signed distances of the pairs that can be the closest or in contact, as
@@ -308,13 +295,15 @@ class ProximityMeter:
         human_is_a = result.id_A == self.geometries[i]
         p_H, p_R = (result.p_ACa, result.p_BCb) if human_is_a else (result.p_BCb, result.p_ACa)
         towards_human = result.nhat_BA_W if human_is_a else -result.nhat_BA_W
-        (v_h, v_r), (p_WH, _) = self._world_points([i, k], [p_H, p_R], rates, poses)
+        robot_approach, human_approach, p_WH = kernels.witness_motion(
+            self.X_FG, self.part_frame, poses, rates, i, k, p_H, p_R, towards_human
+        )
         return PairReading(
             region=self.human[i].name,
             part=self.robot[k - self.n_human].name,
             distance=float(result.distance),
-            robot_approach=float(v_r @ towards_human),
-            human_approach=float(-v_h @ towards_human),
+            robot_approach=robot_approach,
+            human_approach=human_approach,
             human_part=i,
             robot_part=k - self.n_human,
             normal=np.asarray(towards_human, dtype=float),
@@ -336,15 +325,6 @@ class ProximityMeter:
             if float(-towards_human @ contact.normal) >= PIN_COS:
                 return True
         return False
-
-    def _world_points(self, parts: list, points_G: list, *poses: np.ndarray) -> np.ndarray:
-        """Each of `poses` (or their rates) applied to points fixed in the parts' geometry
-        frames: world positions (or velocities), len(poses) × parts × 3."""
-        X_FG = self.X_FG[parts]
-        p_F = X_FG[:, :, :3] @ np.array(points_G)[:, :, None] + X_FG[:, :, 3:]
-        frames = self.part_frame[parts]
-        pose = np.stack([p[frames] for p in poses])
-        return (pose[..., :3] @ p_F + pose[..., 3:])[..., 0]
 
 
 def _homogeneous_ends(X_FG: np.ndarray, p0_G: np.ndarray, p1_G: np.ndarray) -> np.ndarray:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from hrc_drake.safety.geometry import segment_distances
+from hrc_drake.safety.kernels import segment_distances
 from hrc_drake.safety.sensors import FieldSet, LaserScanner, Sensor, SensorsConfig
 from hrc_drake.safety.sensors_reading import CLEAR, PROTECTIVE, SensorReading, reported
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hrc_drake.safety.geometry import segment_distances
+from hrc_drake.safety.kernels import segment_distances
 
 SAMPLES = np.linspace(0.0, 1.0, 401)
 
