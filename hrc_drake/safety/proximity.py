@@ -158,6 +158,34 @@ class ProximityMeter:
         self._memory_parts = [slice(a, b) for a, b in itertools.pairwise(bounds)]
         self.memory_size = int(bounds[-1])
         self._blank_memory = self._blank(self.memory_size, self._memory_parts[2])
+        self._load_kernels()
+
+    def _load_kernels(self) -> None:
+        """Compiles the kernels for the types a measurement passes them (or loads them from
+        numba's cache) while the diagram is built, with every part active and the frames at
+        the origin: else the first measurement of the run waits for it (a watched run's
+        first tick waited ~8 s on a fresh machine)."""
+        active = self.active(np.arange(len(self.robot)))
+        poses = np.tile(np.eye(4)[:3], (len(self.frames), 1, 1))
+        rates, *_ = kernels.kinematics(
+            poses,
+            *self._recalled(self._blank_memory, poses.shape),
+            0.0,
+            0.0,
+            active.robot_frames,
+            self.human_frames,
+            active.parts,
+            active.part_frames,
+            active.ends_F,
+            active.robot,
+            active.radii,
+            REFRESH_DISTANCE,
+        )
+        point = np.zeros(3)  # SceneGraph's witness points are read-only, the normal is not
+        point.flags.writeable = False
+        kernels.witness_motion(
+            self.X_FG, self.part_frame, poses, rates, 0, self.n_human, point, point, np.ones(3)
+        )
 
     @staticmethod
     def _blank(size: int, person_rates: slice) -> np.ndarray:
@@ -294,7 +322,7 @@ class ProximityMeter:
         its own way (`id_A`, `id_B`), so the person's side is looked up, never assumed."""
         human_is_a = result.id_A == self.geometries[i]
         p_H, p_R = (result.p_ACa, result.p_BCb) if human_is_a else (result.p_BCb, result.p_ACa)
-        towards_human = result.nhat_BA_W if human_is_a else -result.nhat_BA_W
+        towards_human = (1.0 if human_is_a else -1.0) * result.nhat_BA_W  # one kernel type
         robot_approach, human_approach, p_WH = kernels.witness_motion(
             self.X_FG, self.part_frame, poses, rates, i, k, p_H, p_R, towards_human
         )
