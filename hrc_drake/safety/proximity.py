@@ -167,20 +167,7 @@ class ProximityMeter:
         first tick waited ~8 s on a fresh machine)."""
         active = self.active(np.arange(len(self.robot)))
         poses = np.tile(np.eye(4)[:3], (len(self.frames), 1, 1))
-        rates, *_ = kernels.kinematics(
-            poses,
-            *self._recalled(self._blank_memory, poses.shape),
-            0.0,
-            0.0,
-            active.robot_frames,
-            self.human_frames,
-            active.parts,
-            active.part_frames,
-            active.ends_F,
-            active.robot,
-            active.radii,
-            REFRESH_DISTANCE,
-        )
+        rates, *_ = self._kinematics(poses, self._blank_memory, 0.0, 0.0, active)
         point = np.zeros(3)  # SceneGraph's witness points are read-only, the normal is not
         point.flags.writeable = False
         kernels.witness_motion(
@@ -232,19 +219,8 @@ class ProximityMeter:
         person_time = time if person_time is None else person_time
         memory = self._blank_memory if memory is None else memory
         poses = self._current_poses(query_object, memory, person_time, active)
-        rates, ends, bound, memory, robot_speed = kernels.kinematics(
-            poses,
-            *self._recalled(memory, poses.shape),
-            time,
-            person_time,
-            active.robot_frames,
-            self.human_frames,
-            active.parts,
-            active.part_frames,
-            active.ends_F,
-            active.robot,
-            active.radii,
-            REFRESH_DISTANCE,
+        rates, ends, bound, memory, robot_speed = self._kinematics(
+            poses, memory, time, person_time, active
         )
         readings = [
             self._pair_reading(i, active.rows[j], result, poses, rates)
@@ -284,6 +260,24 @@ class ProximityMeter:
         humans = self.human_frames
         poses[humans] = memory[self._memory_parts[1]].reshape(poses.shape)[humans]
         return poses
+
+    def _kinematics(self, poses, memory, time: float, person_time: float, active) -> tuple:
+        """`kernels.kinematics` of `poses` after the reading that left `memory`: rates,
+        segment ends, pair bounds, the new memory and the robot's speed."""
+        return kernels.kinematics(
+            poses,
+            *self._recalled(memory, poses.shape),
+            time,
+            person_time,
+            active.robot_frames,
+            self.human_frames,
+            active.parts,
+            active.part_frames,
+            active.ends_F,
+            active.robot,
+            active.radii,
+            REFRESH_DISTANCE,
+        )
 
     def _recalled(self, memory: np.ndarray, poses_shape: tuple) -> tuple:
         """`memory`'s parts: times (of the reading and of the person's pose sample), the
