@@ -19,7 +19,6 @@ difference between the poses.
         [coexistence collaboration ...]
 """
 
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -29,7 +28,6 @@ import numpy as np
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
-from hrc_drake.human import legs
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.protocol import pose_at
 from hrc_drake.human.walking import WalkSegment
@@ -38,6 +36,7 @@ from hrc_drake.systems.human_actor import HumanActor
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from realism_cost import SHORT_RUNS, short_runs_parser  # noqa: E402
+from revision import module_at  # noqa: E402
 
 
 class Clocks:
@@ -110,17 +109,9 @@ POSING_CLASSES = (WalkSegment, HumanActor)
 def code_of_revision(revision: str) -> dict[str, ModuleType]:
     """POSING_CODE as it is at git `revision`, each a module of its own, using one
     another's older names where they import them from each other."""
-    modules = {}
-    for name, path in POSING_CODE.items():
-        source = subprocess.run(
-            ["git", "show", f"{revision}:{path}"],
-            cwd=Path(legs.__file__).parent,
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout
-        modules[name] = ModuleType(f"{name}@{revision}")
-        exec(compile(source, f"{revision}:{path}", "exec"), modules[name].__dict__)
+    modules = {
+        name: module_at(revision, path, f"{name}@{revision}") for name, path in POSING_CODE.items()
+    }
     for module in modules.values():
         for key, value in list(vars(module).items()):
             older = modules.get(getattr(value, "__module__", ""))

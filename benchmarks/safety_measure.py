@@ -18,10 +18,8 @@ difference of the signals.
 
 import argparse
 import math
-import subprocess
 import sys
 import time
-import types
 from collections import defaultdict
 from pathlib import Path
 
@@ -35,26 +33,12 @@ from hrc_drake.builder import build_diagram
 from hrc_drake.scenario import load_scenario
 from hrc_drake.systems import safety_monitor
 
-ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from revision import module_at  # noqa: E402
+
 BEFORE = "25e9476"
 """main before the monitor's #28 changes of session 14."""
 SEEDS = {"coexistence": 0, "cooperation": 0, "collaboration": 15}
-
-
-def module_at(revision: str, path: str, name: str, replacing: dict | None = None):
-    """The module `path` as it was at `revision`; `replacing` stands in for the modules it
-    imports while it is loaded (name: module)."""
-    source = subprocess.run(
-        ["git", "show", f"{revision}:{path}"], cwd=ROOT, capture_output=True, text=True, check=True
-    ).stdout
-    module = types.ModuleType(name)
-    saved = {key: sys.modules.get(key) for key in replacing or {}}
-    sys.modules.update(replacing or {})
-    try:
-        exec(compile(source, f"{revision}:{path}", "exec"), module.__dict__)
-    finally:
-        sys.modules.update(saved)
-    return module
 
 
 def monitor_at(revision: str):
