@@ -34,6 +34,7 @@ from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
@@ -42,6 +43,7 @@ from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
+from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.yaml_check import unknown
 
 
@@ -149,13 +151,12 @@ class _Checks:
             return None
         (kind,) = types
         hands = _hands(known, pick)
+        taken = [obj for _, obj in self._lying_in(nodes, known, pick)]
         holds = {
-            self._held_as(obj, agent, hands, stand)
-            for _, obj in self._lying_in(nodes, known, pick)
-            for _, _, stand in at_pick
+            self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
-        return partial(self._place_problem, kind, hands, target, agent, held=held)
+        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=taken)
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
@@ -173,20 +174,32 @@ class _Checks:
         return Grasp(hands, center, heading, size)
 
     def _place_problem(
-        self, kind: str, hands: str, target, agent, stand: Known | None, held: Hold | None = None
+        self,
+        kind: str,
+        hands: str,
+        target,
+        agent,
+        stand: Known | None,
+        held: Hold | None = None,
+        taken=(),
     ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
         `hands` (as `held` says, when known; else as if taken facing it as they stand
-        there), down at `target`, as the run would plan it; "" when they can."""
+        there), down at `target`, as the run would plan it: on top of the objects at the
+        start lying there (hrc_drake.nodes.stacks; at the target as given, a tote put where
+        another lay was planned inside it), but those the pick may have `taken`, which are
+        gone from where they lay; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
         if hands == "auto":
             hands = grasp_hands(size, shape.mass, shape.attributes)
-        target = tuple(target)
+        lying = [(obj.solid, obj.pose) for obj in self.scene.objects if obj not in taken]
+        target = tuple(on_top_of(target, Solid.of(shape), lying))
         hold = held or hold_of(Grasp(hands, target, yaw, size), yaw)
         clip = "place_table" if target[2] >= TABLE_HEIGHT else "place_floor"
-        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=self._near(target))
+        nearby = self._near(target, taken)
+        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 
     def _lying_in(self, nodes, known, pick) -> list[tuple]:
@@ -226,7 +239,7 @@ class _Checks:
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         grasp = self._grasp(obj, hands)
         clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
-        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, obj))
+        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, (obj,)))
         return self._planned_problem(command, (x, y, yaw))
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
@@ -243,14 +256,14 @@ class _Checks:
         standing = place(performer, performer.body.standing_pose(), *stand)
         return going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
 
-    def _near(self, point, taken=None) -> tuple[Box, ...]:
-        """The objects at the start near `point` but `taken`, as a node tells the person
-        (hrc_drake.nodes.person.NEARBY)."""
+    def _near(self, point, taken=()) -> tuple[Box, ...]:
+        """The objects at the start near `point` but those `taken`, as a node tells the
+        person (hrc_drake.nodes.person.NEARBY)."""
         types = self.scenario.workpieces.types
         return tuple(
             Box(*box_at(obj.pose, types[obj.type].shape, types[obj.type].size))
             for obj in self.scene.objects
-            if obj is not taken
+            if all(obj is not other for other in taken)
             and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
         )
 

@@ -612,3 +612,33 @@ def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err
+
+
+def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_path, hrc_drake):
+    """A cell of our own: a tote put down where another lies is put on top of it in the run
+    (hrc_drake.nodes.stacks), but validate planned it at the target as given, inside the
+    other, and said "what the hands hold would be 12.0 cm into 'object' where it is put"."""
+    totes = (
+        "safety:\n",
+        "    tote: {shape: box, size: [0.36, 0.26, 0.12], mass: 1.2, capacity: 4}\n"
+        f"{OBJECTS}    - {{type: tote, pose: {{translation: [-0.35, 0.95, 0.96]}}}}\n"
+        "    - {type: tote, pose: {translation: [0.2, 0.95, 0.96]}}\n"
+        "safety:\n",
+    )
+    places = (
+        "locations:\n",
+        "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+        "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+    )
+    left = ("areas:\n", "areas:\n  left: [[-0.6, 0.3], [-0.2, 0.3], [-0.2, 1.1], [-0.6, 1.1]]\n")
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="left" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
+        '<ActorPlace target="0.2;0.95;0.96"/>',
+        (),
+        "ActorPlace",
+        changes=[totes, places, left],
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
