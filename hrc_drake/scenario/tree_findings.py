@@ -11,6 +11,7 @@ built once per validate (`_Checks`); the picks and put-downs planned from where 
 stands share its object lookups.
 """
 
+import dataclasses
 import math
 from collections.abc import Iterator
 from functools import cached_property, partial
@@ -41,6 +42,7 @@ from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
+from hrc_drake.station import HOME
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
 from hrc_drake.workpieces.geometry import Solid
@@ -101,12 +103,31 @@ class _Checks:
 
     def configurations(self, skip=()) -> Iterator[Finding]:
         """Every named configuration that the planner would refuse to move the arm to
-        (outside the joint limits, touching the cell), at its line."""
+        (outside the joint limits, touching the cell), at its line, and the robot's start
+        when it is the variant's home (`_start`)."""
         station = self.scenario.station
         for name in (n for n in station.configurations_deg if n not in skip):
             problem = configuration_problem(self.planner, station.configuration(name))
             if problem:
                 yield self.at.field(("robot", "configurations_deg", name), problem)
+        yield from self._start()
+
+    def _start(self) -> Iterator[Finding]:
+        """The robot's start when it is the variant's home (a named start is checked by its
+        name), at `robot.initial_configuration` or else `robot.variant`: a cell whose furniture the
+        home pose reached into failed every move of the run ("the robot starts closer to
+        the cell than the planning clearance")."""
+        station = self.scenario.station
+        if station.initial_configuration in station.configurations_deg:
+            return
+        problem = configuration_problem(self.planner, station.initial_positions)
+        if problem:
+            names = ("robot", "initial_configuration")
+            finding = self.at.field(names, f"{HOME}, where the robot starts: {problem}")
+            if finding.line is None:
+                line = self.at.field(("robot", "variant"), "").line
+                finding = dataclasses.replace(finding, line=line)
+            yield finding
 
     def reaches_from_stand(self, tree, agent, inputs) -> Iterator[Finding]:
         """Places and reaches farther from where the tree has the person stand than a

@@ -56,6 +56,14 @@ A_TOTE_ON_THE_TABLE = (
 )
 """A tote (0.4 m deep) on the work table."""
 
+A_SHELF_BEFORE_THE_ROBOT = (
+    "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
+    "  - add_weld: {parent: world, child: shelf::body, X_PC: {translation: [0.5, 0.0, 0.0]}}\n"
+    "human:\n"
+)
+"""Our shelf along the robot's x axis, its 1.1 m board where the tool is in the iisy 3's home
+(the tool's tip at x = 0.37 m, z = 0.96 m)."""
+
 ON_A_PEDESTAL = GOOD_SCENARIO.replace(
     "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
 ).replace(
@@ -335,6 +343,21 @@ CASES = {
         files={
             S: ON_A_PEDESTAL.replace(
                 "ready: [0, -45, 90, 0, 45, 0]", "ready: [-90, -45, 90, 0, 45, 0]"
+            )
+        },
+    ),
+    "the robot's start, its home, in a shelf": Case(
+        S,
+        "human:\n",
+        A_SHELF_BEFORE_THE_ROBOT,
+        (
+            "robot.initial_configuration: home, where the robot starts: the link_2, link_6 "
+            "and vacuum_gripper would touch shelf there",
+        ),  # every move of the run failed: "the robot starts closer to the cell than ..."
+        "variant:",
+        files={
+            S: GOOD_SCENARIO.replace("human:\n", A_SHELF_BEFORE_THE_ROBOT, 1).replace(
+                "ready: [0, -45, 90, 0, 45, 0]", "ready: [180, -45, 90, 0, 45, 0]"
             )
         },
     ),
