@@ -143,8 +143,8 @@ class _Checks:
         def taken(pick):
             return self._taken(tree.node_list, known, pick, agent)
 
-        def placing(pick, target, at_pick):
-            return self._placing(tree.node_list, known, pick, target, agent, at_pick)
+        def placing(pick, target, at_pick, picks):
+            return self._placing(tree.node_list, known, pick, target, agent, at_pick, picks)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
@@ -158,11 +158,12 @@ class _Checks:
             for label, obj in self._lying_in(nodes, known, pick)
         ]
 
-    def _placing(self, nodes, known, pick, target, agent, at_pick):
+    def _placing(self, nodes, known, pick, target, agent, at_pick, picks=()):
         """What keeps the person from putting down at `target` what `pick` took: an object
         of the one type the NextObjects it takes from filter for (None: not known), held
         as the pick takes those of them lying in its area from where the person stands
-        there (`at_pick`), when that is one way."""
+        there (`at_pick`), when that is one way; what any of `picks` (those that have run
+        before the put-down) may have taken is gone from where it lay."""
         types = {
             parse_filter(wanted.value).get("type")
             for finder in _finders(nodes, pick)
@@ -177,7 +178,8 @@ class _Checks:
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
-        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=taken)
+        gone = taken + [obj for other in picks for _, obj in self._lying_in(nodes, known, other)]
+        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
