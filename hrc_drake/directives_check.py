@@ -24,22 +24,25 @@ from hrc_drake.yaml_check import (
 )
 
 WORLD = "world"
+FILE_SCHEME = "file://"
 SCOPE = "::"
 Problem = tuple[tuple | None, str]
 
 
 def directive_problems(
-    directives: list[ModelDirective], package_map: PackageMap, reserved=()
+    directives: list[ModelDirective], package_map: PackageMap, reserved=(), directory=None
 ) -> Iterator[Problem]:
     """Problems of `directives` (field names relative to the list); model names in
-    `reserved` are taken already (the station's own models)."""
-    yield from _Walk(package_map, set(reserved)).directives(directives, "", ())
+    `reserved` are taken already (the station's own models); `directory`: the scenario's,
+    where a file named by a bare path probably lies."""
+    yield from _Walk(package_map, set(reserved), directory).directives(directives, "", ())
 
 
 class _Walk:
-    def __init__(self, package_map: PackageMap, models: set[str]):
+    def __init__(self, package_map: PackageMap, models: set[str], directory=None):
         self.package_map = package_map
         self.models = models
+        self.directory = Path(directory) if directory is not None else Path.cwd()
 
     def directives(self, directives, namespace: str, including: tuple) -> Iterator[Problem]:
         for i, directive in enumerate(directives):
@@ -67,7 +70,18 @@ class _Walk:
 
     def _file(self, names: tuple, url: str, what: str) -> Iterator[Problem]:
         if self.resolve(url) is None:
-            yield names, f"{what} '{url}' not found"
+            yield names, f"{what} '{url}' not found{self._as_url(url, what)}"
+
+    def _as_url(self, url: str, what: str) -> str:
+        """How to name a file given as a path (or `file://` and a relative one): a URL,
+        and the one for the file beside the scenario if there is one. A user's own machine
+        model, `file: machine.sdf` beside the scenario, was only "not found"."""
+        path = url.removeprefix(FILE_SCHEME)
+        if "://" in path or Path(path).is_absolute():
+            return ""
+        beside = self.directory / path
+        found = f": {FILE_SCHEME}{beside.resolve()} beside the scenario" if beside.is_file() else ""
+        return f" (a {what} is a URL, package://... or {FILE_SCHEME} and an absolute path{found})"
 
     def resolve(self, url: str) -> Path | None:
         try:

@@ -42,23 +42,29 @@ def refuse_going_in(performer: Performer, activity: Activity, start: float) -> N
 
 
 def going_in(performer: Performer, activity: Activity, start: float) -> str:
-    """What of the head and arms `activity`, played from `start`, puts deeper than
-    DEPTH_LIMIT into what it keeps out of, or else what the hands hold to put down, and
-    where ("" when nothing)."""
+    """What the hands hold to put down puts deeper than DEPTH_LIMIT into what it keeps out
+    of, or else what of the head and arms `activity`, played from `start`, does, and where
+    ("" when nothing). The held object first: one in the furniture where the put-down
+    begins says what to change (where the person stands with it), whatever the head and
+    arms then do on their way (a tote carried into a shelf's board, its put-down planned
+    with the hands held above the board, also put the head 2.2 cm into the shelf)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
         return ""
     end = activity.end if np.isfinite(activity.end) else start
     times = np.arange(start, end + SAMPLE / 2, SAMPLE)
+    prisms = Prisms.of(furniture)
+    held = _held_going_in(performer, activity, prisms, times)
+    if held:
+        return held
     poses = np.array([activity.pose(performer, float(t)) for t in times])
     body = performer.body
     radii, shapes, starts = parts_shapes(body, PARTS)
     corners = corners_in_world(body, poses, PARTS)
-    prisms = Prisms.of(furniture)
     depths = prisms.deepest_near(poses[:, :2], NEAR, corners, radii, shapes)
     k, shape = np.unravel_index(np.argmax(depths), depths.shape)
     if depths[k, shape] <= DEPTH_LIMIT:
-        return _held_going_in(performer, activity, prisms, times)
+        return ""
     part = PARTS[np.searchsorted(starts, shape, side="right") - 1]
     into = prisms.shape_depths(corners[k], radii, shapes)[:, shape]
     where = furniture.pieces[int(np.argmax(into))].name

@@ -69,24 +69,33 @@ def hold_end_of(clip: Clip, event: str) -> float:
     return later[0] if later else min(clip.events[event] + HOLD_AFTER_EVENT, clip.duration)
 
 
+FLOOR_HEIGHT = 0.0
+"""m: the floor's top, which every cell's floor model has at z = 0."""
+
+
 def _floors(body: HumanBody, furniture: Furniture, hands: dict, reaching: bool) -> dict:
     """Per side, the height the hand's lowest point keeps above at its target, and whether
     it rests there: a reaching hand's edge on the point it reaches to, palms on an object's
-    faces anywhere above the surface it stands on."""
+    faces anywhere above the surface it stands on, the floor where no piece is under them
+    (palms on a 0.12 m tote on the floor turned their fingers down its sides and a hand
+    went 3.7 cm into the floor, a cell of our own)."""
     floors = {}
     for side, (position, _) in hands.items():
         support = furniture.support(position)
         if reaching:
             floors[side] = (position[2] - hand_half_breadth(body), True)
-        elif support is not None:
-            floors[side] = (support.high, False)
+        else:
+            floors[side] = (FLOOR_HEIGHT if support is None else support.high, False)
     return floors
 
 
-def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> np.ndarray:
+def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> tuple[np.ndarray, dict]:
     """`_reach`, each hand with a floor moved up until its lowest point is REST_GAP above
     it, or, resting there, up or down (IK leaves a hand tilted a little: on a surface a
-    corner would dip into it, or the hand would hover)."""
+    corner would dip into it, or the hand would hover); and the hands' targets so moved,
+    which the ways in and out end at (lowered straight onto the targets as given, a tote
+    put down on the floor went 3 cm below its place, the hands 3 cm into the floor, and
+    came back up to it)."""
     solved = hands_on(body, q, hands)
     for _ in range(RESTING_PASSES):
         off = {}
@@ -100,7 +109,7 @@ def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> np.nd
             for side, (p, R) in hands.items()
         }
         solved = hands_on(body, solved, hands)
-    return solved
+    return solved, hands
 
 
 def _lowest(body: HumanBody, q: np.ndarray, side: str) -> float:
@@ -139,7 +148,7 @@ def aim_clip(
     if distance > MAX_HORIZONTAL_REACH:
         raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
     reaching = clip.name == "reach"
-    on_target = _resting(body, at_event, hands, _floors(body, furniture, hands, reaching))
+    on_target, hands = _resting(body, at_event, hands, _floors(body, furniture, hands, reaching))
     on_target = on_target - at_event
     approach_time = APPROACH_AT * event
     putting_down = carry is not None and not takes

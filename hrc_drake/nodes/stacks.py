@@ -28,16 +28,24 @@ def covered(objects) -> set[int]:
 
 def on_top_of_what_lies_there(point, held: wp.ObjectStatus, objects) -> np.ndarray:
     """`point`, where `held`'s centre is to go, raised onto the top of the free objects it
-    would come down on: those level with it whose outlines are within half its narrower
-    extent of the point."""
+    would come down on (`on_top_of`)."""
+    others = [
+        (_solid(obj), obj.pose) for obj in objects if obj.holder is None and obj.id != held.id
+    ]
+    return on_top_of(point, _solid(held), others)
+
+
+def on_top_of(point, solid: Solid, others) -> np.ndarray:
+    """`point`, where the centre of a `solid` is to go, raised onto the top of the `others`
+    (solids and their poses) it would come down on: those level with it whose outlines are
+    within half its narrower extent of the point. `hrc-drake validate` plans a put-down
+    where the run puts it (it planned a tote put where another lay inside that one)."""
     point = np.array(point, dtype=float)
-    solid = _solid(held)
     reach, half = np.ptp(solid.outline(), axis=0).min() / 2, solid.height / 2
-    others = [obj for obj in objects if obj.holder is None and obj.id != held.id]
     for _ in others:  # each pass may lift it onto one more object of a stack
         tops = [
             top
-            for bottom, top, near in (_extent_at(obj, point, reach) for obj in others)
+            for bottom, top, near in (_extent_at(*other, point, reach) for other in others)
             if near and bottom < point[2] + half and top > point[2] - half
         ]
         if not tops:
@@ -46,12 +54,14 @@ def on_top_of_what_lies_there(point, held: wp.ObjectStatus, objects) -> np.ndarr
     return point
 
 
-def _extent_at(obj: wp.ObjectStatus, point, reach: float) -> tuple[float, float, bool]:
-    """`obj`'s bottom and top heights, and whether `point` is within `reach` of its outline
-    on the floor."""
-    solid, center = _solid(obj), obj.pose.translation()
+def _extent_at(
+    solid: Solid, pose: RigidTransform, point, reach: float
+) -> tuple[float, float, bool]:
+    """The bottom and top heights of `solid` at `pose`, and whether `point` is within
+    `reach` of its outline on the floor."""
+    center = pose.translation()
     level = RigidTransform([point[0], point[1], center[2]])
-    beside = solid.signed_distance_to((obj.pose.inverse() @ level).translation())
+    beside = solid.signed_distance_to((pose.inverse() @ level).translation())
     half = solid.height / 2
     return center[2] - half, center[2] + half, beside < reach
 

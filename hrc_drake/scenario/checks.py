@@ -147,7 +147,8 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     yield from _plant_problems(scenario.plant)
     yield from _prefixed("robot", _robot_problems(scenario.robot))
     yield from _place_problems(scenario)
-    yield from _prefixed("cell", directive_problems(scenario.cell, _package_map(), RESERVED))
+    cell = directive_problems(scenario.cell, _package_map(), RESERVED, directory)
+    yield from _prefixed("cell", cell)
     yield from _station_problems(scenario)
     yield from _prefixed("workpieces", problems(scenario.workpieces))
     latency = scenario.robot.motion.period

@@ -38,9 +38,10 @@ Taken = Callable[[TreeNode], list[tuple[str, np.ndarray, Callable]]]
 """The objects a pick node may take, as far as known before the run: a label, the centre,
 and what keeps the person from taking it from a place to stand (the walk's known target,
 None: the person's start): why the hands cannot get there, or ""."""
-Placing = Callable[[TreeNode, np.ndarray, list], Callable | None]
-"""For the last pick before a place node, the place's target point and where the person
-may stand at the pick (as `_stand_points`; [] when not known): what keeps the person from
+Placing = Callable[[TreeNode, np.ndarray, list, list], Callable | None]
+"""For the last pick before a place node, the place's target point, where the person may
+stand at the pick (as `_stand_points`; [] when not known) and every pick known to have run
+before the place (what they took is gone from where it lay): what keeps the person from
 putting down there what that pick took, from a place to stand (as `Taken`'s), or None when
 what the hands hold is not known before the run."""
 
@@ -117,8 +118,28 @@ def _placings(place, parents, targets, placing: Placing, stands_at) -> list:
     pick = _last_before(place, parents, ActorPick)
     if not isinstance(pick, ActorPick):
         return targets
-    at_pick = stands_at(pick)
-    return [(v, p, None if p is None else placing(pick, p, at_pick)) for v, p, _ in targets]
+    at_pick, picks = stands_at(pick), _all_before(place, parents, ActorPick)
+    return [(v, p, None if p is None else placing(pick, p, at_pick, picks)) for v, p, _ in targets]
+
+
+def _all_before(node: TreeNode, parents: dict, kind: type) -> list[TreeNode]:
+    """The nodes of `kind` in the earlier children of the Sequences above `node`: they have
+    run when it starts (a tote put where an earlier pick took one from was planned on top
+    of that one, and validate said an arm would go into it, a cell of our own)."""
+    found, child = [], node
+    while (parent := parents.get(id(child))) is not None:
+        if _is_sequence(parent):
+            found += [n for s in _earlier_siblings(parent, child) for n in _all_of(s, kind)]
+        elif not isinstance(parent, SubTreeNode):
+            break
+        child = parent
+    return found
+
+
+def _all_of(node: TreeNode, kind: type) -> list[TreeNode]:
+    """The nodes of `kind` in the subtree of `node`."""
+    own = [node] if isinstance(node, kind) else []
+    return own + [n for c in node.children_nodes() for n in _all_of(c, kind)]
 
 
 def _stands_before(parents, known, resolve, start, node) -> list:

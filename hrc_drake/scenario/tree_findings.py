@@ -11,6 +11,7 @@ built once per validate (`_Checks`); the picks and put-downs planned from where 
 stands share its object lookups.
 """
 
+import dataclasses
 import math
 from collections.abc import Iterator
 from functools import cached_property, partial
@@ -34,14 +35,17 @@ from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import reach_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
+from hrc_drake.station import HOME
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
+from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.yaml_check import unknown
 
 
@@ -99,12 +103,31 @@ class _Checks:
 
     def configurations(self, skip=()) -> Iterator[Finding]:
         """Every named configuration that the planner would refuse to move the arm to
-        (outside the joint limits, touching the cell), at its line."""
+        (outside the joint limits, touching the cell), at its line, and the robot's start
+        when it is the variant's home (`_start`)."""
         station = self.scenario.station
         for name in (n for n in station.configurations_deg if n not in skip):
             problem = configuration_problem(self.planner, station.configuration(name))
             if problem:
                 yield self.at.field(("robot", "configurations_deg", name), problem)
+        yield from self._start()
+
+    def _start(self) -> Iterator[Finding]:
+        """The robot's start when it is the variant's home (a named start is checked by its
+        name), at `robot.initial_configuration` or else `robot.variant`: a cell whose furniture the
+        home pose reached into failed every move of the run ("the robot starts closer to
+        the cell than the planning clearance")."""
+        station = self.scenario.station
+        if station.initial_configuration in station.configurations_deg:
+            return
+        problem = configuration_problem(self.planner, station.initial_positions)
+        if problem:
+            names = ("robot", "initial_configuration")
+            finding = self.at.field(names, f"{HOME}, where the robot starts: {problem}")
+            if finding.line is None:
+                line = self.at.field(("robot", "variant"), "").line
+                finding = dataclasses.replace(finding, line=line)
+            yield finding
 
     def reaches_from_stand(self, tree, agent, inputs) -> Iterator[Finding]:
         """Places and reaches farther from where the tree has the person stand than a
@@ -120,8 +143,8 @@ class _Checks:
         def taken(pick):
             return self._taken(tree.node_list, known, pick, agent)
 
-        def placing(pick, target, at_pick):
-            return self._placing(tree.node_list, known, pick, target, agent, at_pick)
+        def placing(pick, target, at_pick, picks):
+            return self._placing(tree.node_list, known, pick, target, agent, at_pick, picks)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
@@ -135,11 +158,12 @@ class _Checks:
             for label, obj in self._lying_in(nodes, known, pick)
         ]
 
-    def _placing(self, nodes, known, pick, target, agent, at_pick):
+    def _placing(self, nodes, known, pick, target, agent, at_pick, picks=()):
         """What keeps the person from putting down at `target` what `pick` took: an object
         of the one type the NextObjects it takes from filter for (None: not known), held
         as the pick takes those of them lying in its area from where the person stands
-        there (`at_pick`), when that is one way."""
+        there (`at_pick`), when that is one way; what any of `picks` (those that have run
+        before the put-down) may have taken is gone from where it lay."""
         types = {
             parse_filter(wanted.value).get("type")
             for finder in _finders(nodes, pick)
@@ -149,13 +173,13 @@ class _Checks:
             return None
         (kind,) = types
         hands = _hands(known, pick)
+        taken = [obj for _, obj in self._lying_in(nodes, known, pick)]
         holds = {
-            self._held_as(obj, agent, hands, stand)
-            for _, obj in self._lying_in(nodes, known, pick)
-            for _, _, stand in at_pick
+            self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
-        return partial(self._place_problem, kind, hands, target, agent, held=held)
+        gone = taken + [obj for other in picks for _, obj in self._lying_in(nodes, known, other)]
+        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
@@ -173,20 +197,32 @@ class _Checks:
         return Grasp(hands, center, heading, size)
 
     def _place_problem(
-        self, kind: str, hands: str, target, agent, stand: Known | None, held: Hold | None = None
+        self,
+        kind: str,
+        hands: str,
+        target,
+        agent,
+        stand: Known | None,
+        held: Hold | None = None,
+        taken=(),
     ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
         `hands` (as `held` says, when known; else as if taken facing it as they stand
-        there), down at `target`, as the run would plan it; "" when they can."""
+        there), down at `target`, as the run would plan it: on top of the objects at the
+        start lying there (hrc_drake.nodes.stacks; at the target as given, a tote put where
+        another lay was planned inside it), but those the pick may have `taken`, which are
+        gone from where they lay; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
         if hands == "auto":
             hands = grasp_hands(size, shape.mass, shape.attributes)
-        target = tuple(target)
+        lying = [(obj.solid, obj.pose) for obj in self.scene.objects if obj not in taken]
+        target = tuple(on_top_of(target, Solid.of(shape), lying))
         hold = held or hold_of(Grasp(hands, target, yaw, size), yaw)
         clip = "place_table" if target[2] >= TABLE_HEIGHT else "place_floor"
-        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=self._near(target))
+        nearby = self._near(target, taken)
+        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 
     def _lying_in(self, nodes, known, pick) -> list[tuple]:
@@ -226,7 +262,7 @@ class _Checks:
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         grasp = self._grasp(obj, hands)
         clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
-        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, obj))
+        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, (obj,)))
         return self._planned_problem(command, (x, y, yaw))
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
@@ -243,14 +279,14 @@ class _Checks:
         standing = place(performer, performer.body.standing_pose(), *stand)
         return going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
 
-    def _near(self, point, taken=None) -> tuple[Box, ...]:
-        """The objects at the start near `point` but `taken`, as a node tells the person
-        (hrc_drake.nodes.person.NEARBY)."""
+    def _near(self, point, taken=()) -> tuple[Box, ...]:
+        """The objects at the start near `point` but those `taken`, as a node tells the
+        person (hrc_drake.nodes.person.NEARBY)."""
         types = self.scenario.workpieces.types
         return tuple(
             Box(*box_at(obj.pose, types[obj.type].shape, types[obj.type].size))
             for obj in self.scene.objects
-            if obj is not taken
+            if all(obj is not other for other in taken)
             and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
         )
 

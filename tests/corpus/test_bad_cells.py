@@ -56,6 +56,14 @@ A_TOTE_ON_THE_TABLE = (
 )
 """A tote (0.4 m deep) on the work table."""
 
+A_SHELF_BEFORE_THE_ROBOT = (
+    "  - add_model: {name: shelf, file: package://hrc_drake_models/cell/shelf.sdf}\n"
+    "  - add_weld: {parent: world, child: shelf::body, X_PC: {translation: [0.5, 0.0, 0.0]}}\n"
+    "human:\n"
+)
+"""Our shelf along the robot's x axis, its 1.1 m board where the tool is in the iisy 3's home
+(the tool's tip at x = 0.37 m, z = 0.96 m)."""
+
 ON_A_PEDESTAL = GOOD_SCENARIO.replace(
     "variant: lbr_iisy3_r760", "variant: lbr_iisy15_r930"
 ).replace(
@@ -338,6 +346,21 @@ CASES = {
             )
         },
     ),
+    "the robot's start, its home, in a shelf": Case(
+        S,
+        "human:\n",
+        A_SHELF_BEFORE_THE_ROBOT,
+        (
+            "robot.initial_configuration: home, where the robot starts: the link_2, link_6 "
+            "and vacuum_gripper would touch shelf there",
+        ),  # every move of the run failed: "the robot starts closer to the cell than ..."
+        "variant:",
+        files={
+            S: GOOD_SCENARIO.replace("human:\n", A_SHELF_BEFORE_THE_ROBOT, 1).replace(
+                "ready: [0, -45, 90, 0, 45, 0]", "ready: [180, -45, 90, 0, 45, 0]"
+            )
+        },
+    ),
     # --- the cell at the start ---
     "person starts inside the table": Case(
         S,
@@ -609,6 +632,36 @@ def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
         '<ActorPlace target="0.3;0.9;0.95"/></Fallback>',
         (),
         "ActorPlace",
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
+
+
+def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_path, hrc_drake):
+    """A cell of our own: a tote put down where another lies is put on top of it in the run
+    (hrc_drake.nodes.stacks), but validate planned it at the target as given, inside the
+    other, and said "what the hands hold would be 12.0 cm into 'object' where it is put"."""
+    totes = (
+        "safety:\n",
+        "    tote: {shape: box, size: [0.36, 0.26, 0.12], mass: 1.2, capacity: 4}\n"
+        f"{OBJECTS}    - {{type: tote, pose: {{translation: [-0.35, 0.95, 0.96]}}}}\n"
+        "    - {type: tote, pose: {translation: [0.2, 0.95, 0.96]}}\n"
+        "safety:\n",
+    )
+    places = (
+        "locations:\n",
+        "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+        "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+    )
+    left = ("areas:\n", "areas:\n  left: [[-0.6, 0.3], [-0.2, 0.3], [-0.2, 1.1], [-0.6, 1.1]]\n")
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="left" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
+        '<ActorPlace target="0.2;0.95;0.96"/>',
+        (),
+        "ActorPlace",
+        changes=[totes, places, left],
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err

@@ -1,6 +1,8 @@
 """Bad scenario files: `hrc-drake validate` answers each with one line naming the file,
 the line and the field, and exit status 2 (none of these cases simulates)."""
 
+from pathlib import Path
+
 import pytest
 
 from tests.corpus.corpus_helpers import (
@@ -11,6 +13,7 @@ from tests.corpus.corpus_helpers import (
     write_workspace,
 )
 
+MODELS = Path(__file__).resolve().parents[2] / "models"
 DIRECTIVES_LOOP = """\
 directives:
   - add_directives: {file: "file://{dir}/loop.yaml"}
@@ -450,6 +453,18 @@ CASES = {
             "'package://hrc_drake_models/cell/work_tabel.sdf' not found",
         ),
         "work_tabel",
+    ),
+    "model file given as a path beside the scenario": Case(
+        S,
+        "package://hrc_drake_models/cell/work_table.sdf",
+        "work_table.sdf",
+        (
+            "cell[2].add_model.file: model file 'work_table.sdf' not found (a model file is "
+            "a URL, package://... or file:// and an absolute path: file:///",
+            "/work_table.sdf beside the scenario)",
+        ),  # a cell of our own: its machine, in machine.sdf beside the scenario
+        "work_table.sdf",
+        files={"work_table.sdf": (MODELS / "cell" / "work_table.sdf").read_text()},
     ),
     "unknown package": Case(
         S,
