@@ -29,17 +29,26 @@ Problem = tuple[tuple | None, str]
 
 
 def directive_problems(
-    directives: list[ModelDirective], package_map: PackageMap, reserved=()
+    directives: list[ModelDirective],
+    package_map: PackageMap,
+    reserved=(),
+    directory: Path | None = None,
 ) -> Iterator[Problem]:
     """Problems of `directives` (field names relative to the list); model names in
-    `reserved` are taken already (the station's own models)."""
-    yield from _Walk(package_map, set(reserved)).directives(directives, "", ())
+    `reserved` are taken already (the station's own models); `directory`: the scenario's,
+    where a file named by a plain path is looked for to say how to name it."""
+    yield from _Walk(package_map, set(reserved), directory).directives(directives, "", ())
+
+
+URL_FORMS = "package://hrc_drake_models/cell/NAME.sdf or file:///ABSOLUTE/PATH"
+"""How Drake's model directives name a file: a URL, never a path relative to the scenario."""
 
 
 class _Walk:
-    def __init__(self, package_map: PackageMap, models: set[str]):
+    def __init__(self, package_map: PackageMap, models: set[str], directory: Path | None):
         self.package_map = package_map
         self.models = models
+        self.directory = directory
 
     def directives(self, directives, namespace: str, including: tuple) -> Iterator[Problem]:
         for i, directive in enumerate(directives):
@@ -67,7 +76,18 @@ class _Walk:
 
     def _file(self, names: tuple, url: str, what: str) -> Iterator[Problem]:
         if self.resolve(url) is None:
-            yield names, f"{what} '{url}' not found"
+            yield names, f"{what} '{url}' not found{self._how_to_name(url)}"
+
+    def _how_to_name(self, url: str) -> str:
+        """For a plain path (no URL scheme), how to name a file instead, and the URL of the
+        file it names beside the scenario when there is one ("" for a URL)."""
+        if "://" in url:
+            return ""
+        hint = f": a model file is a URL, {URL_FORMS}"
+        beside = (self.directory / url).resolve() if self.directory is not None else None
+        if beside is not None and beside.is_file():
+            hint += f"; {beside.as_uri()} exists"
+        return hint
 
     def resolve(self, url: str) -> Path | None:
         try:

@@ -21,6 +21,21 @@ directives:
   - add_weld: {parent: world, child: bni::body}
 """
 
+OWN_TABLE = """\
+<?xml version="1.0"?>
+<sdf version="1.9">
+  <model name="table">
+    <link name="body">
+      <collision name="top">
+        <pose>0 0 0.45 0 0 0</pose>
+        <geometry><box><size>1.2 0.8 0.9</size></box></geometry>
+      </collision>
+    </link>
+  </model>
+</sdf>
+"""
+"""A model of the user's own, beside the scenario."""
+
 ALIAS_BOMB = "".join(
     f"  lol{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else 'lol'] * 9)}]\n" for i in range(9)
 )
@@ -450,6 +465,30 @@ CASES = {
             "'package://hrc_drake_models/cell/work_tabel.sdf' not found",
         ),
         "work_tabel",
+    ),
+    "own model file by a plain path": Case(
+        S,
+        "package://hrc_drake_models/cell/work_table.sdf",
+        "table.sdf",
+        (
+            "cell[2].add_model.file: model file 'table.sdf' not found: a model file is a URL, ",
+            "package://hrc_drake_models/cell/NAME.sdf or file:///ABSOLUTE/PATH; "
+            "file://{dir}/table.sdf exists",
+        ),
+        "file: table.sdf",
+        files={"table.sdf": OWN_TABLE},
+    ),
+    "own static model welded": Case(
+        S,
+        "package://hrc_drake_models/cell/work_table.sdf}\n  - add_weld:\n",
+        '"file://{dir}/table.sdf"}\n  - add_weld:  # the weld of a static model\n',
+        (
+            "cell[3]: ",
+            "model 'work_table' is static in its file (<static>true</static>), which welds it "
+            "to the world already: remove this add_weld or the <static> tag",
+        ),
+        "# the weld of a static model",
+        files={"table.sdf": OWN_TABLE.replace("<link", "<static>true</static><link")},
     ),
     "unknown package": Case(
         S,
