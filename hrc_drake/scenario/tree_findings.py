@@ -17,6 +17,7 @@ from functools import cached_property, partial
 
 import numpy as np
 from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.aiming import Unreachable
@@ -34,6 +35,7 @@ from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
+from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
@@ -42,6 +44,7 @@ from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
+from hrc_drake.workpieces.messages import ObjectStatus
 from hrc_drake.yaml_check import unknown
 
 
@@ -155,7 +158,31 @@ class _Checks:
             for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
+        taken = [obj for _, obj in self._lying_in(nodes, known, pick)]
+        target = self._on_top_at_start(target, kind, taken)
         return partial(self._place_problem, kind, hands, target, agent, held=held)
+
+    def _on_top_at_start(self, target, kind: str, taken: list) -> np.ndarray:
+        """`target`, where the centre of an object of type `kind` is to be put, raised onto
+        the objects lying there at the start but those in `taken` (what the pick before may
+        have taken: the hands hold it then), as the run raises a put-down onto what lies at
+        its target (hrc_drake.nodes.stacks): judged at the target itself, a carton put where
+        another stands was "20.0 cm into 'object'" (a packing cell of our own, #26)."""
+        lying = [
+            self._status(i, obj.type, obj.pose)
+            for i, obj in enumerate(self.scene.objects)
+            if not any(obj is other for other in taken)
+        ]
+        held = self._status(-1, kind, RigidTransform(np.asarray(target, dtype=float)))
+        return on_top_of_what_lies_there(target, held, lying)
+
+    def _status(self, index: int, kind: str, pose: RigidTransform) -> ObjectStatus:
+        """An object of type `kind` at `pose` as the trees' nodes see one lying there."""
+        shape = self.scenario.workpieces.types[kind]
+        size = tuple(shape.size)
+        return ObjectStatus(
+            index, kind, pose, SpatialVelocity.Zero(), None, None, {}, 0.0, None, size, shape.shape
+        )
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's

@@ -612,3 +612,38 @@ def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err
+
+
+def test_a_put_down_where_an_object_lies_is_judged_on_top_of_it(tmp_path, hrc_drake):
+    """A put-down whose target has an object lying there goes onto it in a run
+    (hrc_drake.nodes.stacks): validate judges it there, not with the box put into the one
+    below ("what the hands hold would be 15.0 cm into 'object' where it is put", a packing
+    cell of our own, #26)."""
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="table_front"/>'
+        '<NextObject area="right_half" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorPick object_id="{t}"/><ActorPlace target="-0.2;0.6;0.976"/>',
+        (),
+        "ActorPlace",
+        changes=[
+            (
+                "safety:\n",
+                "    tote: {shape: box, size: [0.3, 0.4, 0.15], mass: 1.5, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: tote, pose: {{translation: [-0.2, 0.6, 0.976]}}}}\n"
+                "    - {type: tote, pose: {translation: [0.2, 0.6, 0.976]}}\n"
+                "safety:\n",
+            ),
+            (
+                "areas:\n",
+                "areas:\n  right_half: [[0.0, 0.3], [0.6, 0.3], [0.6, 1.1], [0.0, 1.1]]\n",
+            ),
+            (
+                "locations:\n",
+                "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+            ),
+        ],
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
