@@ -799,3 +799,14 @@ def test_a_scenario_that_is_a_directory_or_missing(tmp_path, hrc_drake):
     assert_one_line_error(status, err, f"{tmp_path}: no such scenario file")
     status, _, err = hrc_drake("validate", "bsae")
     assert_one_line_error(status, err, "did you mean 'base'?")
+
+
+def test_validate_checks_the_scenario_as_set_on_the_command_line(tmp_path, hrc_drake):
+    """`--set` gives validate the scenario a run with the same `--set` simulates (a person of
+    another size checked before a sweep over sizes, #26): a speed set as a percentage is
+    found there, as in the file."""
+    scenario = write_workspace(tmp_path)
+    status, _, err = hrc_drake("validate", scenario, "--set", "parameters.speed=50")
+    assert_one_line_error(status, err, "must be within 0..1, got 50 (a percentage?")
+    status, _, err = hrc_drake("validate", scenario, "--set", "parameters.speed=0.5,0.8")
+    assert_one_line_error(status, err, "validate: --set takes one value per field")
