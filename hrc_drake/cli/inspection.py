@@ -4,7 +4,7 @@ scenario, its trees and clips without simulating."""
 import sys
 from pathlib import Path
 
-from hrc_drake.cli.arguments import EXIT_USAGE, PROG, check_output
+from hrc_drake.cli.arguments import EXIT_USAGE, PROG, add_set_option, check_output, single_sets
 from hrc_drake.wiring import AGENTS
 from hrc_drake.yaml_check import InputError
 
@@ -17,7 +17,8 @@ def add_commands(commands, parser_class) -> None:
 
     validate = commands.add_parser("validate", help="check a scenario without simulating")
     validate.add_argument("scenario")
-    validate.set_defaults(command=_validate)
+    add_set_option(validate)
+    validate.set_defaults(command=_validate, seed=None, duration=None)
 
     tree = commands.add_parser("tree", help="render a behavior tree to .svg, .png or .dot")
     tree.add_argument("source", help="a tree XML file, or a scenario (then give --agent)")
@@ -81,11 +82,13 @@ def _diagram(args) -> int:
 
 def _validate(args) -> int:
     """The scenario loads (its first mistake is one line), then every finding that needs no
-    simulation, one line each; exit status 2 when there is any."""
+    simulation, one line each; exit status 2 when there is any. `--set` checks the scenario
+    as a run with the same `--set` would have it (a person of another size: #26)."""
     from hrc_drake.scenario import load_scenario, resolve_scenario_path
     from hrc_drake.scenario.findings import findings
 
-    scenario = load_scenario(args.scenario)
+    overrides, _ = single_sets(args, "validate", "validate one value at a time")
+    scenario = load_scenario(args.scenario, overrides)
     found = findings(scenario, resolve_scenario_path(args.scenario))
     for finding in found:
         print(f"{PROG}: error: {finding}", file=sys.stderr)

@@ -154,4 +154,4 @@ def _piece(box) -> Obstacle:
         (x + c * u - s * v, y + s * u + c * v)
         for u, v in ((-half_x, -half_y), (half_x, -half_y), (half_x, half_y), (-half_x, half_y))
     ]
-    return Obstacle("object", Polygon(corners), z - half_z, z + half_z)
+    return Obstacle(box.name, Polygon(corners), z - half_z, z + half_z)

@@ -103,7 +103,7 @@ def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
     return RotationMatrix(a.ToQuaternion().slerp(s, b.ToQuaternion()))
 
 
-def _way(body, clip, placed_pose, span, *way, level=None):
+def _way(body, clip, placed_pose, span, *way, level=None, taken=False):
     """`way` = (start, end, trunk_from, trunk_to, arms). Times evenly spaced over `span` (the
     first and last), CARRY_SAMPLES of them or more (MOST_SAMPLES), and the offsets there on
     the way of the holding hands from `start` to
@@ -119,7 +119,8 @@ def _way(body, clip, placed_pose, span, *way, level=None):
     both hands was 5.3 cm off a palm: collaboration seed 15). Where the palms
     cannot keep their orientation and their hold, they keep only their normals and turn
     about them (`_held_way`'s `turning`). Unreachable where the arms cannot hold it even on
-    the straight way."""
+    the straight way. `taken`: the way starts where the hands took the object (it is not
+    let below there while it rises: `_Route._lowest`)."""
     start, end, trunk_from, trunk_to, arms = way
     count = CARRY_SAMPLES
     while True:
@@ -128,7 +129,7 @@ def _way(body, clip, placed_pose, span, *way, level=None):
         turnings = (False, True) if len(start) == 2 else (False,)
         for crossing, turning in product(dict.fromkeys((level, None)), turnings):
             route = _Route(
-                body, clip, placed_pose, times, start, end, trunk_from, trunk_to, crossing
+                body, clip, placed_pose, times, start, end, trunk_from, trunk_to, crossing, taken
             )
             offsets, slipped, missed = _held_way(route, arms, turning)
             if slipped <= HOLDING_SLIP and missed <= WAY_STRAY:
@@ -189,6 +190,8 @@ class _Route:
     trunk_from: np.ndarray
     trunk_to: np.ndarray
     level: tuple[float, float] | None
+    taken: bool = False
+    """The way starts where the hands took the object, off what it lay on."""
 
     def body_at(self, t: float, s: float) -> np.ndarray:
         """The pose under the arms a fraction s of the way, at clip time t."""
@@ -227,10 +230,16 @@ class _Route:
 
     def _lowest(self, s: float) -> float:
         """How low the palms' midpoint may be a fraction s of the way: LIFT above its lower
-        end once it is off it."""
+        end once it is off it, and, on the way of an object `taken` off something, not below
+        where the hands took it while the way holds to that place (a carton taken off a
+        shelf's board above the carry posture sank 2.1 cm into the board as the trunk rose,
+        before the way rose over its edge: a packing cell of our own, #26)."""
         a, b = (_midpoint(end)[2] for end in self.ends)
         off = s if self._low_first else 1.0 - s
-        return min(a, b) + LIFT * minimum_jerk(off / LIFTING)
+        lowest = min(a, b) + LIFT * minimum_jerk(off / LIFTING)
+        if not self.taken or self.level is None:
+            return lowest
+        return lowest + self.phases.rising(s) * max(a - lowest, 0.0)
 
     @cached_property
     def _low_first(self) -> bool:
@@ -486,7 +495,7 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     zero = np.zeros_like(on_target)
     span = (start, clip.duration)
     times, way = _way(
-        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, level=level
+        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, level=level, taken=True
     )
     way[0], way[-1] = offset, carried - end_pose
     joined = int(out is not None)  # the drawn-out way's last key is this way's first

@@ -46,11 +46,13 @@ class Grasp:
 @dataclass(frozen=True)
 class Box:
     """An object standing near what the hands are aimed at, which they keep clear of: its
-    centre and heading (rad) in the world and its extents along its own x, y and z."""
+    centre and heading (rad) in the world, its extents along its own x, y and z, and what
+    a refusal calls it when something would go into it."""
 
     center: tuple[float, float, float]
     yaw: float
     size: tuple[float, float, float]
+    name: str = "object"
 
 
 @dataclass(frozen=True)

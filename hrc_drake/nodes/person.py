@@ -49,7 +49,7 @@ class PersonCommandNode(CommandNode):
         if status is None:
             return ()
         return tuple(
-            human.Box(*box_of(obj))
+            human.Box(*box_of(obj), name=f"{obj.type} {obj.id}")
             for obj in status.objects
             if obj.holder is None
             and obj.id != taken

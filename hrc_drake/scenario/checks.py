@@ -34,7 +34,7 @@ from hrc_drake.safety.sensors_checks import sensor_problems
 from hrc_drake.scenario.falsify import search_problems
 from hrc_drake.scenario.overrides import field_kind, field_type, overridden
 from hrc_drake.scenario.schema import RobotConfig, Scenario
-from hrc_drake.station import TOOLS, add_station_models, model_parser
+from hrc_drake.station import TOOLS, StationSpec, add_station_models, model_parser
 from hrc_drake.wiring import AGENTS, STATION_MODELS
 from hrc_drake.workpieces.config import problems
 from hrc_drake.workpieces.messages import COUPLINGS
@@ -280,32 +280,66 @@ RESERVED = (*STATION_MODELS, "WorldModelInstance", "DefaultModelInstance")
 
 def _station_problems(scenario: Scenario) -> Iterator[Problem]:
     """Builds the robot and cell models once (no simulation), so whatever else Drake
-    refuses (e.g. a weld to a frame the model lacks) is one line at load time. Parsing
-    takes half a second, so each robot and cell is tried once per process."""
+    refuses (e.g. a weld to a frame the model lacks) is one line at load time, at the
+    directive it refuses. Parsing takes half a second, so each robot and cell is tried
+    once per process."""
     key = repr((scenario.robot.variant, scenario.robot.tool, scenario.cell))
     if key not in _STATION_PROBLEMS:
-        plant = MultibodyPlant(0.0)
-        try:
-            add_station_models(plant, model_parser(plant), scenario.station)
-            _STATION_PROBLEMS[key] = ""
-        except Exception as e:  # Drake's parser: its first line says what is wrong
-            _STATION_PROBLEMS[key] = first_line(e)
-    if _STATION_PROBLEMS[key]:
-        message = _STATION_PROBLEMS[key].split(" (valid names")[0]
-        yield _directive_naming(scenario.cell, message), message
+        _STATION_PROBLEMS[key] = _station_problem(scenario.station)
+    if _STATION_PROBLEMS[key] is not None:
+        yield _STATION_PROBLEMS[key]
 
 
-def _directive_naming(directives: list[ModelDirective], message: str) -> tuple:
-    """The first directive that holds a name Drake quotes in `message` (else the cell)."""
-    quoted = re.findall(r"'([^']+)'", message)
-    for i, directive in enumerate(directives):
-        if any(name in repr(directive) for name in quoted):
-            return ("cell", i)
-    return ("cell",)
+def _station_problem(station: StationSpec) -> Problem | None:
+    """What Drake refuses of the station's models, at the first directive of the cell that
+    makes it refuse: Drake's message names only links and joints ('world', 'body'), which
+    every weld of a cell shares, so the directive is found by building ever longer parts
+    of the cell (only when the whole is refused)."""
+    message = _refusal(station)
+    if not message:
+        return None
+    cell = station.cell
+    low, high = 0, len(cell)  # the robot with cell[:low] loads, with cell[:high] not
+    if _refusal(dataclasses.replace(station, cell=())):
+        return ("robot",), message
+    while high - low > 1:
+        middle = (low + high) // 2
+        if _refusal(dataclasses.replace(station, cell=cell[:middle])):
+            high = middle
+        else:
+            low = middle
+    return ("cell", high - 1), _explained(message, cell[high - 1])
 
 
-_STATION_PROBLEMS: dict[str, str] = {}
-"""Robot and cell (as text) -> what Drake said about them ("" when they load)."""
+def _refusal(station: StationSpec) -> str:
+    """Drake's first line on building `station`'s models ("" when they load)."""
+    plant = MultibodyPlant(0.0)
+    try:
+        add_station_models(plant, model_parser(plant), station)
+    except Exception as e:  # Drake's parser: its first line says what is wrong
+        return first_line(e).split(" (valid names")[0]
+    return ""
+
+
+STATIC_WELD = "sdformat_model_static_world_welds_to_"
+"""The joint Drake's SDFormat parser makes for a model marked `<static>`: a second weld of
+the same model to the world is refused with a message about joints a user never wrote."""
+
+
+def _explained(message: str, directive: ModelDirective) -> str:
+    """Drake's `message` about `directive`, in the user's terms where it has known ones."""
+    weld = directive.add_weld
+    if weld is not None and STATIC_WELD in message:
+        model = weld.child.split("::")[0]
+        return (
+            f"model '{model}' is static in its file (<static>true</static>), which welds it "
+            "to the world already: remove this add_weld or the <static> tag"
+        )
+    return message
+
+
+_STATION_PROBLEMS: dict[str, Problem | None] = {}
+"""Robot and cell (as text) -> what Drake refuses of them, where (None when they load)."""
 
 
 def _package_map() -> PackageMap:

@@ -105,7 +105,7 @@ def reach_findings(
                     problem, said = problems[0]
                     done = "taken" if isinstance(node, ActorPick) else "put down"
                     message = (
-                        f"{what} at {_point_text(target)}, {done} where the person stands "
+                        f"{what} at {point_text(target)}, {done} where the person stands "
                         f"({said}): {problem}"
                     )
                     yield Locator.node(node, port, message, target)
@@ -164,12 +164,13 @@ def _stand_points(stand, known, resolve, start) -> list[tuple[np.ndarray, str, K
     return points
 
 
-def _point_text(point) -> str:
+def point_text(point) -> str:
+    """A point as validate's messages give it: (x, y, z) to the centimetre."""
     return "(" + ", ".join(f"{v:.2f}" for v in point) + ")"
 
 
 def _too_far(value, target, distance: float, stands, limit: float) -> str:
-    where = _point_text(target)
+    where = point_text(target)
     nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
     return (
         f"{value} at {where} is {distance:.2f} m from where the person stands ({nearest}); "

@@ -39,7 +39,7 @@ from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.located import Finding, Locator
-from hrc_drake.scenario.reach_from_stand import reach_findings
+from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
@@ -284,7 +284,10 @@ class _Checks:
         person (hrc_drake.nodes.person.NEARBY)."""
         types = self.scenario.workpieces.types
         return tuple(
-            Box(*box_at(obj.pose, types[obj.type].shape, types[obj.type].size))
+            Box(
+                *box_at(obj.pose, types[obj.type].shape, types[obj.type].size),
+                name=f"{obj.label} at {point_text(obj.pose.translation())}",
+            )
             for obj in self.scene.objects
             if all(obj is not other for other in taken)
             and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY

@@ -665,3 +665,39 @@ def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_p
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err
+
+
+def test_an_object_the_person_would_go_into_is_named(tmp_path, hrc_drake):
+    """A packing cell of our own (#26): stooping to a carton on a shelf's middle board, the
+    head of a small woman would go into the carton on the board above; validate said
+    "into 'object'". It names the object and where it lies."""
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="shelf_front"/>'
+        '<NextObject area="shelf" filter="type=carton" object_id="{c}" pose="{at}"/>'
+        '<ActorPick object_id="{c}"/>',
+        (),
+        "ActorPick",
+        changes=[
+            A_SHELF,
+            (
+                "safety:\n",
+                "    carton: {shape: box, size: [0.3, 0.2, 0.2], mass: 0.6, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: carton, pose: {{translation: [3.0, 0.45, 0.70]}}}}\n"
+                "    - {type: carton, pose: {translation: [3.0, 0.45, 1.20]}}\n"
+                "safety:\n",
+            ),
+            (
+                "locations:\n",
+                "locations:\n  shelf_front: {translation: [3.0, -0.05, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, 90]}}\n",
+            ),
+            ("areas:\n", "areas:\n  shelf: [[2.6, 0.35], [3.4, 0.35], [3.4, 0.75], [2.6, 0.75]]\n"),
+        ],
+    )
+    scenario = write_workspace(tmp_path, case)
+    small = ("--set", "human.sex=female", "--set", "human.percentile=5")
+    status, _, err = hrc_drake("validate", scenario, *small)
+    assert_one_line_error(
+        status, err, expected_place(tmp_path, case), "into 'carton at (3.00, 0.45, 1.20)'"
+    )

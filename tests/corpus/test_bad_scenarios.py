@@ -24,6 +24,21 @@ directives:
   - add_weld: {parent: world, child: bni::body}
 """
 
+OWN_TABLE = """\
+<?xml version="1.0"?>
+<sdf version="1.9">
+  <model name="table">
+    <link name="body">
+      <collision name="top">
+        <pose>0 0 0.45 0 0 0</pose>
+        <geometry><box><size>1.2 0.8 0.9</size></box></geometry>
+      </collision>
+    </link>
+  </model>
+</sdf>
+"""
+"""A model of the user's own, beside the scenario."""
+
 ALIAS_BOMB = "".join(
     f"  lol{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else 'lol'] * 9)}]\n" for i in range(9)
 )
@@ -466,6 +481,18 @@ CASES = {
         "work_table.sdf",
         files={"work_table.sdf": (MODELS / "cell" / "work_table.sdf").read_text()},
     ),
+    "own static model welded": Case(
+        S,
+        "package://hrc_drake_models/cell/work_table.sdf}\n  - add_weld:\n",
+        '"file://{dir}/table.sdf"}\n  - add_weld:  # the weld of a static model\n',
+        (
+            "cell[3]: ",
+            "model 'work_table' is static in its file (<static>true</static>), which welds it "
+            "to the world already: remove this add_weld or the <static> tag",
+        ),
+        "# the weld of a static model",
+        files={"table.sdf": OWN_TABLE.replace("<link", "<static>true</static><link")},
+    ),
     "unknown package": Case(
         S,
         "package://hrc_drake_models/cell/floor.sdf",
@@ -775,3 +802,14 @@ def test_a_scenario_that_is_a_directory_or_missing(tmp_path, hrc_drake):
     assert_one_line_error(status, err, f"{tmp_path}: no such scenario file")
     status, _, err = hrc_drake("validate", "bsae")
     assert_one_line_error(status, err, "did you mean 'base'?")
+
+
+def test_validate_checks_the_scenario_as_set_on_the_command_line(tmp_path, hrc_drake):
+    """`--set` gives validate the scenario a run with the same `--set` simulates (a person of
+    another size checked before a sweep over sizes, #26): a speed set as a percentage is
+    found there, as in the file."""
+    scenario = write_workspace(tmp_path)
+    status, _, err = hrc_drake("validate", scenario, "--set", "parameters.speed=50")
+    assert_one_line_error(status, err, "must be within 0..1, got 50 (a percentage?")
+    status, _, err = hrc_drake("validate", scenario, "--set", "parameters.speed=0.5,0.8")
+    assert_one_line_error(status, err, "validate: --set takes one value per field")

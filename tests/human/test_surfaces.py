@@ -455,6 +455,31 @@ def test_a_carton_lifted_off_a_crate_rises_before_it_moves():
     assert min(heights) >= heights[0] - 0.002, (heights[0], min(heights))
 
 
+def test_a_carton_taken_off_a_board_above_the_waist_does_not_sink_into_it():
+    """A packing cell of our own (#26): a carton taken off a shelf's board at 1.1 m, above
+    where it is carried. Its way into the carry posture kept the palms only above the
+    carry's height, and as the trunk rose the chest carried them 1.5 cm down, the carton
+    into the board it lay on, before the way rose over the board's edge (2.1 cm in the
+    cell's run). While the carton is over the board, the palms never go below where they
+    took it."""
+    size, front = (0.3, 0.2, 0.2), 0.4
+    center = (0.0, front + 0.1, 1.1 + size[2] / 2)
+    grasp = Grasp("both", center, np.pi / 2, size)
+    schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp))]
+    shelf = furniture("shelf", 0.0, front + 0.2)
+    run = Run(schedule, STANDING, [FLOOR, shelf], ARMS, objects=[(size, RigidTransform(center))])
+    clip = load_clips()["pick_table"]
+    heights = []
+    for t in np.arange(0.1 + clip.events["grasp"], 0.1 + clip.duration, 1.0 / 60.0):
+        run.record(t)
+        q = run.positions()[run.body.plant_index]
+        palms = [run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES]
+        if np.mean(palms, axis=0)[1] < front:
+            break  # half of it is off the board
+        heights.append(np.mean([p[2] for p in palms]))
+    assert min(heights) >= heights[0] - 0.002, (heights[0], min(heights))
+
+
 def _taken_off_the_block(x: float) -> Run:
     """The person standing at (x, -0.4) takes a carton off a crate in the pallet's block."""
     (center, size), others = ((0.6, 0.05, 0.484), PALLET_CARTON), CRATES
