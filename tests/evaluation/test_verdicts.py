@@ -6,7 +6,7 @@ and how many runs of a sweep broke the standard or the realism limits."""
 import pytest
 
 from hrc_drake.cli.simulate import key_metrics
-from hrc_drake.evaluation.realism import LIMITS, realism_verdict
+from hrc_drake.evaluation.realism import LIMITS, realism_rows, realism_verdict
 from hrc_drake.evaluation.sweep_report import summarize
 
 
@@ -56,6 +56,30 @@ def test_within_the_limits_says_so_and_without_a_person_nothing():
     at_limits = realism(**{name: (limit, 1.0, "x") for name, limit in LIMITS.items()})
     assert realism_verdict(at_limits) == ["within its limits (7 measures)"]
     assert realism_verdict({}) == []
+
+
+def test_a_measure_without_anything_to_measure_is_named_not_counted():
+    """Short walks round corners may have no stride of steady walking: the pelvis speed's
+    swing is then not measured, and neither the verdict nor the report page counts it
+    within its limit."""
+    unwalked = realism()
+    unwalked["pelvis_speed"] = {
+        "strides": 0,
+        "mean_speed": 0.0,
+        "variation_median": 0.0,
+        "variation_max": 0.0,
+    }
+    assert realism_verdict(unwalked) == [
+        "within its limits (6 measures); not measured: pelvis speed swing within a stride "
+        "(no stride of steady walking to measure it on)"
+    ]
+    assert realism_rows(unwalked)[-1][-1] == "not measured"
+    over = dict(unwalked, foot_slip=OVER["foot_slip"])
+    assert realism_verdict(over) == [
+        "1 of 6 measures over their limits; worst: standing foot slid 3.8 cm (limit 1 cm): "
+        "right_heel at 12.0 s; not measured: pelvis speed swing within a stride (no stride "
+        "of steady walking to measure it on)"
+    ]
 
 
 def test_the_run_summary_prints_the_verdict():
