@@ -85,36 +85,38 @@ class Detours:
             for o, c in zip(navigation.obstacles, clearances, strict=True)
         ]
 
-    def problem(self, start, goal, walk: str = "walk") -> str:
-        """Why the `walk` (or carry) from `start` to `goal` (x, y) goes a long way round:
-        the lengths and the gap a little too narrow for this person; "" when it does not."""
+    def problem(self, start, goal, walk: str = "walk") -> tuple[str, tuple | None]:
+        """Why the `walk` (or carry) from `start` to `goal` (x, y) goes a long way round
+        ("" when it does not): the lengths and the gap a little too narrow for this person,
+        and the middle of that gap (x, y, 0), where a view of the cell marks it."""
         try:
             way = [start, *self.navigation.path(start, goal), goal]
         except NoWay:
-            return ""  # walk_problem says so
+            return "", None  # walk_problem says so
         straight, length = _length([start, goal]), _length(way)
         if length <= DETOUR_RATIO * straight or length - straight <= DETOUR_LONGER:
-            return ""
+            return "", None
         try:
             slim = [start, *self._slimmer.path(start, goal), goal]
         except NoWay:
-            return ""
+            return "", None
         if _length(slim) > length - DETOUR_LONGER:
-            return ""
+            return "", None
         gap = self._gap(LineString(slim))
         if gap is None:
-            return ""
-        (a, b), width, needed = gap
-        return (
+            return "", None
+        (a, b), width, needed, middle = gap
+        message = (
             f"the {walk} from {_xy(start)} to {_xy(goal)} goes round: {length:.1f} m for "
             f"{straight:.1f} m straight; the gap between '{a}' and '{b}' is {width:.2f} m, "
             f"{needed:.2f} m needed"
         )
+        return message, (middle.x, middle.y, 0.0)
 
     def _gap(self, way: LineString):
         """The gap the slimmer person's `way` passes through that is narrowest for this
-        person (its pieces' names, width and the width the map needs there), or None; its
-        pieces lie nearer the way than the widest gap the map closes."""
+        person (its pieces' names, width, the width the map needs there and its middle), or
+        None; its pieces lie nearer the way than the widest gap the map closes."""
         widest = 2 * (max((p.clearance for p in self._pieces), default=0.0) + CORNER_MARGIN)
         near = [p for p in self._pieces if p.outline.distance(way) < widest]
         found = []
@@ -127,7 +129,7 @@ class Detours:
                 continue
             needed = width + _shift_to_open(a, b, across)
             if needed > width:
-                found.append(((a.name, b.name), width, needed))
+                found.append(((a.name, b.name), width, needed, across.interpolate(0.5, True)))
         return max(found, key=lambda gap: gap[2] - gap[1], default=None)
 
 
@@ -172,9 +174,9 @@ def detour_findings(
             goal = walk_end(value)
             walk = "carry" if isinstance(node, ActorCarry) else "walk"
             problems = [detours.problem(s, goal, walk) for s in starts if s and goal]
-            problem = next((p for p in problems if p), "")
+            problem, gap = next(((p, g) for p, g in problems if p), ("", None))
             if problem:
-                yield Locator.node(node, "target", f"{value}: {problem}", (*goal, 0.0))
+                yield Locator.node(node, "target", f"{value}: {problem}", gap)
 
 
 def _length(points) -> float:
