@@ -177,11 +177,12 @@ class NavigationMap:
         """`keep_out` are floor polygons walks stay out of besides the obstacles (e.g. where
         the robot's arm swings), though places to stand may lie in them."""
         self.obstacles = obstacles
+        self.height = height
         self.body = tuple(s.scaled(height / DEFAULT_HEIGHT) for s in BODY)
         self._reach = [self._body_at(o.low, o.high) for o in obstacles]
         self.keep_out = unary_union(list(keep_out)) if keep_out else Polygon()
         self.keep_out_clearance = max(s.walking for s in self.body) + WALK_MARGIN
-        grown = [_grown(o.outline, self.clearance(o)) for o in obstacles] + [
+        grown = [grown_outline(o.outline, self.clearance(o)) for o in obstacles] + [
             area.buffer(self.keep_out_clearance) for area in keep_out
         ]
         self.blocked = unary_union(grown) if grown else Polygon()
@@ -445,7 +446,7 @@ def _overlap_depth(body: BodySlice, x: float, y: float, yaw: float, outline: Pol
     return _depth(overlap, outline)
 
 
-def _grown(outline: Polygon, clearance: float) -> Polygon:
+def grown_outline(outline: Polygon, clearance: float) -> Polygon:
     """The outline grown by `clearance`, its corners cut by a bevel that just keeps the
     clearance (fewer corners than round ones, and less in the way than square ones)."""
     return outline.buffer(clearance, join_style="mitre", mitre_limit=1.0)

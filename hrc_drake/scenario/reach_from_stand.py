@@ -178,6 +178,12 @@ def _too_far(value, target, distance: float, stands, limit: float) -> str:
     )
 
 
+def walk_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
+    """The last walk that has run when `node` starts (None: the person stands at their
+    start; UNKNOWN: not known statically)."""
+    return _last_before(node, parents, ActorMovement)
+
+
 def _last_before(node: TreeNode, parents: dict, kind: type) -> TreeNode | None | object:
     """The last node of `kind` that has run when `node` starts (a walk: the person stands
     at its end; a pick: the hands hold what it took). None: none before it (the person

@@ -26,7 +26,7 @@ from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
 from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
-from hrc_drake.human.navigation import FLOOR_LEVEL
+from hrc_drake.human.navigation import FLOOR_LEVEL, NoWay
 from hrc_drake.human.performer import Performer, place
 from hrc_drake.human.planning import plan_animation
 from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
@@ -38,6 +38,7 @@ from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, t
 from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
+from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
 from hrc_drake.scenario.schema import Scenario
@@ -69,6 +70,7 @@ def tree_findings(
             for node, port, key, near in unwritten_inputs(tree)
         ]
         found += checks.reaches_from_stand(tree, handle, inputs)
+        found += checks.detours(tree, handle, inputs)
     if robot_placed:
         found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
@@ -148,6 +150,32 @@ class _Checks:
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
+
+    def detours(self, tree, agent, inputs) -> Iterator[Finding]:
+        """Walks that go a long way round a gap a little too narrow for the person
+        (hrc_drake.scenario.detours)."""
+        if self.scenario.human is None:
+            return iter(())
+        known = {(id(node), port): values for node, port, values in inputs}
+        start = self.scenario.human.start[:2]
+        walk_end = partial(self._walk_end, agent)
+        return detour_findings(tree.node_list, known, walk_end, start, self._detours)
+
+    @cached_property
+    def _detours(self) -> Detours:
+        return Detours(self.scene.navigation)
+
+    def _walk_end(self, agent, value: Known) -> tuple[float, float] | None:
+        """Where a walk to `value` ends: the place nearest it with room, as the person's
+        planner moves it (None: not known, or no place near has room)."""
+        pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
+        if pose is None:
+            return None
+        x, y, _ = pose.position
+        try:
+            return self.scene.navigation.clear_spot(x, y, _heading(pose))
+        except NoWay:
+            return None
 
     def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
         """The objects at the start that a pick may take, each with its label, centre and

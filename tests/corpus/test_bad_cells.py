@@ -85,6 +85,17 @@ ISLAND = "".join(
 """Three more work tables that close a square with the corpus's work table round (0, 1.7)."""
 
 
+def two_fences(gap: float) -> str:
+    """Two fences (2 m long) in a line along y = 2.5 between the person's start (2, 2) and
+    the door (2, 3), `gap` apart from x = 1.9 on: the way round them is 5 m or more."""
+    return "".join(
+        f"  - add_model: {{name: {name}, file: package://hrc_drake_models/cell/fence.sdf}}\n"
+        f"  - add_weld: {{parent: world, child: {name}::body, "
+        f"X_PC: {{translation: [{x}, 2.5, 0]}}}}\n"
+        for name, x in (("fence_a", 0.9), ("fence_b", 2.9 + gap))
+    )
+
+
 def person(old: str, new: str, says: tuple[str, ...], at: str, changes=(), files=None) -> Case:
     """The corpus scenario (with its texts `changes`d, old -> new, and `files` beside it)
     with a person whose tree (PERSON) has `old` replaced by `new`."""
@@ -276,6 +287,17 @@ CASES = {
         ),
         "0;1.7;0",
         changes=[("human:\n", f"{ISLAND}human:\n")],
+    ),
+    "a walk round a gap a little too narrow": person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="2.0;1.9;0"/>\n      <ActorMovement target="door"/>',
+        (
+            "port 'target': location 'door': the walk from [2.00, 1.90] to [2.00, 3.00] "
+            "goes round: 5.5 m for 1.1 m straight; the gap between 'fence_a' and 'fence_b' "
+            "is 0.70 m, 0.76 m needed",
+        ),
+        '<ActorMovement target="door"/>',
+        changes=[("human:\n", f"{two_fences(0.7)}human:\n")],
     ),
     "a place to stand without room to turn": Case(
         S,
@@ -701,3 +723,17 @@ def test_an_object_the_person_would_go_into_is_named(tmp_path, hrc_drake):
     assert_one_line_error(
         status, err, expected_place(tmp_path, case), "into 'carton at (3.00, 0.45, 1.20)'"
     )
+
+
+def test_a_walk_through_a_gap_wide_enough_is_not_judged(tmp_path, hrc_drake):
+    """The fences 0.8 m apart: the person walks straight through, and validate says
+    nothing (nor of the walk back)."""
+    case = person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="door"/>\n      <ActorMovement target="2.0;2.0;0"/>',
+        (),
+        "ActorMovement",
+        changes=[("human:\n", f"{two_fences(0.8)}human:\n")],
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
