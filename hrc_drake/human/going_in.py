@@ -1,8 +1,8 @@
 """What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
 still goes into the furniture once the head and arms have been kept out of it as far as
-they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a pick or a put-down whose
-held object goes into it on its planned way or would be in it where it is put, or a carry
-whose held object would go into it.
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a put-down whose held
+object goes into it on its planned way or would be in it where it is put, or a carry that
+would end with the held object in it.
 
 Where the corrections cannot find a way, the person played it through the shelf: a stoop
 to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
@@ -28,51 +28,35 @@ in the cell's geometry or an object (docs/realism.md), since the prisms' separat
 test, which knows only their faces' directions, overstates how deep a round shape goes in
 beside an edge (a forearm passing a shelf board's edge: 1.4 cm by it, clear in SceneGraph)."""
 PARTS = (HEAD, *SIDES)
-HELD_LIMIT = 0.01
-"""m: deeper than this, a held object in the furniture is refused: the realism audit's limit
-for it (penetration_carried, docs/realism.md). Its corners have no round shape for the
-prisms' test to overstate (a tote 2.5 cm into a shelf's board in the last step of a carry,
-under DEPTH_LIMIT where the walk ends, was found only by the audit: a cell of our own)."""
 HELD_RADII, HELD_SHAPE = np.zeros(1), np.arange(8)[None]
 """A held box as one shape of `Prisms.shape_depths`: its 8 corners, no radius."""
 
 
 def refuse_going_in(performer: Performer, activity: Activity, start: float) -> None:
     """Raises Unreachable, saying what would go where, when `activity`, played from `start`
-    with its corrections, puts the head, an arm or what the hands hold into what it keeps
-    out of (`going_in`)."""
+    with its corrections, puts the head or an arm deeper than DEPTH_LIMIT into what it keeps
+    out of."""
     problem = going_in(performer, activity, start)
     if problem:
         raise Unreachable(problem)
 
 
 def going_in(performer: Performer, activity: Activity, start: float) -> str:
-    """What the hands hold to put down puts deeper than HELD_LIMIT into what it keeps out
-    of, or else what of the head and arms `activity`, played from `start`, puts deeper than
-    DEPTH_LIMIT, or else what the hands take does, and where ("" when nothing). What is put
-    down first: one in the furniture where the put-down begins says what to change (where
-    the person stands with it), whatever the head and arms then do on their way (a tote
-    carried into a shelf's board, its put-down planned with the hands held above the board,
-    also put the head 2.2 cm into the shelf); what is taken last, as the hands reach it
-    before they take it (stooping to a carton on a shelf's bottom board, the head went into
-    the board above before the carton went into it)."""
+    """What the hands hold to put down puts deeper than DEPTH_LIMIT into what it keeps out
+    of, or else what of the head and arms `activity`, played from `start`, does, and where
+    ("" when nothing). The held object first: one in the furniture where the put-down
+    begins says what to change (where the person stands with it), whatever the head and
+    arms then do on their way (a tote carried into a shelf's board, its put-down planned
+    with the hands held above the board, also put the head 2.2 cm into the shelf)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
         return ""
     end = activity.end if np.isfinite(activity.end) else start
     times = np.arange(start, end + SAMPLE / 2, SAMPLE)
-    return (
-        _held_going_in(performer, activity, times, PUTTING_DOWN)
-        or _body_going_in(performer, activity, times)
-        or _held_going_in(performer, activity, times, TAKING_UP)
-    )
-
-
-def _body_going_in(performer: Performer, activity: Activity, times) -> str:
-    """What of the head and arms goes deeper than DEPTH_LIMIT into the furniture, and where
-    ("" when nothing)."""
-    furniture = activity.furniture_of(performer)
-    prisms, start = Prisms.of(furniture), times[0]
+    prisms = Prisms.of(furniture)
+    held = _held_going_in(performer, activity, prisms, times)
+    if held:
+        return held
     poses = np.array([activity.pose(performer, float(t)) for t in times])
     body = performer.body
     radii, shapes, starts = parts_shapes(body, PARTS)
@@ -91,37 +75,16 @@ def _body_going_in(performer: Performer, activity: Activity, times) -> str:
     )
 
 
-PUTTING_DOWN, TAKING_UP = "put it down", "take it"
-"""What the hands do with what they hold (`_held_going_in`)."""
-
-
-def _held_going_in(performer: Performer, activity: Activity, times, doing) -> str:
-    """What an object the hands hold goes into deeper than HELD_LIMIT, and where ("" when
-    nothing), as they put it down (`doing` PUTTING_DOWN: on the way from the carry posture;
-    a blend from the pose before leaves the object where the hands were; a tote carried up
-    to a shelf whose board is at its height is in the board before the put-down begins, a
-    cell of our own: 4.5 cm) or take it (TAKING_UP: from the grasp into the carry posture;
-    a tote taken off a shelf's 1.1 m board, carried at the waist just below the board's top,
-    stayed 6 cm inside the shelf, a cell of our own)."""
-    held = activity.putting_down if doing == PUTTING_DOWN else activity.taking_up
-    carries = [held(performer, float(t)) for t in times]
-    furniture = activity.furniture_of(performer)
-    depth, where, t = _deepest_held(performer, activity, furniture, times, carries)
-    if depth <= HELD_LIMIT:
-        return ""
-    return (
-        f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
-        f"{t - times[0]:.1f} s in: no way to {doing} from where the person stands"
-    )
-
-
-def _deepest_held(performer: Performer, activity: Activity, furniture, times, carries):
-    """How deep, into which piece of `furniture` and when (the last time, so deep), the
-    object held at `times` as `carries` (None: nothing) goes deepest: (0.0, "", first
-    time) when nowhere."""
-    body, prisms = performer.body, Prisms.of(furniture)
+def _held_going_in(performer: Performer, activity: Activity, prisms, times) -> str:
+    """What an object the hands hold to put down goes into deeper than DEPTH_LIMIT, and
+    where ("" when nothing), on the put-down's planned way (a blend from the pose before
+    leaves the object where the hands were: it comes from the carry posture): a tote
+    carried up to a shelf whose board is at its height is in the board before the put-down
+    begins (a cell of our own: 4.5 cm)."""
+    body, furniture = performer.body, activity.furniture_of(performer)
     worst = (0.0, "", times[0])
-    for t, carry in zip(times, carries, strict=True):
+    for t in times:
+        carry = activity.putting_down(performer, float(t))
         if carry is None:
             continue
         q = activity.planned_pose(performer, float(t))
@@ -130,9 +93,15 @@ def _deepest_held(performer: Performer, activity: Activity, furniture, times, ca
             continue
         corners = held_corners(body, carry, q)[None]
         into = prisms.subset(near).shape_depths(corners, HELD_RADII, HELD_SHAPE)[0, :, 0]
-        if 0.0 < into.max() >= worst[0]:
+        if into.max() > worst[0]:
             worst = (float(into.max()), furniture.pieces[near[np.argmax(into)]].name, t)
-    return worst
+    depth, where, t = worst
+    if depth <= DEPTH_LIMIT:
+        return ""
+    return (
+        f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
+        f"{t - times[0]:.1f} s in: no way to put it down from where the person stands"
+    )
 
 
 def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) -> str:
@@ -143,31 +112,20 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
     return _box_going_in(furniture, box_corners(center, heading, hold.size), "where it is put")
 
 
-def carried_going_in(performer: Performer, activity: Activity, carry, furniture) -> str:
-    """What the object the hands carry (`carry`) would go into deeper than HELD_LIMIT on
-    `activity`, a walk, and when ("" when nothing): a carton carried up to a column of
-    cartons stood 2.4 cm in its top one where the walk ended while its put-down was refused,
-    and a tote went 2.5 cm into a shelf's board in the walk's last step, under the 2 cm
-    looked for where it ended (cells of our own)."""
-    if not furniture.pieces:
-        return ""
-    times = np.append(np.arange(activity.start(), activity.end, SAMPLE), activity.end)
-    carries = [carry] * len(times)
-    depth, where, t = _deepest_held(performer, activity, furniture, times, carries)
-    if depth <= HELD_LIMIT:
-        return ""
-    when = "where the walk ends"
-    if t < times[-1]:
-        when = f"{activity.end - t:.1f} s before the walk ends"
-    return f"what the hands hold would be {100 * depth:.1f} cm into '{where}' {when}"
+def arrived_going_in(performer: Performer, activity: Activity, carry, furniture) -> str:
+    """What the object the hands carry (`carry`) would be in deeper than DEPTH_LIMIT where
+    `activity`, a walk, ends ("" when nothing): a carton carried up to a column of cartons
+    stood 2.4 cm in its top one while its put-down was refused (a cell of our own)."""
+    q = activity.planned_pose(performer, activity.end)
+    return _box_going_in(furniture, held_corners(performer.body, carry, q), "where the walk ends")
 
 
 def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:
-    """What a box with `corners` is in deeper than HELD_LIMIT ("" when nothing)."""
+    """What a box with `corners` is in deeper than DEPTH_LIMIT ("" when nothing)."""
     if not furniture.pieces:
         return ""
     into = Prisms.of(furniture).shape_depths(corners[None], HELD_RADII, HELD_SHAPE)[0, :, 0]
-    if into.max() <= HELD_LIMIT:
+    if into.max() <= DEPTH_LIMIT:
         return ""
     where = furniture.pieces[int(np.argmax(into))].name
     return f"what the hands hold would be {100 * into.max():.1f} cm into '{where}' {where_then}"

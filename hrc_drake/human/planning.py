@@ -12,7 +12,7 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.going_in import carried_going_in, placed_going_in
+from hrc_drake.human.going_in import arrived_going_in, placed_going_in
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -94,7 +94,7 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     activity = Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
     if carry is not None:
         furniture = performer.furniture.with_boxes(command.nearby)
-        problem = carried_going_in(performer, activity, carry, furniture)
+        problem = arrived_going_in(performer, activity, carry, furniture)
         if problem:
             raise Unreachable(problem)
     return activity

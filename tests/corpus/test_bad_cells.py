@@ -531,36 +531,6 @@ CASES = {
             ),
         ],
     ),
-    "a pick off a shelf's board whose tote would be in the shelf in the carry posture": person(
-        '<ActorAnimation animation_name="wave"/>',
-        '<ActorMovement target="shelf_front"/>'
-        '<NextObject area="top_board" filter="type=tote" object_id="{t}" pose="{at}"/>'
-        '<ActorPick object_id="{t}"/>',
-        (
-            "port 'object_id': tote in area 'top_board' (NextObject at ",
-            "at (3.00, 0.55, 1.16), taken where the person stands (location 'shelf_front', "
-            "ActorMovement at ",
-            "): what the hands hold would go ",
-            " cm into 'shelf' ",
-            "no way to take it from where the person stands",
-        ),
-        "ActorPick",
-        changes=[
-            A_SHELF,
-            (
-                "safety:\n",
-                "    tote: {shape: box, size: [0.36, 0.26, 0.12], mass: 1.2, capacity: 4}\n"
-                f"{OBJECTS}    - {{type: tote, pose: {{translation: [3.0, 0.55, 1.161], "
-                "rotation: !Rpy {deg: [0, 0, 90]}}}\n"
-                "safety:\n",
-            ),
-            A_SHELF_FRONT,
-            (
-                "areas:\n",
-                "areas:\n  top_board: [[2.6, 0.35], [3.4, 0.35], [3.4, 0.75], [2.6, 0.75]]\n",
-            ),
-        ],
-    ),
     "a put-down into a shelf from where the tote carried there is in its board": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
@@ -692,15 +662,12 @@ def test_a_reach_after_an_uncertain_walk_is_not_judged(tmp_path, hrc_drake):
 def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_path, hrc_drake):
     """A cell of our own: a tote put down where another lies is put on top of it in the run
     (hrc_drake.nodes.stacks), but validate planned it at the target as given, inside the
-    other, and said "what the hands hold would be 12.0 cm into 'object' where it is put".
-    What lies there is a lid: a second tote there, its near side 1.5 cm inside the far end
-    of the tote carried from the left (over the audit's 1 cm), is refused on the pick."""
+    other, and said "what the hands hold would be 12.0 cm into 'object' where it is put"."""
     totes = (
         "safety:\n",
         "    tote: {shape: box, size: [0.36, 0.26, 0.12], mass: 1.2, capacity: 4}\n"
-        "    lid: {shape: box, size: [0.36, 0.26, 0.04], mass: 0.3, capacity: 4}\n"
         f"{OBJECTS}    - {{type: tote, pose: {{translation: [-0.35, 0.95, 0.96]}}}}\n"
-        "    - {type: lid, pose: {translation: [0.2, 0.95, 0.92]}}\n"
+        "    - {type: tote, pose: {translation: [0.2, 0.95, 0.96]}}\n"
         "safety:\n",
     )
     places = (
