@@ -27,6 +27,10 @@ DEPTH_LIMIT = 0.02
 in the cell's geometry or an object (docs/realism.md), since the prisms' separating-axis
 test, which knows only their faces' directions, overstates how deep a round shape goes in
 beside an edge (a forearm passing a shelf board's edge: 1.4 cm by it, clear in SceneGraph)."""
+ARRIVING = 0.6
+"""s: the last step of a walk, in which what the hands carry swings furthest ahead (a kit
+carried up to another on a table: 2.3 cm in it 0.35 s before the walk ended, clear where
+it ended)."""
 PARTS = (HEAD, *SIDES)
 HELD_RADII, HELD_SHAPE = np.zeros(1), np.arange(8)[None]
 """A held box as one shape of `Prisms.shape_depths`: its 8 corners, no radius."""
@@ -112,23 +116,39 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
     return _box_going_in(furniture, box_corners(center, heading, hold.size), "where it is put")
 
 
-def arrived_going_in(performer: Performer, activity: Activity, carry, furniture) -> str:
-    """What the object the hands carry (`carry`) would be in deeper than DEPTH_LIMIT where
-    `activity`, a walk, ends ("" when nothing): a carton carried up to a column of cartons
-    stood 2.4 cm in its top one while its put-down was refused (a cell of our own)."""
-    q = activity.planned_pose(performer, activity.end)
-    return _box_going_in(furniture, held_corners(performer.body, carry, q), "where the walk ends")
+def arrived_going_in(performer: Performer, activity: Activity, carry, furniture):
+    """How deep the object the hands carry (`carry`) would be in the furniture in the last
+    ARRIVING seconds of `activity`, a walk, and what it would be in deeper than DEPTH_LIMIT ("" when
+    nothing): a carton carried up to a column of cartons stood 2.4 cm in its top one while
+    its put-down was refused (a cell of our own)."""
+    times = np.arange(activity.end, activity.end - ARRIVING, -SAMPLE)
+    depth, where = max(
+        _box_depth(
+            furniture, held_corners(performer.body, carry, activity.planned_pose(performer, t))
+        )
+        for t in times
+    )
+    return depth, _deeper_than_allowed(depth, where, "where the walk ends")
 
 
 def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:
     """What a box with `corners` is in deeper than DEPTH_LIMIT ("" when nothing)."""
+    return _deeper_than_allowed(*_box_depth(furniture, corners), where_then)
+
+
+def _box_depth(furniture: Furniture, corners: np.ndarray) -> tuple[float, str]:
+    """How deep a box with `corners` is in the furniture, and in which piece (0, "": in
+    none)."""
     if not furniture.pieces:
-        return ""
+        return 0.0, ""
     into = Prisms.of(furniture).shape_depths(corners[None], HELD_RADII, HELD_SHAPE)[0, :, 0]
-    if into.max() <= DEPTH_LIMIT:
+    return float(into.max()), furniture.pieces[int(np.argmax(into))].name
+
+
+def _deeper_than_allowed(depth: float, where: str, where_then: str) -> str:
+    if depth <= DEPTH_LIMIT:
         return ""
-    where = furniture.pieces[int(np.argmax(into))].name
-    return f"what the hands hold would be {100 * into.max():.1f} cm into '{where}' {where_then}"
+    return f"what the hands hold would be {100 * depth:.1f} cm into '{where}' {where_then}"
 
 
 def _named(part: str) -> str:

@@ -3,7 +3,8 @@ movement (turn towards the path, walk it round sharp corners and the cell's geom
 to the target orientation), of an animation (a clip, aimed at a target or grasp with
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
-from math import atan2, hypot, radians
+from dataclasses import replace
+from math import atan2, cos, hypot, radians, sin
 
 import numpy as np
 
@@ -31,6 +32,16 @@ from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
+STOP_SHORT = 0.3
+"""m: a carry ends at most this far short of its place, where what the hands hold would
+be in something there (a kit carried up to a table with another on it: 7.4 cm in the other,
+a cell of our own); a person stops before the box they carry touches what stands in
+front. Further back the place is too far for the put-down (it would reach from there)."""
+STOP_MARGIN = 0.02
+"""m: what the hands hold stops this far before what stands in front (the limit it may
+go in is DEPTH_LIMIT)."""
+SHORTENINGS = 3
+"""Tries at stopping short: each moves the end back by what the held box is in."""
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
 FINAL_TURN_WALKING = radians(45.0)
@@ -43,7 +54,33 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     """Turn towards the path, walk it, then turn to the target orientation. Without given
     waypoints the path goes round the cell's geometry (the navigation map); a target where
     the person would have no room to stand and turn moves to the nearest place that has.
+    A carry stops short of its place where what the hands hold would end in something there
+    (at most STOP_SHORT).
     Unreachable when there is no such place or no walk keeps clear of the cell."""
+    activity = _walk(performer, command, pose, t)
+    carry = _carry(performer, command.hold)
+    if carry is None:
+        return activity
+    furniture = performer.furniture.with_boxes(command.nearby)
+    wanted = np.asarray(command.target_position[:2], dtype=float)
+    depth, problem = arrived_going_in(performer, activity, carry, furniture)
+    for _ in range(SHORTENINGS):
+        if not problem:
+            return activity
+        x, y, yaw = activity.final_pose
+        back = depth + STOP_MARGIN
+        end = (x - back * cos(yaw), y - back * sin(yaw))
+        if hypot(*(end - wanted)) > STOP_SHORT:
+            break
+        activity = _walk(performer, replace(command, target_position=end), pose, t)
+        depth, problem = arrived_going_in(performer, activity, carry, furniture)
+    if problem:
+        raise Unreachable(problem)
+    return activity
+
+
+def _walk(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
+    """The walk of `plan_movement`, to the target or the nearest place with room."""
     clip = performer.clips.get(command.animation_name)
     if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
@@ -91,13 +128,7 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
             )
     if not segments:
         segments.append(TurnSegment.between(performer, t, (x, y), yaw, yaw, carry))
-    activity = Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
-    if carry is not None:
-        furniture = performer.furniture.with_boxes(command.nearby)
-        problem = arrived_going_in(performer, activity, carry, furniture)
-        if problem:
-            raise Unreachable(problem)
-    return activity
+    return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
 
 
 def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):

@@ -7,8 +7,9 @@ import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.grasp import PALM_GAP, hold_of
+from hrc_drake.human.grasp import PALM_GAP, carry_arms, held_corners, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, Hold, MoveCommand
+from hrc_drake.human.planning import STOP_SHORT
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
@@ -730,24 +731,47 @@ def test_a_step_up_to_the_table_swings_the_arms_clear_of_it():
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
 
 
-@pytest.mark.parametrize(("column_y", "outcome"), [(0.45, "failed"), (0.75, "succeeded")])
-def test_a_carry_that_would_end_with_the_box_in_an_object_is_refused(column_y, outcome):
-    """A carton carried up to a column of cartons (a cell of our own): where the walk
-    ended, the carton in the carry posture stood 2.4 cm in the column's top one while its
-    put-down was refused. A walk that would end so fails at once, saying so; one that ends
-    with room in front of the column is walked."""
-    column = (0.0, column_y, 0.6)
+COLUMN = (0.3, 0.3, 1.2)
+"""A column of cartons (x, y, z), standing on the floor."""
+
+
+@pytest.mark.parametrize("column_y", [0.45, 0.75])
+def test_a_carry_up_to_an_object_stops_before_the_box_touches_it(column_y):
+    """A carton carried up to a column of cartons (a cell of our own) stood 2.4 cm in its top
+    one where the walk ended; a kit carried to a table with another kit on it (a kitting
+    cell of our own) would have been 7.4 cm in that one, and the carry was refused, so the
+    person held the kit for the rest of the run. People stop before what they carry touches
+    what stands in front: the walk ends short of its place (at most STOP_SHORT), the carton
+    clear of the column all the way (the walk's last step swings it furthest ahead)."""
     hold = Hold("both", (0.3, 0.4, 0.2))
-    facing = (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4))
-    nearby = (Box(column, 0.0, (0.3, 0.3, 1.2)),)
-    walk = MoveCommand(1, (0.0, 0.0), facing, "carry", hold=hold, nearby=nearby)
-    run = Run([(0.1, walk)], (0.0, -0.9, np.pi / 2), [FLOOR])
-    run.record(0.3 if outcome == "failed" else 4.0)
+    run = _carried_up_to_a_column(column_y, hold)
+    _, poses = run.record(4.0)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    carry = carry_arms(run.body, hold)
+    ahead = max(held_corners(run.body, carry, q)[:, 1].max() for q in poses)
+    assert ahead <= column_y - COLUMN[1] / 2 + INTO_FURNITURE
+    assert run.status().base_pose[1] >= -STOP_SHORT - 0.03  # the walk's arrival and sway
+
+
+def test_a_carry_that_would_end_far_short_of_its_place_is_refused():
+    """Where the person would have to stop further back than STOP_SHORT (the column's face
+    only 0.1 m ahead of the place), the walk fails at once, saying what the carton would be
+    in: from further back the put-down would not reach."""
+    run = _carried_up_to_a_column(0.25, Hold("both", (0.3, 0.4, 0.2)))
+    run.record(0.3)
     result = run.status().results.last
-    assert result.outcome == outcome, result
-    if outcome == "failed":
-        assert result.reason.startswith("what the hands hold would be"), result
-        assert result.reason.endswith("where the walk ends"), result
+    assert result.outcome == "failed", result
+    assert result.reason.startswith("what the hands hold would be"), result
+    assert result.reason.endswith("where the walk ends"), result
+
+
+def _carried_up_to_a_column(column_y: float, hold: Hold) -> Run:
+    """A person 0.9 m before (0, 0) carries `hold` there, to face a column of cartons at
+    (0, column_y) that the command tells of."""
+    facing = (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4))
+    nearby = (Box((0.0, column_y, COLUMN[2] / 2), 0.0, COLUMN),)
+    walk = MoveCommand(1, (0.0, 0.0), facing, "carry", hold=hold, nearby=nearby)
+    return Run([(0.1, walk)], (0.0, -0.9, np.pi / 2), [FLOOR])
 
 
 @pytest.mark.parametrize("clip", ["pick_floor", "place_floor"])
