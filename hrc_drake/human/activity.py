@@ -120,6 +120,11 @@ class Activity:
         segment = self._segment_at(t)
         return segment.putting_down(performer, t) if isinstance(segment, ClipSegment) else None
 
+    def taking_up(self, performer: Performer, t: float) -> CarryArms | None:
+        """The carry of what the hands have taken at t in a pick (None: nothing)."""
+        segment = self._segment_at(t)
+        return segment.taking_up(performer, t) if isinstance(segment, ClipSegment) else None
+
     def _segment_at(self, t: float) -> Segment:
         return self.segments[self._index_at(t)]
 

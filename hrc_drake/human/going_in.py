@@ -1,8 +1,8 @@
 """What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
 still goes into the furniture once the head and arms have been kept out of it as far as
-they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a put-down whose held
-object goes into it on its planned way or would be in it where it is put, or a carry that
-would end with the held object in it.
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a pick or a put-down whose
+held object goes into it on its planned way or would be in it where it is put, or a carry
+that would end with the held object in it.
 
 Where the corrections cannot find a way, the person played it through the shelf: a stoop
 to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
@@ -26,7 +26,11 @@ DEPTH_LIMIT = 0.02
 """m: deeper than this, the motion is refused: twice the realism audit's limit for the body
 in the cell's geometry or an object (docs/realism.md), since the prisms' separating-axis
 test, which knows only their faces' directions, overstates how deep a round shape goes in
-beside an edge (a forearm passing a shelf board's edge: 1.4 cm by it, clear in SceneGraph)."""
+beside an edge (a forearm passing a shelf board's edge: 1.4 cm by it, clear in SceneGraph).
+A held box is refused at the same depth, not at the audit's 1 cm for it: its corners,
+measured at the planned pose against the prisms, are not what the audit measures in the
+played run with SceneGraph's shapes (coexistence seed 2's inspect pick: 1.2 cm into the
+finished part 15 as planned, 0.0 cm in the run's audit)."""
 ARRIVING = 0.6
 """s: the last step of a walk, in which what the hands carry swings furthest ahead (a kit
 carried up to another on a table: 2.3 cm in it 0.35 s before the walk ended, clear where
@@ -38,8 +42,8 @@ HELD_RADII, HELD_SHAPE = np.zeros(1), np.arange(8)[None]
 
 def refuse_going_in(performer: Performer, activity: Activity, start: float) -> None:
     """Raises Unreachable, saying what would go where, when `activity`, played from `start`
-    with its corrections, puts the head or an arm deeper than DEPTH_LIMIT into what it keeps
-    out of."""
+    with its corrections, puts the head, an arm or what the hands hold into what it keeps
+    out of (`going_in`)."""
     problem = going_in(performer, activity, start)
     if problem:
         raise Unreachable(problem)
@@ -47,20 +51,31 @@ def refuse_going_in(performer: Performer, activity: Activity, start: float) -> N
 
 def going_in(performer: Performer, activity: Activity, start: float) -> str:
     """What the hands hold to put down puts deeper than DEPTH_LIMIT into what it keeps out
-    of, or else what of the head and arms `activity`, played from `start`, does, and where
-    ("" when nothing). The held object first: one in the furniture where the put-down
-    begins says what to change (where the person stands with it), whatever the head and
-    arms then do on their way (a tote carried into a shelf's board, its put-down planned
-    with the hands held above the board, also put the head 2.2 cm into the shelf)."""
+    of, or else what of the head and arms `activity`, played from `start`, does so, or else
+    what the hands take does, and where ("" when nothing). What is put down first: one in
+    the furniture where the put-down begins says what to change (where the person stands
+    with it), whatever the head and arms then do on their way (a tote carried into a
+    shelf's board, its put-down planned with the hands held above the board, also put the
+    head 2.2 cm into the shelf); what is taken last, as the hands reach it before they
+    take it (stooping to a carton on a shelf's bottom board, the head went into
+    the board above before the carton went into it)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
         return ""
     end = activity.end if np.isfinite(activity.end) else start
     times = np.arange(start, end + SAMPLE / 2, SAMPLE)
-    prisms = Prisms.of(furniture)
-    held = _held_going_in(performer, activity, prisms, times)
-    if held:
-        return held
+    return (
+        _held_going_in(performer, activity, times, PUTTING_DOWN)
+        or _body_going_in(performer, activity, times)
+        or _held_going_in(performer, activity, times, TAKING_UP)
+    )
+
+
+def _body_going_in(performer: Performer, activity: Activity, times) -> str:
+    """What of the head and arms goes deeper than DEPTH_LIMIT into the furniture, and where
+    ("" when nothing)."""
+    furniture = activity.furniture_of(performer)
+    prisms, start = Prisms.of(furniture), times[0]
     poses = np.array([activity.pose(performer, float(t)) for t in times])
     body = performer.body
     radii, shapes, starts = parts_shapes(body, PARTS)
@@ -79,16 +94,37 @@ def going_in(performer: Performer, activity: Activity, start: float) -> str:
     )
 
 
-def _held_going_in(performer: Performer, activity: Activity, prisms, times) -> str:
-    """What an object the hands hold to put down goes into deeper than DEPTH_LIMIT, and
-    where ("" when nothing), on the put-down's planned way (a blend from the pose before
-    leaves the object where the hands were: it comes from the carry posture): a tote
-    carried up to a shelf whose board is at its height is in the board before the put-down
-    begins (a cell of our own: 4.5 cm)."""
-    body, furniture = performer.body, activity.furniture_of(performer)
+PUTTING_DOWN, TAKING_UP = "put it down", "take it"
+"""What the hands do with what they hold (`_held_going_in`)."""
+
+
+def _held_going_in(performer: Performer, activity: Activity, times, doing) -> str:
+    """What an object the hands hold goes into deeper than DEPTH_LIMIT, and where ("" when
+    nothing), as they put it down (`doing` PUTTING_DOWN: on the way from the carry posture;
+    a blend from the pose before leaves the object where the hands were; a tote carried up
+    to a shelf whose board is at its height is in the board before the put-down begins, a
+    cell of our own: 4.5 cm) or take it (TAKING_UP: from the grasp into the carry posture;
+    a tote taken off a shelf's 1.1 m board, carried at the waist just below the board's top,
+    stayed 6 cm inside the shelf, a cell of our own)."""
+    held = activity.putting_down if doing == PUTTING_DOWN else activity.taking_up
+    carries = [held(performer, float(t)) for t in times]
+    furniture = activity.furniture_of(performer)
+    depth, where, t = _deepest_held(performer, activity, furniture, times, carries)
+    if depth <= DEPTH_LIMIT:
+        return ""
+    return (
+        f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
+        f"{t - times[0]:.1f} s in: no way to {doing} from where the person stands"
+    )
+
+
+def _deepest_held(performer: Performer, activity: Activity, furniture, times, carries):
+    """How deep, into which piece of `furniture` and when (the first time so deep), the
+    object held at `times` as `carries` (None: nothing) goes deepest: (0.0, "", first
+    time) when nowhere."""
+    body, prisms = performer.body, Prisms.of(furniture)
     worst = (0.0, "", times[0])
-    for t in times:
-        carry = activity.putting_down(performer, float(t))
+    for t, carry in zip(times, carries, strict=True):
         if carry is None:
             continue
         q = activity.planned_pose(performer, float(t))
@@ -99,13 +135,7 @@ def _held_going_in(performer: Performer, activity: Activity, prisms, times) -> s
         into = prisms.subset(near).shape_depths(corners, HELD_RADII, HELD_SHAPE)[0, :, 0]
         if into.max() > worst[0]:
             worst = (float(into.max()), furniture.pieces[near[np.argmax(into)]].name, t)
-    depth, where, t = worst
-    if depth <= DEPTH_LIMIT:
-        return ""
-    return (
-        f"what the hands hold would go {100 * depth:.1f} cm into '{where}' "
-        f"{t - times[0]:.1f} s in: no way to put it down from where the person stands"
-    )
+    return worst
 
 
 def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) -> str:

@@ -215,6 +215,7 @@ class _Route:
             shift[2] = self.phases.plateau(s) * (min(max(middle[2], low), high) - middle[2])
         for end, weight in self._held_to(s):
             shift[:2] += weight * (_midpoint(end)[:2] - middle[:2])
+        shift[:2] += self._back_beside_the_straight(middle[:2] + shift[:2])
         shift[2] = max(shift[2], self._lowest(s) - middle[2])
         return {side: (p + shift, R) for side, (p, R) in targets.items()}
 
@@ -227,6 +228,19 @@ class _Route:
             return [(start, self.phases.rising(s)), (end, self.phases.lowering_weight(s))]
         low, off = (start, s) if self._low_first else (end, 1.0 - s)
         return [(low, 1.0 - minimum_jerk(off / LIFTING))]
+
+    def _back_beside_the_straight(self, point: np.ndarray) -> np.ndarray:
+        """How far (on the floor) the palms' midpoint at `point` must move to pass no
+        further than WAY_BEND beside the straight way between the ends, which is all that
+        `crossing_height` looks at (in the chest's frame, rising from a squat with a carton
+        drawn out from under a shelf's 0.6 m board, the way swung 28 cm ahead of where it
+        was drawn out to, back into the shelf, and the carton went 5 cm into the board)."""
+        a, b = (_midpoint(end)[:2] for end in self.ends)
+        along = b - a
+        u = np.clip(np.dot(point - a, along) / max(np.dot(along, along), 1e-12), 0.0, 1.0)
+        aside = point - (a + u * along)
+        distance = float(np.linalg.norm(aside))
+        return aside * (WAY_BEND / distance - 1.0) if distance > WAY_BEND else np.zeros(2)
 
     def _lowest(self, s: float) -> float:
         """How low the palms' midpoint may be a fraction s of the way: LIFT above its lower

@@ -42,6 +42,12 @@ STOP_MARGIN = 0.02
 go in is DEPTH_LIMIT)."""
 SHORTENINGS = 3
 """Tries at stopping short: each moves the end back by what the held box is in."""
+HANDS_FULL = "the hands hold what they carry: no hand is free to reach"
+"""Why a reach is refused while the hands hold something: planned as a put-down of what
+they hold at the point reached, it said where that would go instead (collaboration's
+5th-percentile woman, still holding the carton handed over when its carry was refused, was
+told 142 times "what the hands hold would be 10.0 cm into 'crate 1' where it is put": the
+carton's centre at the point reached, half its 0.2 m height in the crate under it)."""
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
 FINAL_TURN_WALKING = radians(45.0)
@@ -196,6 +202,8 @@ def _aimed_hands(
     other clips either side of it, as far apart as the clip has them."""
     if command.grasp is not None:
         return palm_targets(command.grasp, pose[2]), True
+    if clip.name == "reach" and command.hold is not None:
+        raise Unreachable(HANDS_FULL)
     if command.hold is not None:
         center = room_for_the_palms(
             performer.body, furniture, command.hold, command.target, pose[2]

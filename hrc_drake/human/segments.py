@@ -64,6 +64,14 @@ class ClipSegment:
         on_its_way = self.clip_time(performer, t) <= self.aim.times[way_end]
         return self.carry if on_its_way else None
 
+    def taking_up(self, performer: Performer, t: float) -> CarryArms | None:
+        """The carry of what an aimed pick holds at t, from its grasp on (None: it takes
+        nothing, or has not taken it yet)."""
+        events = performer.clips[self.clip].events
+        if self.aim is None or self.carry is None or "grasp" not in events:
+            return None
+        return self.carry if self.clip_time(performer, t) >= events["grasp"] else None
+
     def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
         """The sides whose hands must stay where they are at t: aimed at their targets or
         holding what they took."""

@@ -49,6 +49,10 @@ from hrc_drake.wiring import ROBOT_MOTION
 from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.yaml_check import unknown
 
+ON_IT = 0.01
+"""m: an object whose bottom is at most this far above the top of what is taken lies on it
+(`_Checks._lying_on`)."""
+
 
 def tree_findings(
     scenario: Scenario, scene: CellScene, at: Locator, skip_configurations=(), robot_placed=True
@@ -290,8 +294,30 @@ class _Checks:
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         grasp = self._grasp(obj, hands)
         clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
-        command = AnimateCommand(0, clip, grasp=grasp, nearby=self._near(grasp.center, (obj,)))
+        nearby = self._near(grasp.center, (obj, *self._lying_on(grasp)))
+        command = AnimateCommand(0, clip, grasp=grasp, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
+
+    def _lying_on(self, grasp: Grasp) -> list:
+        """The objects at the start lying on or in what `grasp` takes (their bottoms at most
+        ON_IT above its top, their centres over it): whether they are still there when it is
+        taken is the tree's doing (the machine cell's takes the checked parts out of the tote
+        before it takes the tote; planned with them, the tote went 7.6 cm into a part); the
+        run refuses the pick if they are."""
+        center, size = np.asarray(grasp.center), np.asarray(grasp.size)
+        c, s = math.cos(grasp.yaw), math.sin(grasp.yaw)
+        types, found = self.scenario.workpieces.types, []
+        for obj in self.scene.objects:
+            middle, _, extent = box_at(obj.pose, types[obj.type].shape, types[obj.type].size)
+            across = np.array([[c, s], [-s, c]]) @ (np.asarray(middle[:2]) - center[:2])
+            bottom, top = middle[2] - extent[2] / 2, center[2] + size[2] / 2
+            if (
+                middle[2] > center[2]
+                and bottom <= top + ON_IT
+                and np.all(abs(across) <= size[:2] / 2)
+            ):
+                found.append(obj)
+        return found
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
         """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run

@@ -531,6 +531,36 @@ CASES = {
             ),
         ],
     ),
+    "a pick off a shelf's board whose tote would be in the shelf in the carry posture": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="shelf_front"/>'
+        '<NextObject area="top_board" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorPick object_id="{t}"/>',
+        (
+            "port 'object_id': tote in area 'top_board' (NextObject at ",
+            "at (3.00, 0.55, 1.16), taken where the person stands (location 'shelf_front', "
+            "ActorMovement at ",
+            "): what the hands hold would go ",
+            " cm into 'shelf' ",
+            "no way to take it from where the person stands",
+        ),
+        "ActorPick",
+        changes=[
+            A_SHELF,
+            (
+                "safety:\n",
+                "    tote: {shape: box, size: [0.36, 0.26, 0.12], mass: 1.2, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: tote, pose: {{translation: [3.0, 0.55, 1.161], "
+                "rotation: !Rpy {deg: [0, 0, 90]}}}\n"
+                "safety:\n",
+            ),
+            A_SHELF_FRONT,
+            (
+                "areas:\n",
+                "areas:\n  top_board: [[2.6, 0.35], [3.4, 0.35], [3.4, 0.75], [2.6, 0.75]]\n",
+            ),
+        ],
+    ),
     "a put-down into a shelf from where the tote carried there is in its board": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'

@@ -9,7 +9,7 @@ from pydrake.math import RigidTransform, RotationMatrix
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, carry_arms, held_corners, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, Hold, MoveCommand
-from hrc_drake.human.planning import STOP_SHORT
+from hrc_drake.human.planning import HANDS_FULL, STOP_SHORT
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
@@ -53,6 +53,17 @@ def test_a_reach_onto_the_table_comes_from_above(target):
     run = _at_the_table([(0.1, AnimateCommand(1, "reach", target=target))], 3.0)
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_reach_while_the_hands_hold_a_carton_is_refused_for_that():
+    """Collaboration's 5th-percentile woman, her hand-over carry refused, still held the
+    carton when the tree sent her to straighten a box: the reach was planned as a put-down
+    of the carton at the point reached and refused 142 times as "10.0 cm into 'crate 1'
+    where it is put", which is not why she could not. Here: 10.0 cm into 'work_table'."""
+    reach = AnimateCommand(1, "reach", target=(0.1, 0.35, TOP), hold=Hold("both", CARTON))
+    run = _at_the_table([(0.1, reach)], 0.3)
+    last = run.status().results.last
+    assert (last.outcome, last.reason) == ("failed", HANDS_FULL), last
 
 
 PALLET = furniture("euro_pallet", 0.0, 0.55, 90.0)
@@ -462,8 +473,10 @@ def test_a_carton_taken_off_a_board_above_the_waist_does_not_sink_into_it():
     carry's height, and as the trunk rose the chest carried them 1.5 cm down, the carton
     into the board it lay on, before the way rose over the board's edge (2.1 cm in the
     cell's run). While the carton is over the board, the palms never go below where they
-    took it."""
-    size, front = (0.3, 0.2, 0.2), 0.4
+    took it. The shelf's front is 0.45 m ahead: at 0.4 m the carton in the carry posture
+    is 2.9 cm in the board's front, and the pick is refused (as a cell's tote: the test of
+    a pick whose box would be in the shelf in the carry posture)."""
+    size, front = (0.3, 0.2, 0.2), 0.45
     center = (0.0, front + 0.1, 1.1 + size[2] / 2)
     grasp = Grasp("both", center, np.pi / 2, size)
     schedule = [(0.1, AnimateCommand(1, "pick_table", grasp=grasp))]
@@ -478,6 +491,7 @@ def test_a_carton_taken_off_a_board_above_the_waist_does_not_sink_into_it():
         if np.mean(palms, axis=0)[1] < front:
             break  # half of it is off the board
         heights.append(np.mean([p[2] for p in palms]))
+    assert run.status().results.outcome_of(1) == "running", run.status().results.last
     assert min(heights) >= heights[0] - 0.002, (heights[0], min(heights))
 
 
@@ -538,6 +552,32 @@ def test_rising_with_a_carton_from_a_shelfs_bottom_board_keeps_the_feet_on_the_f
     run.record(0.1 + load_clips()["pick_floor"].events["grasp"])
     run.segments = ("lower_leg", "hand")
     _picked_up_between_the_palms(run, width=size[0], clip="pick_floor")
+
+
+def test_a_carton_drawn_out_from_under_a_board_rises_in_front_of_the_shelf():
+    """The same carton (a cell of our own): drawn out from under the 0.6 m board, its way
+    up, laid out in the chest's frame, swung 28 cm ahead as the person rose from the
+    squat, back into the shelf: the carton went 5.1 cm into the board's edge, 17 cm higher
+    from one frame to the next. Once out, it stays in front of the shelf (its way no
+    further than 5 cm beside the straight one) until it is over the board."""
+    size = (0.3, 0.25, 0.2)
+    center = (0.0, 0.5, 0.101 + size[2] / 2)
+    grasp = Grasp("both", center, 0.0, size)
+    schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp))]
+    run = Run(schedule, (0.0, -0.2, np.pi / 2), [FLOOR, SHELF], ("lower_leg",))
+    run.record(0.1 + load_clips()["pick_floor"].events["grasp"])
+    _, poses = run.record(0.1 + _duration("pick_floor"))
+    assert run.status().results.outcome_of(1) == "succeeded", run.status().results.last
+    front, board_top = 0.35, 0.6
+    out, deepest = False, -np.inf
+    for q in poses:
+        hands = [run.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in SIDES]
+        palms = np.mean(hands, axis=0)
+        far_face, bottom = palms[1] + size[1] / 2, palms[2] - size[2] / 2
+        out = out or far_face < front
+        if out and bottom < board_top:
+            deepest = max(deepest, far_face - front)
+    assert out and deepest <= 0.0, deepest
 
 
 def test_a_carton_on_a_shelfs_bottom_board_the_head_cannot_stoop_to_is_refused():
@@ -792,3 +832,19 @@ def test_a_low_tote_on_the_floor_keeps_the_hands_out_of_the_floor(clip):
     run.record(0.1 + _duration(clip) + 0.2)
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def test_a_pick_whose_box_would_be_in_the_shelf_in_the_carry_posture_is_refused():
+    """A cell of our own: a tote 0.36 m deep taken off a shelf's 1.1 m board, the shelf's
+    front 0.35 m ahead. In the carry posture, at the waist just below the board's top, the
+    tote's far end stayed 6 cm inside the shelf (the realism audit: tote in rack 6.0 cm;
+    as planned, 6.8 cm into the board's front). The pick fails at once, saying so."""
+    size = (0.26, 0.36, 0.12)
+    center = (0.0, 0.55, 1.101 + size[2] / 2)
+    grasp = Grasp("both", center, 0.0, size)
+    run = Run([(0.1, AnimateCommand(1, "pick_table", grasp=grasp))], STANDING, [FLOOR, SHELF])
+    run.record(0.3)
+    last = run.status().results.last
+    assert last.outcome == "failed", last
+    assert last.reason.startswith("what the hands hold would go") and "'shelf'" in last.reason
+    assert "no way to take it" in last.reason, last
