@@ -116,6 +116,13 @@ class Furniture:
         ]
         return max(tops, default=None)
 
+    def walls_round(self, surface: Obstacle) -> "Furniture":
+        """The pieces that rise past the top of `surface` from below it: a bin's walls round
+        its floor (what lies on a surface starts at its top; a shelf's board above it, over
+        it)."""
+        low, high = surface.high - RESTING / 2, surface.high + RESTING / 2
+        return Furniture(tuple(p for p in self.pieces if p.low < low and p.high > high))
+
     def above(self, area: Polygon, height: float) -> "Furniture":
         """The pieces over a floor area wholly at or above `height` (the board above a
         shelf's compartment)."""

@@ -152,7 +152,7 @@ def aim_clip(
     on_target = on_target - at_event
     approach_time = APPROACH_AT * event
     putting_down = carry is not None and not takes
-    above = clearing(body, furniture, hands, lowest)
+    above = clearing(body, furniture, hands, lowest, base)
     room = room_beside(body, furniture, hands)
     roof = headroom(body, furniture, carry, middle, heading) if putting_down else np.inf
     near = approached(

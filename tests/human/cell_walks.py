@@ -37,6 +37,8 @@ class Furniture:
     x: float
     y: float
     yaw_deg: float = 0.0
+    z: float = 0.0
+    """Height of the model's origin (a bin standing on a table)."""
 
 
 @dataclass(frozen=True)
@@ -57,7 +59,8 @@ class Cell:
             url = f"package://hrc_drake_models/cell/{item.model}.sdf"
             (model,) = parser.AddModels(url=url)
             self.plant.RenameModelInstance(model, item.name)
-            pose = RigidTransform(RollPitchYaw(0, 0, radians(item.yaw_deg)), [item.x, item.y, 0])
+            turned = RollPitchYaw(0, 0, radians(item.yaw_deg))
+            pose = RigidTransform(turned, [item.x, item.y, item.z])
             body = self.plant.GetBodyByName("body", model)
             self.plant.WeldFrames(self.plant.world_frame(), body.body_frame(), pose)
         self.person = parse_human(self.plant, DEFAULT_HEIGHT, DEFAULT_MASS)
@@ -88,9 +91,10 @@ class Cell:
             pose, t0 = activity.final_pose, activity.end
         return worst
 
-    def penetration(self, q: np.ndarray, t: float = 0.0) -> Penetration:
+    def penetration(self, q: np.ndarray, t: float = 0.0, segments=("",)) -> Penetration:
         """The deepest overlap of the person's collision geometry at the canonical pose q
-        with the furniture (SceneGraph's penetration pairs)."""
+        (its `segments`: those whose names start with one of them; all by default) with the
+        furniture (SceneGraph's penetration pairs)."""
         body = self.performer.body
         self.plant.SetPositions(self._plant_context, self.person, body.plant_positions(q))
         query = self.scene_graph.get_query_output_port().Eval(
@@ -100,7 +104,12 @@ class Cell:
         inspector = query.inspector()
         for pair in query.ComputePointPairPenetration():
             for own, other in ((pair.id_A, pair.id_B), (pair.id_B, pair.id_A)):
-                if own in self._names and other not in self._names and pair.depth > worst.depth:
+                if (
+                    own in self._names
+                    and other not in self._names
+                    and self._names[own].startswith(segments)
+                    and pair.depth > worst.depth
+                ):
                     furniture = inspector.GetName(other).split("::")[0]
                     worst = Penetration(pair.depth, f"{self._names[own]} in {furniture}", t)
         return worst

@@ -9,10 +9,11 @@ from pydrake.math import RigidTransform, RotationMatrix
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, carry_arms, held_corners, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, Hold, MoveCommand
-from hrc_drake.human.planning import HANDS_FULL, STOP_SHORT
+from hrc_drake.human.planning import HANDS_FULL, STOP_SHORT, plan_animation
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
+from tests.human.cell_walks import Cell, Furniture
 from tests.human.scene import FLOOR, SAMPLE, Run, furniture
 
 INTO_FURNITURE = 0.01
@@ -138,6 +139,38 @@ def test_what_is_put_down_is_lowered_onto_its_place_and_not_below_it(cell, hands
 
 def _sides(hands: str) -> tuple[str, ...]:
     return SIDES if hands == "both" else (hands,)
+
+
+BIN_ON_A_TABLE = [
+    Furniture("floor", "floor", 0.0, 0.0),
+    Furniture("bin_table", "side_table", 0.0, 0.73, 90.0),
+    Furniture("parts_bin", "bin", 0.0, 0.73, 90.0, z=0.75),
+]
+"""A bin of parts on a side table as a kitting cell has it: its floor's top 0.762 m high,
+its walls' tops 0.97 m (above the hands hanging at the sides), the near wall 0.43 m in front
+of the pelvis."""
+SMALL_PART = (0.06, 0.06, 0.04)
+
+
+@pytest.mark.parametrize("inside", [0.1, 0.2])
+def test_a_hand_reaching_into_a_bin_comes_over_its_near_wall(inside):
+    """On its way to a part lying `inside` m behind the bin's near wall, the hand and forearm
+    rise over the wall's top before they move over the bin. Lifted only over the bin's
+    floor, with the hand's length and CLEARANCE, they went through the wall (0.1 m: the
+    forearm 9.9 cm into it, 0.2 m: 14.2 cm)."""
+    cell = Cell(BIN_ON_A_TABLE)
+    grasp = Grasp("right", (0.0, 0.43 + inside, 0.762 + SMALL_PART[2] / 2), np.pi / 2, SMALL_PART)
+    command = AnimateCommand(1, "pick_table", grasp=grasp)
+    activity = plan_animation(cell.performer, command, STANDING, 0.0)
+    approach = APPROACH_AT * load_clips()["pick_table"].events["grasp"]
+    worst = max(
+        (
+            cell.penetration(activity.pose(cell.performer, t), t, ("hand", "lower_arm"))
+            for t in np.arange(0.0, approach, SAMPLE)
+        ),
+        key=lambda found: found.depth,
+    )
+    assert worst.depth <= INTO_FURNITURE, worst
 
 
 def test_material_is_taken_off_a_shelf_board_at_chest_height():
