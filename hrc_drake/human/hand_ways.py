@@ -16,6 +16,7 @@ from hrc_drake.human.aiming import (
     WAYPOINT_TOLERANCE,
     AimedMotion,
     Unreachable,
+    arms_toward,
     hands_on,
 )
 from hrc_drake.human.body import HumanBody
@@ -38,15 +39,16 @@ from hrc_drake.human.skeleton import SIDES
 APPROACH = (0.06, 0.06)
 """m: where the hands come to before they close on the target: this far outwards (palms
 on an object's faces; a reaching hand: back towards the body) and this far above it."""
-LEAVE_AT = (0.3, 0.6, 0.8)
-"""Fractions of the time from letting go to the clip's end at which hands leaving a surface
-are back above their target, over the surface's edge again, and down below its top outside
-the edge (from there they swing back to the body's sides)."""
+LEAVE_AT = 0.3
+"""Fraction of the time from letting go to the clip's end at which hands leaving a surface
+are back above their target; from there they go over the surface's edge, down below its
+top outside the edge and back to the body's sides, each stretch taking its share of the
+rest of the clip as the hands go in it (`Keys.off_the_edge`)."""
 LOWERED = 0.25
-"""m: how far hands leaving a surface go straight down outside its edge: below its top,
-before the clip's own arms take them back to the body's sides (on the way straight there,
-a hand over the edge swung forward and down into a box standing at it: coexistence seed 9,
-2 cm)."""
+"""m: how far hands leaving a surface go straight down outside its edge (as far as the arms
+alone take them): below its top, before the clip's own arms take them back to the body's
+sides (on the way straight there, a hand over the edge swung forward and down into a box
+standing at it: coexistence seed 9, 2 cm)."""
 CLEARANCE = 0.02
 """m: the hands' lowest edge passes this far above what they pass over."""
 EDGE_MARGIN = 0.015
@@ -209,10 +211,10 @@ def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMo
     )
     base = q[[body.index("base_x"), body.index("base_y")]]
     edge = over_the_edge(body, furniture, hands, up, base, heading)
-    keys.reach(LEAVE_AT[0] * WITHDRAWAL, up)
+    keys.reach(LEAVE_AT * WITHDRAWAL, up)
     if edge is not None:
         lowered = below_the_top(body, furniture, hands)
-        keys.off_the_edge(edge, WITHDRAWAL * np.array(LEAVE_AT[1:]), lowered)
+        keys.off_the_edge(edge, WITHDRAWAL, lowered)
     keys.add(WITHDRAWAL, np.zeros_like(q))
     return keys.motion(tuple(hands), (0.0, 0.0))
 
@@ -282,14 +284,60 @@ class Keys:
         times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
         return [(float(t), minimum_jerk(k / PASSAGE_KEYS)) for k, t in enumerate(times, start=1)]
 
-    def off_the_edge(self, edge: dict, times, lowered: bool) -> None:
-        """Keys that take the hands over a surface's `edge` (its waypoints) and then, if
-        `lowered` (`below_the_top`), straight down outside it, at the two `times`."""
-        self.passage(times[0], edge)
+    def off_the_edge(self, edge: dict, end: float, lowered: bool) -> None:
+        """Keys that take the hands from the last key over a surface's `edge` (its
+        waypoints) and then, if `lowered` (`below_the_top`), straight down outside it as far
+        as the arms alone take them, leaving the rest up to `end` for the way back to the
+        clip's end pose: each stretch takes its share of the time as the hands and the head
+        go in it (laid out once at even times to measure that). At fixed fractions (0.6 and
+        0.8 of the rest), the hands went down 0.25 m and back to the sides in 0.17 s each,
+        the trunk bent to lower them, and the head moved at 2.6-4.4 m/s."""
+        down = None
         if lowered:
-            self.reach(
-                times[1], {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
-            )
+            down = {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
+        start = self.times[-1]
+        stretches = 3 if lowered else 2
+        even = [start + k * (end - start) / stretches for k in range(1, stretches)]
+        trial = Keys(self.body, self.clip, self.placed_pose)
+        trial.times, trial.offsets = list(self.times), list(self.offsets)
+        trial._leave(edge, down, even)
+        poses = [trial._keyed_pose(t) for t in [start, *even]] + [self._pose(end, 0.0)]
+        self._leave(edge, down, self._shared(start, end, poses, tuple(edge)))
+
+    def _leave(self, edge: dict, down: dict | None, times) -> None:
+        """The keys over the edge and down at `times`, the hands turned down as they are
+        over the edge (let turn, the fingers of a hand lowered outside a shelf board's edge
+        pointed into it, and the arm went 4.2 cm into the shelf: tests/corpus machine_cell)."""
+        self.passage(times[0], edge)
+        if down is not None:
+            over = self._pose(self.times[-1], self.offsets[-1])
+            turned = {
+                side: (p, self.body.frame_pose(f"{side}_hand_grasp", over).rotation())
+                for side, (p, _) in down.items()
+            }
+            self.add(times[1], self._arms_toward(times[1], turned))
+
+    def _keyed_pose(self, time: float) -> np.ndarray:
+        """The pose at `time` with the offset of the last key at or before it."""
+        k = int(np.searchsorted(self.times, time, side="right")) - 1
+        return self._pose(time, self.offsets[k])
+
+    def _shared(self, start: float, end: float, poses, sides) -> list[float]:
+        """The times between `start` and `end` at which the body is in `poses` (but the first
+        and the last), shared as far as the hands or the head go from one to the next."""
+        frames = [f"{side}_hand_grasp" for side in sides] + ["head"]
+        points = [[self.body.frame_pose(f, q).translation() for f in frames] for q in poses]
+        lengths = np.linalg.norm(np.diff(points, axis=0), axis=2).max(axis=1)
+        shares = np.cumsum(lengths)[:-1] / max(float(lengths.sum()), 1e-9)
+        return [float(start + share * (end - start)) for share in shares]
+
+    def _arms_toward(self, time: float, targets: dict) -> np.ndarray:
+        """The offset at `time` with the arms moved towards `targets` from where the last key
+        has them, the trunk as the last key bends it."""
+        placed = self._pose(time, 0.0)
+        following = placed + self.offsets[-1]
+        following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
+        return arms_toward(self.body, following, targets) - placed
 
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset

@@ -190,8 +190,8 @@ def aim_clip(
     keys.add(hold_end, on_target)
     if edge is not None:
         rest = clip.duration - hold_end
-        keys.reach(hold_end + LEAVE_AT[0] * rest, near)
+        keys.reach(hold_end + LEAVE_AT * rest, near)
         lowered = below_the_top(body, furniture, hands)
-        keys.off_the_edge(edge, hold_end + rest * np.array(LEAVE_AT[1:]), lowered)
+        keys.off_the_edge(edge, clip.duration, lowered)
     keys.add(clip.duration, np.zeros_like(on_target))
     return keys.motion(tuple(hands), (approach_time, hold_end))
