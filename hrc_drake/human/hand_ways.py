@@ -148,33 +148,51 @@ def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest) -> dict
     return heights
 
 
-def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, heading):
+def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, heading, held=False):
     """Where the hands rise to before they move over the surface their targets are on, and
     leave it by: above it with the hand's whole length, whichever way it points, just
     outside its edge (the hand's half breadth and a margin) back towards the body from
     their approach points; beside the trunk where that is in front of it. None when no
-    target is over a surface of the cell."""
+    target is over a surface of the cell. Hands that `held` one object leave it together."""
     forward = np.array([np.cos(heading), np.sin(heading), 0.0])
     left = np.array([-forward[1], forward[0], 0.0])
     R = facing(heading, "sides_fingers_down")
-    clear, moved = {}, False
-    for side, (position, orientation) in near.items():
+    edges = {}
+    for side, (position, _) in near.items():
         support = furniture.support(hands[side][0])
         inset = hand_extent(body, R, forward, side) + EDGE_MARGIN
-        edge = None
         if support is not None:
             edge = furniture.behind_edge(furniture.pile(support), position, -forward, inset)
-        if edge is None:
-            clear[side] = (position, orientation)
-            continue
+            if edge is not None:
+                edges[side] = (edge, support)
+    if not edges:
+        return None
+    if held:
+        edges = _left_together(edges, near, base, forward)
+    clear = dict(near)
+    for side, (edge, support) in edges.items():
         ahead, aside = (edge - base) @ forward[:2], (edge - base) @ left[:2]
         if ahead < TRUNK_FRONT:
             sign = 1.0 if side == "left" else -1.0
             aside = sign * max(sign * aside, TRUNK_SIDE)
-        height = max(position[2], support.high + hand_below(body, R, side) + CLEARANCE)
+        height = max(near[side][0][2], support.high + hand_below(body, R, side) + CLEARANCE)
         point = np.array([*(base + ahead * forward[:2] + aside * left[:2]), height])
-        clear[side], moved = (point, None), True
-    return clear if moved else None
+        clear[side] = (point, None)
+    return clear
+
+
+def _left_together(edges: dict, near: dict, base, forward) -> dict:
+    """`edges` (side: edge point, surface) with each hand that has none (its palm on a face
+    beyond the surface's side) drawn back as far as the others', where it is across: left
+    beside the part it had put down, it went into it (coexistence seed 2 at 106.7 s, 1.3 cm)."""
+    ahead = min((edge - base) @ forward[:2] for edge, _ in edges.values())
+    support = next(iter(edges.values()))[1]
+    together = dict(edges)
+    for side, (position, _) in near.items():
+        if side not in edges:
+            back = max((position[:2] - base) @ forward[:2] - ahead, 0.0)
+            together[side] = (position[:2] - back * forward[:2], support)
+    return together
 
 
 def below_the_top(body: HumanBody, furniture: Furniture, hands: dict) -> bool:
@@ -278,6 +296,25 @@ class Keys:
                 self.add(t, fallback)
         self.paths.append((first, len(self.times) - 1))
 
+    def straight_to_the_end(self, end: float, sides) -> None:
+        """Keys to `end` that take the `sides` hands straight to where the clip's end pose
+        has them, by the arms, the trunk eased to the clip's: eased by the clip's arms, hands
+        leaving a put-down swung forward into the part (coexistence seed 2, 2.2 cm); by the
+        whole body, the trunk bent and the head went at 1.7 m/s."""
+        last, final = self._pose(self.times[-1], self.offsets[-1]), self._pose(end, 0.0)
+        start, goal = (
+            {s: self.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in sides}
+            for q in (last, final)
+        )
+        first, offset = len(self.times) - 1, self.offsets[-1]
+        for t, share in self._eased_to(end):
+            targets = {s: (p + share * (goal[s] - p), None) for s, p in start.items()}
+            key = (1.0 - share) * offset
+            if t < end:
+                key = self._arms_toward(t, targets, key)
+            self.add(t, key)
+        self.paths.append((first, len(self.times) - 1))
+
     def _eased_to(self, time: float):
         """PASSAGE_KEYS (time, fraction of the way) from the last key to `time`, the fractions
         easing in and out (minimum jerk) over evenly spaced times."""
@@ -331,13 +368,18 @@ class Keys:
         shares = np.cumsum(lengths)[:-1] / max(float(lengths.sum()), 1e-9)
         return [float(start + share * (end - start)) for share in shares]
 
-    def _arms_toward(self, time: float, targets: dict) -> np.ndarray:
+    def _arms_toward(self, time: float, targets: dict, offset=None) -> np.ndarray:
         """The offset at `time` with the arms moved towards `targets` from where the last key
-        has them, the trunk as the last key bends it."""
+        has them, the trunk as the last key bends it (or as `offset` does)."""
         placed = self._pose(time, 0.0)
-        following = placed + self.offsets[-1]
-        following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
-        return arms_toward(self.body, following, targets) - placed
+        kept = self._arms_kept(time, self.offsets[-1] if offset is None else offset)
+        return arms_toward(self.body, kept, targets) - placed
+
+    def _arms_kept(self, time: float, offset: np.ndarray) -> np.ndarray:
+        """The pose at `time` with `offset`, the arms where the last key has them."""
+        kept = self._pose(time, offset)
+        kept[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
+        return kept
 
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset
@@ -347,9 +389,7 @@ class Keys:
         start from where the last key has them, or else the whole body from the clip's pose
         (IK finds some postures only from one of them); None when neither reaches."""
         placed = self._pose(time, 0.0)
-        following = placed + start
-        following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
-        for q in (following, placed):
+        for q in (self._arms_kept(time, start), placed):
             try:
                 return hands_on(self.body, q, targets, True, tolerance) - placed
             except Unreachable:

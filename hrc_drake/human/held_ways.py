@@ -565,8 +565,9 @@ def put_down(body, clip, placed_pose, hands, carry, near, on_target, marks, open
     keys.add(hold_end, on_target)
     release_end = hold_end + LEAVE_AT * (clip.duration - hold_end)
     keys.straight(release_end, hands, opened, on_target)
-    if edge is not None:
-        lowered = below_the_top(body, around[0], hands)
-        keys.off_the_edge(edge, clip.duration, lowered)
-    keys.add(clip.duration, zero)
+    if edge is None:
+        keys.add(clip.duration, zero)
+    else:
+        keys.off_the_edge(edge, clip.duration, below_the_top(body, around[0], hands))
+        keys.straight_to_the_end(clip.duration, sides)
     return keys.motion(sides, (0.0, release_end))

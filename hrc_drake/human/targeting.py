@@ -171,7 +171,7 @@ def aim_clip(
             on_target,
             marks,
             opened,
-            over_the_edge(body, furniture, hands, opened, base, heading),
+            over_the_edge(body, furniture, hands, opened, base, heading, held=True),
             (furniture, heading),
         )
     near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
