@@ -141,6 +141,15 @@ def hands_on(
     raise Unreachable(f"hand stays {hand_error:.2f} m from the target")
 
 
+def arms_toward(body: HumanBody, q: np.ndarray, hands: dict) -> np.ndarray:
+    """q with the `hands` arms moved as close to their targets (position, orientation or
+    None) as the arms alone get, the trunk and legs as they are: hands lowered by the whole
+    body bent the trunk and threw the head down and back up (putting a part down on a 0.75 m
+    table, 4.2 m/s)."""
+    tasks = hand_tasks(hands, PALM_ORIENTATION)
+    return _solved(body, q, tasks, _feet_tasks(body, q), arm_indices(body, tuple(hands)))
+
+
 def _overhead(body: HumanBody, q: np.ndarray, hands: dict) -> bool:
     """Whether a hand aims above its shoulder: there the trunk, free with the arms from the
     start, leans back against its limits before the arms rise (a carton's sides at 1.70 m,

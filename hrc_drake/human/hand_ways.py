@@ -17,37 +17,36 @@ from hrc_drake.human.aiming import (
     WAYPOINT_TOLERANCE,
     AimedMotion,
     Unreachable,
+    arms_toward,
     hands_on,
 )
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
-    PALM_GAP,
     arm_indices,
     facing,
     hand_below,
     hand_extent,
     hand_half_breadth,
     outward,
-    release_targets,
 )
 from hrc_drake.human.keyed_clips import minimum_jerk
-from hrc_drake.human.messages import Hold
 from hrc_drake.human.skeleton import SIDES
 
 APPROACH = (0.06, 0.06)
 """m: where the hands come to before they close on the target: this far outwards (palms
 on an object's faces; a reaching hand: back towards the body) and this far above it."""
-LEAVE_AT = (0.3, 0.6, 0.8)
-"""Fractions of the time from letting go to the clip's end at which hands leaving a surface
-are back above their target, over the surface's edge again, and down below its top outside
-the edge (from there they swing back to the body's sides)."""
+LEAVE_AT = 0.3
+"""Fraction of the time from letting go to the clip's end at which hands leaving a surface
+are back above their target; from there they go over the surface's edge, down below its
+top outside the edge and back to the body's sides, each stretch taking its share of the
+rest of the clip as the hands go in it (`Keys.off_the_edge`)."""
 LOWERED = 0.25
-"""m: how far hands leaving a surface go straight down outside its edge: below its top,
-before the clip's own arms take them back to the body's sides (on the way straight there,
-a hand over the edge swung forward and down into a box standing at it: coexistence seed 9,
-2 cm)."""
+"""m: how far hands leaving a surface go straight down outside its edge (as far as the arms
+alone take them): below its top, before the clip's own arms take them back to the body's
+sides (on the way straight there, a hand over the edge swung forward and down into a box
+standing at it: coexistence seed 9, 2 cm)."""
 CLEARANCE = 0.02
 """m: the hands' lowest edge passes this far above what they pass over."""
 EDGE_MARGIN = 0.015
@@ -91,46 +90,6 @@ def approached(
     return moved
 
 
-def room_beside(body: HumanBody, furniture: Furniture, hands: dict) -> dict:
-    """Per side, how far a palm on an object's face can open outwards before the back of the
-    hand meets something (its thickness and a margin less than the free way)."""
-    room = {}
-    for side, (position, R) in hands.items():
-        if R is None:
-            continue
-        reach = hand_below(body, R, side)
-        free = furniture.room(position, outward(side, R), position[2] - reach, position[2] + reach)
-        room[side] = max(free - hand_extent(body, R, outward(side, R), side) - EDGE_MARGIN, 0.0)
-    return room
-
-
-def room_for_the_palms(body: HumanBody, furniture: Furniture, hold: Hold, center, heading):
-    """`center`, where the held object is to be put down, moved across its held faces so
-    that what stands beside it leaves room for each palm on them: the palm's gap, the
-    hand's thickness and a margin (a box put down against another would have the palm
-    between them in the other box; people put it down a hand's width off). Moved only as
-    far as the other side has room; unchanged where neither side has enough."""
-    center = np.asarray(center, dtype=float)
-    palms = release_targets(hold, center, heading)
-    left = np.array([-np.sin(heading), np.cos(heading), 0.0])
-    half_height = hold.size[2] / 2
-    slack, breadth = {}, hand_half_breadth(body)
-    for side, across in (("left", left), ("right", -left)):
-        need, low, high, start = 0.0, center[2] - half_height, center[2] + half_height, center
-        if side in palms:
-            position, R = palms[side]
-            need = PALM_GAP + hand_extent(body, R, across, side) + EDGE_MARGIN
-            low = min(low, position[2] - hand_below(body, R, side))
-            start = position - across * (hold.size[1] / 2 + PALM_GAP)
-        free = furniture.clear_way(start, across, breadth, low, high) - hold.size[1] / 2
-        slack[side] = free - need
-    short, other = sorted(slack, key=slack.get)
-    if slack[short] >= 0.0 or slack[other] <= 0.0:
-        return center
-    away = -left if short == "left" else left
-    return center + min(-slack[short], slack[other]) * away
-
-
 def clearing(body: HumanBody, furniture: Furniture, hands: dict, lowest, base) -> dict:
     """Per side, the height a hand's grasp frame keeps above what it is aimed at and its
     neighbours: its lowest edge CLEARANCE above `lowest` (side: height its lowest point
@@ -159,34 +118,53 @@ def rim(body: HumanBody, furniture: Furniture, support, position, base) -> float
     return support.high if walls is None else max(walls, support.high)
 
 
-def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, heading):
+def over_the_edge(body, furniture: Furniture, hands: dict, near: dict, base, heading, held=False):
     """Where the hands rise to before they move over the surface their targets are on, and
     leave it by: above it and the walls round it (`rim`) with the hand's whole length,
     whichever way it points, just outside its edge (the hand's half breadth and a margin)
     back towards the body from their approach points; beside the trunk where that is in
-    front of it. None when no target is over a surface of the cell."""
+    front of it. None when no target is over a surface of the cell. Hands that `held` one
+    object leave it together."""
     forward = np.array([np.cos(heading), np.sin(heading), 0.0])
     left = np.array([-forward[1], forward[0], 0.0])
     R = facing(heading, "sides_fingers_down")
-    clear, moved = {}, False
-    for side, (position, orientation) in near.items():
+    edges = {}
+    for side, (position, _) in near.items():
         support = furniture.support(hands[side][0])
         inset = hand_extent(body, R, forward, side) + EDGE_MARGIN
-        edge = None
         if support is not None:
             edge = furniture.behind_edge(furniture.pile(support), position, -forward, inset)
-        if edge is None:
-            clear[side] = (position, orientation)
-            continue
+            if edge is not None:
+                edges[side] = (edge, support)
+    if not edges:
+        return None
+    if held:
+        edges = _left_together(edges, near, base, forward)
+    clear = dict(near)
+    for side, (edge, support) in edges.items():
         ahead, aside = (edge - base) @ forward[:2], (edge - base) @ left[:2]
         if ahead < TRUNK_FRONT:
             sign = 1.0 if side == "left" else -1.0
             aside = sign * max(sign * aside, TRUNK_SIDE)
-        top = rim(body, furniture, support, position, base)
-        height = max(position[2], top + hand_below(body, R, side) + CLEARANCE)
+        top = rim(body, furniture, support, near[side][0], base)
+        height = max(near[side][0][2], top + hand_below(body, R, side) + CLEARANCE)
         point = np.array([*(base + ahead * forward[:2] + aside * left[:2]), height])
-        clear[side], moved = (point, None), True
-    return clear if moved else None
+        clear[side] = (point, None)
+    return clear
+
+
+def _left_together(edges: dict, near: dict, base, forward) -> dict:
+    """`edges` (side: edge point, surface) with each hand that has none (its palm on a face
+    beyond the surface's side) drawn back as far as the others', where it is across: left
+    beside the part it had put down, it went into it (coexistence seed 2 at 106.7 s, 1.3 cm)."""
+    ahead = min((edge - base) @ forward[:2] for edge, _ in edges.values())
+    support = next(iter(edges.values()))[1]
+    together = dict(edges)
+    for side, (position, _) in near.items():
+        if side not in edges:
+            back = max((position[:2] - base) @ forward[:2] - ahead, 0.0)
+            together[side] = (position[:2] - back * forward[:2], support)
+    return together
 
 
 def below_the_top(body: HumanBody, furniture: Furniture, hands: dict) -> bool:
@@ -222,10 +200,10 @@ def withdrawal(body, furniture, clip, placed_pose, q, sides, heading) -> AimedMo
     above = clearing(body, furniture, hands, None, base)
     up = approached(hands, heading, False, opening=False, above=above)
     edge = over_the_edge(body, furniture, hands, up, base, heading)
-    keys.reach(LEAVE_AT[0] * WITHDRAWAL, up)
+    keys.reach(LEAVE_AT * WITHDRAWAL, up)
     if edge is not None:
         lowered = below_the_top(body, furniture, hands)
-        keys.off_the_edge(edge, WITHDRAWAL * np.array(LEAVE_AT[1:]), lowered)
+        keys.off_the_edge(edge, WITHDRAWAL, lowered)
     keys.add(WITHDRAWAL, np.zeros_like(q))
     return keys.motion(tuple(hands), (0.0, 0.0))
 
@@ -289,20 +267,90 @@ class Keys:
                 self.add(t, fallback)
         self.paths.append((first, len(self.times) - 1))
 
+    def straight_to_the_end(self, end: float, sides) -> None:
+        """Keys to `end` that take the `sides` hands straight to where the clip's end pose
+        has them, by the arms, the trunk eased to the clip's: eased by the clip's arms, hands
+        leaving a put-down swung forward into the part (coexistence seed 2, 2.2 cm); by the
+        whole body, the trunk bent and the head went at 1.7 m/s."""
+        last, final = self._pose(self.times[-1], self.offsets[-1]), self._pose(end, 0.0)
+        start, goal = (
+            {s: self.body.frame_pose(f"{s}_hand_grasp", q).translation() for s in sides}
+            for q in (last, final)
+        )
+        first, offset = len(self.times) - 1, self.offsets[-1]
+        for t, share in self._eased_to(end):
+            targets = {s: (p + share * (goal[s] - p), None) for s, p in start.items()}
+            key = (1.0 - share) * offset
+            if t < end:
+                key = self._arms_toward(t, targets, key)
+            self.add(t, key)
+        self.paths.append((first, len(self.times) - 1))
+
     def _eased_to(self, time: float):
         """PASSAGE_KEYS (time, fraction of the way) from the last key to `time`, the fractions
         easing in and out (minimum jerk) over evenly spaced times."""
         times = np.linspace(self.times[-1], time, PASSAGE_KEYS + 1)[1:]
         return [(float(t), minimum_jerk(k / PASSAGE_KEYS)) for k, t in enumerate(times, start=1)]
 
-    def off_the_edge(self, edge: dict, times, lowered: bool) -> None:
-        """Keys that take the hands over a surface's `edge` (its waypoints) and then, if
-        `lowered` (`below_the_top`), straight down outside it, at the two `times`."""
-        self.passage(times[0], edge)
+    def off_the_edge(self, edge: dict, end: float, lowered: bool) -> None:
+        """Keys that take the hands from the last key over a surface's `edge` (its
+        waypoints) and then, if `lowered` (`below_the_top`), straight down outside it as far
+        as the arms alone take them, leaving the rest up to `end` for the way back to the
+        clip's end pose: each stretch takes its share of the time as the hands and the head
+        go in it (laid out once at even times to measure that). At fixed fractions (0.6 and
+        0.8 of the rest), the hands went down 0.25 m and back to the sides in 0.17 s each,
+        the trunk bent to lower them, and the head moved at 2.6-4.4 m/s."""
+        down = None
         if lowered:
-            self.reach(
-                times[1], {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
-            )
+            down = {side: (p - [0.0, 0.0, LOWERED], None) for side, (p, _) in edge.items()}
+        start = self.times[-1]
+        stretches = 3 if lowered else 2
+        even = [start + k * (end - start) / stretches for k in range(1, stretches)]
+        trial = Keys(self.body, self.clip, self.placed_pose)
+        trial.times, trial.offsets = list(self.times), list(self.offsets)
+        trial._leave(edge, down, even)
+        poses = [trial._keyed_pose(t) for t in [start, *even]] + [self._pose(end, 0.0)]
+        self._leave(edge, down, self._shared(start, end, poses, tuple(edge)))
+
+    def _leave(self, edge: dict, down: dict | None, times) -> None:
+        """The keys over the edge and down at `times`, the hands turned down as they are
+        over the edge (let turn, the fingers of a hand lowered outside a shelf board's edge
+        pointed into it, and the arm went 4.2 cm into the shelf: tests/corpus machine_cell)."""
+        self.passage(times[0], edge)
+        if down is not None:
+            over = self._pose(self.times[-1], self.offsets[-1])
+            turned = {
+                side: (p, self.body.frame_pose(f"{side}_hand_grasp", over).rotation())
+                for side, (p, _) in down.items()
+            }
+            self.add(times[1], self._arms_toward(times[1], turned))
+
+    def _keyed_pose(self, time: float) -> np.ndarray:
+        """The pose at `time` with the offset of the last key at or before it."""
+        k = int(np.searchsorted(self.times, time, side="right")) - 1
+        return self._pose(time, self.offsets[k])
+
+    def _shared(self, start: float, end: float, poses, sides) -> list[float]:
+        """The times between `start` and `end` at which the body is in `poses` (but the first
+        and the last), shared as far as the hands or the head go from one to the next."""
+        frames = [f"{side}_hand_grasp" for side in sides] + ["head"]
+        points = [[self.body.frame_pose(f, q).translation() for f in frames] for q in poses]
+        lengths = np.linalg.norm(np.diff(points, axis=0), axis=2).max(axis=1)
+        shares = np.cumsum(lengths)[:-1] / max(float(lengths.sum()), 1e-9)
+        return [float(start + share * (end - start)) for share in shares]
+
+    def _arms_toward(self, time: float, targets: dict, offset=None) -> np.ndarray:
+        """The offset at `time` with the arms moved towards `targets` from where the last key
+        has them, the trunk as the last key bends it (or as `offset` does)."""
+        placed = self._pose(time, 0.0)
+        kept = self._arms_kept(time, self.offsets[-1] if offset is None else offset)
+        return arms_toward(self.body, kept, targets) - placed
+
+    def _arms_kept(self, time: float, offset: np.ndarray) -> np.ndarray:
+        """The pose at `time` with `offset`, the arms where the last key has them."""
+        kept = self._pose(time, offset)
+        kept[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
+        return kept
 
     def _pose(self, time: float, offset) -> np.ndarray:
         return self.placed_pose(self.clip.sample(time)) + offset
@@ -312,9 +360,7 @@ class Keys:
         start from where the last key has them, or else the whole body from the clip's pose
         (IK finds some postures only from one of them); None when neither reaches."""
         placed = self._pose(time, 0.0)
-        following = placed + start
-        following[self.arms] = self._pose(self.times[-1], self.offsets[-1])[self.arms]
-        for q in (following, placed):
+        for q in (self._arms_kept(time, start), placed):
             try:
                 return hands_on(self.body, q, targets, True, tolerance) - placed
             except Unreachable:

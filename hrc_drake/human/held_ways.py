@@ -577,11 +577,11 @@ def put_down(body, clip, placed_pose, hands, carry, near, on_target, marks, open
     _add_way(keys, times, way)
     keys.straight(event, near, hands, on_target, landed=on_target)
     keys.add(hold_end, on_target)
-    release_end = hold_end + 0.3 * (clip.duration - hold_end)
+    release_end = hold_end + LEAVE_AT * (clip.duration - hold_end)
     keys.straight(release_end, hands, opened, on_target)
-    if edge is not None:
-        rest = clip.duration - release_end
-        lowered = below_the_top(body, around[0], hands)
-        keys.off_the_edge(edge, release_end + rest * np.array(LEAVE_AT[1:]), lowered)
-    keys.add(clip.duration, zero)
+    if edge is None:
+        keys.add(clip.duration, zero)
+    else:
+        keys.off_the_edge(edge, clip.duration, below_the_top(body, around[0], hands))
+        keys.straight_to_the_end(clip.duration, sides)
     return keys.motion(sides, (0.0, release_end))

@@ -22,9 +22,10 @@ from hrc_drake.human.grasp import (
     reach_target,
     release_targets,
 )
-from hrc_drake.human.hand_ways import WITHDRAWAL, room_for_the_palms, withdrawal
+from hrc_drake.human.hand_ways import WITHDRAWAL, withdrawal
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Box, Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, NoWay
+from hrc_drake.human.palm_room import room_for_the_palms
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment

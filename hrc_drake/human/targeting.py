@@ -35,9 +35,9 @@ from hrc_drake.human.hand_ways import (
     below_the_top,
     clearing,
     over_the_edge,
-    room_beside,
 )
 from hrc_drake.human.held_ways import carried_off, headroom, put_down
+from hrc_drake.human.palm_room import room_beside
 
 TARGETED = {
     "pick_floor": "grasp",
@@ -171,7 +171,7 @@ def aim_clip(
             on_target,
             marks,
             opened,
-            over_the_edge(body, furniture, hands, opened, base, heading),
+            over_the_edge(body, furniture, hands, opened, base, heading, held=True),
             (furniture, heading),
         )
     near_offset = offset_to(body, placed_pose, clip, approach_time, on_target, near, on_target)
@@ -190,8 +190,8 @@ def aim_clip(
     keys.add(hold_end, on_target)
     if edge is not None:
         rest = clip.duration - hold_end
-        keys.reach(hold_end + LEAVE_AT[0] * rest, near)
+        keys.reach(hold_end + LEAVE_AT * rest, near)
         lowered = below_the_top(body, furniture, hands)
-        keys.off_the_edge(edge, hold_end + rest * np.array(LEAVE_AT[1:]), lowered)
+        keys.off_the_edge(edge, clip.duration, lowered)
     keys.add(clip.duration, np.zeros_like(on_target))
     return keys.motion(tuple(hands), (approach_time, hold_end))
