@@ -120,6 +120,18 @@ def arrived_going_in(performer: Performer, activity: Activity, carry, furniture)
     return _box_going_in(furniture, held_corners(performer.body, carry, q), "where the walk ends")
 
 
+def swept_depth(performer: Performer, turn, furniture: Furniture) -> float:
+    """How deep the object the hands carry through `turn` (a turn on the spot with a carry)
+    goes into the furniture at its deepest (<= 0: it keeps out): turned on the spot, its far
+    corners sweep round further ahead than the hands hold them."""
+    if not furniture.pieces:
+        return 0.0
+    times = np.arange(turn.start, turn.end(performer) + SAMPLE / 2, SAMPLE)
+    body = performer.body
+    corners = np.array([held_corners(body, turn.carry, turn.pose(performer, t)) for t in times])
+    return float(Prisms.of(furniture).shape_depths(corners, HELD_RADII, HELD_SHAPE).max())
+
+
 def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:
     """What a box with `corners` is in deeper than DEPTH_LIMIT ("" when nothing)."""
     if not furniture.pieces:
