@@ -3,7 +3,7 @@ movement (turn towards the path, walk it round sharp corners and the cell's geom
 to the target orientation), of an animation (a clip, aimed at a target or grasp with
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
-from math import atan2, cos, hypot, inf, radians, sin
+from math import atan2, hypot, radians
 
 import numpy as np
 
@@ -12,7 +12,7 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.going_in import arrived_going_in, placed_going_in, swept_depth
+from hrc_drake.human.going_in import arrived_going_in, placed_going_in
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -28,21 +28,18 @@ from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.segments import (
     MIN_TURN,
-    STEP_BACK_ROUNDING,
     ClipSegment,
     Segment,
     StepBackSegment,
     TurnSegment,
 )
 from hrc_drake.human.skeleton import SIDES
+from hrc_drake.human.step_back import stepped_back
 from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
 MIN_LEG = 0.3
 """m: shorter legs between waypoints are dropped."""
-STEP_BACK_MOST = 0.5
-"""m: the farthest the person steps back (in two steps) before turning with what the hands
-carry."""
 FINAL_TURN_WALKING = radians(45.0)
 """A walk turns to face its place over its last steps by at most this; further, the person
 turns on the spot there: the closing steps of a walk at full pace that turns further slide
@@ -67,7 +64,7 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     carry = _carry(performer, command.hold)
     furniture = performer.furniture.with_boxes(command.nearby)
     if carry is not None:
-        back = _stepped_back(performer, carry, furniture, pose, path, t)
+        back = stepped_back(performer, carry, furniture, pose, path, t)
         if back is not None:
             segments.append(back)
             start = back.end(performer)
@@ -120,48 +117,6 @@ def _path(performer: Performer, command: MoveCommand, start) -> list[tuple[float
         goal, waypoints = _walk_round(navigation, start, goal, yaw, waypoints)
     walkable = navigation.walkable if navigation is not None else None
     return _without_short_legs([start, *[tuple(p) for p in waypoints], goal], walkable)
-
-
-def _stepped_back(
-    performer: Performer, carry: CarryArms, furniture: Furniture, pose, path, t: float
-) -> StepBackSegment | None:
-    """Two steps straight back before turning towards the path with what the hands carry,
-    as far as its turn needs to keep it out of the furniture (None: it is out turning where
-    the person stands). A tote taken off a rack's board, held where it was drawn out of the
-    rack, swept 2.5 cm into an upright as the person turned on the spot to walk away (a
-    user's cell); people step back from a shelf before they turn with a box. Where no step
-    back keeps it out (or there is no room behind), the one that keeps it out the most."""
-    x, y, yaw = pose
-    if len(path) < 2 or abs(_first_turn((x, y), yaw, path[1])) <= MIN_TURN:
-        return None
-    navigation = performer.navigation
-    best = (inf, 0.0)
-    for distance in np.arange(0.0, STEP_BACK_MOST + 1e-9, STEP_BACK_ROUNDING):
-        spot = (x - distance * cos(yaw), y - distance * sin(yaw))
-        if distance and navigation is not None and not navigation.walkable((x, y), spot):
-            break
-        depth = _turning_depth(performer, carry, furniture, spot, yaw, path[1])
-        best = min(best, (depth, distance))
-        if depth <= 0.0:
-            break
-    _, distance = best
-    if distance == 0.0:
-        return None
-    return StepBackSegment.between(performer, t, (x, y), yaw, distance, carry)
-
-
-def _turning_depth(performer: Performer, carry, furniture, spot, yaw: float, toward) -> float:
-    """How deep what the hands `carry` goes into the furniture as the person turns on the
-    spot at `spot` from `yaw` to face the point `toward`."""
-    turn = yaw + _first_turn(spot, yaw, toward)
-    return swept_depth(
-        performer, TurnSegment.between(performer, 0.0, spot, yaw, turn, carry), furniture
-    )
-
-
-def _first_turn(spot, yaw: float, toward) -> float:
-    """How far the person turns at `spot` from `yaw` to face the point `toward`."""
-    return wrap_angle(atan2(toward[1] - spot[1], toward[0] - spot[0]) - yaw)
 
 
 def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):

@@ -192,6 +192,18 @@ def test_a_tote_taken_off_a_rack_stays_out_of_it_as_the_person_turns_away(goal):
     assert carried.depth <= LIMIT, carried
 
 
+def test_a_tote_taken_off_a_rack_with_no_room_to_step_back_is_not_carried_off():
+    """The rack of the test above with a table 0.3 m behind the person: stepping back, the
+    person would turn with the table at their back; turned where they stand, the tote would
+    sweep into the rack. The carry fails at once, saying where."""
+    tote = Hold("both", (0.26, 0.36, 0.12))
+    rack = Furniture("rack", "shelf", -1.5, 0.9, 90.0)
+    cell = Cell([rack, Furniture("table", "side_table", -0.3, 0.9, 90.0)])
+    command = MoveCommand(1, (0.0, 1.4, 0.0), hold=tote)
+    with pytest.raises(Unreachable, match="into 'rack' at the walk's start .turning on the spot"):
+        plan_movement(cell.performer, command, (-0.9, 0.9, math.pi), 0.0)
+
+
 def test_a_step_back_keeps_its_feet_planted_and_a_cancel_finishes_it():
     """Stepping back from the rack (the test above), each foot stays where it stands until
     it steps; cancelled under way, the two steps end where they would have."""
