@@ -2,7 +2,8 @@
 still goes into the furniture once the head and arms have been kept out of it as far as
 they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a pick or a put-down whose
 held object goes into it on its planned way or would be in it where it is put, or a carry
-that would end with the held object in it.
+that would end with the held object in it (or else stops short of its place) or start by
+turning it into it however far the person steps back (hrc_drake.human.planning).
 
 Where the corrections cannot find a way, the person played it through the shelf: a stoop
 to a carton on a shelf's bottom board put the head 8 cm into the board above, and the run
@@ -159,6 +160,19 @@ def arrived_going_in(performer: Performer, activity: Activity, carry, furniture)
         for t in times
     )
     return depth, _deeper_than_allowed(depth, where, "where the walk ends")
+
+
+def swept_depth(performer: Performer, turn, furniture: Furniture) -> tuple[float, str]:
+    """How deep the object the hands carry through `turn` (a turn on the spot with a carry)
+    goes into the furniture at its deepest (<= 0: it keeps out), and into what: turned on
+    the spot, its far corners sweep round further ahead than the hands hold them."""
+    if not furniture.pieces:
+        return 0.0, ""
+    times = np.arange(turn.start, turn.end(performer) + SAMPLE / 2, SAMPLE)
+    body = performer.body
+    corners = np.array([held_corners(body, turn.carry, turn.pose(performer, t)) for t in times])
+    into = Prisms.of(furniture).shape_depths(corners, HELD_RADII, HELD_SHAPE)[..., 0].max(axis=0)
+    return float(into.max()), furniture.pieces[int(np.argmax(into))].name
 
 
 def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:

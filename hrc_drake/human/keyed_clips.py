@@ -1,4 +1,5 @@
-"""Clips from key poses: the pose vocabulary, minimum-jerk easing, and the turn on the spot.
+"""Clips from key poses: the pose vocabulary, minimum-jerk easing, the turn on the spot and
+the step back.
 
 `keyed_clip` joins key poses (degrees / metres, overriding the relaxed stance) by
 minimum-jerk segments (the bell-shaped speed profile of human reaching), adds optional
@@ -6,9 +7,9 @@ periodic layers (breathing, weight shift), then solves the legs by IK so that th
 planted (or follow keyed foot placements, as when stepping round on the spot). Right-handed
 variants and left/right step orders come from `mirror_pose`.
 
-The person builds turns of any angle with it while it runs (`turn_clip`), and eases every
-fade with `minimum_jerk`; the built-in clips are authored with it offline
-(hrc_drake.modelgen.clips).
+The person builds turns of any angle and steps back of any length with it while it runs
+(`turn_clip`, `step_back_clip`), and eases every fade with `minimum_jerk`; the built-in clips
+are authored with it offline (hrc_drake.modelgen.clips).
 """
 
 from dataclasses import dataclass, field
@@ -50,8 +51,9 @@ upper arms hanging, the elbows bent (the carry posture, hrc_drake.human.grasp)."
 class Key:
     """A key pose at `time`: joint overrides, and optional foot placements per side.
 
-    A foot placement is (yaw_deg, lift_m): the sole's standing place turned about the
-    pelvis by yaw and raised by lift (stepping round on the spot).
+    A foot placement is (yaw_deg, lift_m) or (yaw_deg, lift_m, ahead_m): the sole's
+    standing place turned about the pelvis by yaw, raised by lift and moved ahead (stepping
+    round on the spot, or back).
     """
 
     time: float
@@ -135,24 +137,25 @@ def _interpolate_keys(times: np.ndarray, key_times, key_values) -> np.ndarray:
 
 
 def _foot_placements(body: HumanBody, keys: tuple[Key, ...], times: np.ndarray) -> dict:
-    """Per side, per frame: (yaw, lift) of the sole, keyed like the joints (default planted)."""
+    """Per side, per frame: (yaw, lift, ahead) of the sole, keyed like the joints (default
+    planted)."""
     placements = {}
     for side in SIDES:
-        values, last = [], (0.0, 0.0)
+        values, last = [], (0.0, 0.0, 0.0)
         for key in keys:
-            last = key.feet.get(side, last)
-            values.append((np.radians(last[0]), last[1]))
+            last = (*key.feet.get(side, last), 0.0)[:3]
+            values.append((np.radians(last[0]), last[1], last[2]))
         placements[side] = _interpolate_keys(times, [k.time for k in keys], np.array(values))
     return placements
 
 
-def _sole_target(body: HumanBody, side: str, yaw: float, lift: float):
+def _sole_target(body: HumanBody, side: str, yaw: float, lift: float, ahead: float):
     sign = 1 if side == "left" else -1
     standing = np.array(
         [body.sizes["foot"] / 2 - body.sizes["heel_back"], sign * body.sizes["hip_half_width"], 0.0]
     )
     rotation = RotationMatrix.MakeZRotation(yaw)
-    return rotation @ standing + np.array([0.0, 0.0, lift]), rotation
+    return rotation @ standing + np.array([ahead, 0.0, lift]), rotation
 
 
 SOFT_KNEES = 0.006
@@ -210,20 +213,19 @@ def mirrored_clip(body: HumanBody, clip: Clip, name: str, description: str) -> C
     )
 
 
-def _turn_keys(step: float, degrees: float, lift: float) -> tuple[Key, ...]:
-    """Two steps turning left on the spot: left foot, then right foot, body between. Each
-    foot rises before it turns and turns before it comes down, so that it never twists on
-    the floor."""
-    half = degrees / 2
-    keys = [Key(0.0, {"base_yaw": 0}, {"left": (0, 0), "right": (0, 0)})]
+def _step_keys(step: float, degrees: float, ahead: float, lift: float) -> tuple[Key, ...]:
+    """Two steps on the spot, turning left by `degrees` and moving `ahead` (m): left foot,
+    then right foot, body between. Each foot rises before it moves and moves before it comes
+    down, so that it never twists or slides on the floor."""
+    keys = [Key(0.0, {"base_yaw": 0, "base_x": 0}, {"left": (0, 0), "right": (0, 0)})]
     for k, side in enumerate(("left", "right")):
         start = k * step
-        for fraction, (turned, raised) in zip(
+        for fraction, (moved, raised) in zip(
             (0.2, 0.85, 1.0), ((0.0, lift), (1.0, lift), (1.0, 0.0)), strict=True
         ):
-            body = (k + fraction) * half
-            feet = {side: (turned * degrees, raised)}
-            keys.append(Key(start + fraction * step, {"base_yaw": body}, feet))
+            body = {"base_yaw": (k + fraction) * degrees / 2, "base_x": (k + fraction) * ahead / 2}
+            feet = {side: (moved * degrees, raised, moved * ahead)}
+            keys.append(Key(start + fraction * step, body, feet))
     return tuple(keys)
 
 
@@ -238,7 +240,7 @@ def turn_spec(name: str, degrees: float) -> KeyedSpec:
         name,
         f"Two steps turning {degrees:g} degrees left on the spot (loops; one cycle turns "
         f"{degrees:g} degrees).",
-        _turn_keys(TURN_STEP_TIME, degrees, TURN_LIFT),
+        _step_keys(TURN_STEP_TIME, degrees, 0.0, TURN_LIFT),
         events={"left_step": 0.0, "right_step": TURN_STEP_TIME},
         loop=True,
     )
@@ -252,3 +254,15 @@ def turn_clip(body: HumanBody, degrees: float) -> Clip:
     if degrees >= 0:
         return clip
     return mirrored_clip(body, clip, f"turn_{degrees:g}", clip.description.replace("left", "right"))
+
+
+def step_back_clip(body: HumanBody, distance: float) -> Clip:
+    """Two steps straight back by `distance` (m), left foot first, the feet planted by IK:
+    away from a shelf before turning with what the hands hold (its corners sweep round
+    further ahead than they are held)."""
+    spec = KeyedSpec(
+        f"step_back_{distance:g}",
+        f"Two steps straight back by {distance:g} m.",
+        _step_keys(TURN_STEP_TIME, 0.0, -distance, TURN_LIFT),
+    )
+    return keyed_clip(body, spec)

@@ -28,8 +28,15 @@ from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.palm_room import room_for_the_palms
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
 from hrc_drake.human.rotations import wrap_angle
-from hrc_drake.human.segments import MIN_TURN, ClipSegment, Segment, TurnSegment
+from hrc_drake.human.segments import (
+    MIN_TURN,
+    ClipSegment,
+    Segment,
+    StepBackSegment,
+    TurnSegment,
+)
 from hrc_drake.human.skeleton import SIDES
+from hrc_drake.human.step_back import stepped_back
 from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
 from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
 
@@ -92,21 +99,20 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float) -> Activit
     if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
-    goal = tuple(command.target_position[:2])
-    waypoints = command.waypoints
     standing = _yaw_of(command.target_quaternion)
     oriented = tuple(command.target_quaternion) != NULL_QUATERNION
-    navigation = performer.navigation
-    if navigation is not None:
-        goal, waypoints = _walk_round(
-            navigation, (x, y), goal, standing if oriented else None, waypoints
-        )
-    walkable = navigation.walkable if navigation is not None else None
-    path = _without_short_legs([(x, y), *[tuple(p) for p in waypoints], goal], walkable)
+    path = _path(performer, command, (x, y))
     segments: list[Segment] = []
     start = t
     heading = yaw
     carry = _carry(performer, command.hold)
+    furniture = performer.furniture.with_boxes(command.nearby)
+    if carry is not None:
+        back = stepped_back(performer, carry, furniture, pose, path, t)
+        if back is not None:
+            segments.append(back)
+            start = back.end(performer)
+            path = _path(performer, command, back.end_position)
     distance = command.animation_distance or clip.animation_distance
     speed = distance / clip.duration
     stretches = _stretches(path)
@@ -136,6 +142,20 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float) -> Activit
     if not segments:
         segments.append(TurnSegment.between(performer, t, (x, y), yaw, yaw, carry))
     return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
+
+
+def _path(performer: Performer, command: MoveCommand, start) -> list[tuple[float, float]]:
+    """The walk's path from `start` (x, y): round the cell's geometry to the nearest place
+    to stand that has room (the navigation map), through the command's waypoints."""
+    goal = tuple(command.target_position[:2])
+    waypoints = command.waypoints
+    navigation = performer.navigation
+    if navigation is not None:
+        oriented = tuple(command.target_quaternion) != NULL_QUATERNION
+        yaw = _yaw_of(command.target_quaternion) if oriented else None
+        goal, waypoints = _walk_round(navigation, start, goal, yaw, waypoints)
+    walkable = navigation.walkable if navigation is not None else None
+    return _without_short_legs([start, *[tuple(p) for p in waypoints], goal], walkable)
 
 
 def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):
@@ -251,6 +271,8 @@ def plan_stop(
     elif isinstance(stepping, TurnSegment):
         stop = stepping.finishing(t)
         pose = (*stop.position, wrap_angle(stop.yaw_to))
+    elif isinstance(stepping, StepBackSegment):
+        stop, pose = stepping, (*stepping.end_position, stepping.yaw)
     else:
         stop = stepping.halted(performer, t)
         along = stop.distance(stop.over)
@@ -272,7 +294,7 @@ def _stepping_at(performer: Performer, activity: Activity | None, t: float):
     standing or playing a clip): the feet are stepping or the hands leaving a surface, so it
     cannot stop dead."""
     segment = _segment_at(activity, t)
-    under_way = isinstance(segment, WalkSegment | TurnSegment) or (
+    under_way = isinstance(segment, WalkSegment | TurnSegment | StepBackSegment) or (
         isinstance(segment, ClipSegment) and segment.length is not None
     )
     if under_way and t < segment.end(performer):

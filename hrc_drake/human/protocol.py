@@ -34,7 +34,7 @@ from hrc_drake.human.planning import (
     still_stepping,
 )
 from hrc_drake.human.rotations import wrap_angle
-from hrc_drake.human.segments import TurnSegment
+from hrc_drake.human.segments import StepBackSegment, TurnSegment
 from hrc_drake.messages import (
     CANCELLED,
     FAILED,
@@ -228,12 +228,13 @@ def _switch(performer: Performer, actor: ActorState, activity: Activity, t: floa
 
 
 def _events(performer: Performer, state: ActorState, t0: float, t1: float) -> list[str]:
-    """Clip events whose time passed between two updates (turning on the spot fires none)."""
+    """Clip events whose time passed between two updates (turning on the spot and stepping
+    back fire none)."""
     if state.activity is None or t1 <= t0:
         return []
     fired = []
     for segment in state.activity.segments:
-        if not isinstance(segment, TurnSegment):
+        if not isinstance(segment, TurnSegment | StepBackSegment):
             a, b = segment.clip_time(performer, t0), segment.clip_time(performer, t1)
             if a < b:  # the segment's clip played during this update
                 fired += _clip_events(performer.clips[segment.clip], a, b)

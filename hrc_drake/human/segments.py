@@ -1,10 +1,10 @@
 """The segments an activity is planned from: a clip played in place, a turn on the spot,
-and a walk (hrc_drake.human.walking). Each gives the pose at any time from its own data and
-the Performer, and when it ends."""
+a step back and a walk (hrc_drake.human.walking). Each gives the pose at any time from its
+own data and the Performer, and when it ends."""
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from math import ceil, copysign, degrees, inf, radians
+from math import ceil, copysign, cos, degrees, inf, radians, sin
 
 import numpy as np
 
@@ -12,7 +12,7 @@ from hrc_drake.human.aiming import AimedMotion
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.grasp import CarryArms
-from hrc_drake.human.keyed_clips import minimum_jerk, turn_clip
+from hrc_drake.human.keyed_clips import minimum_jerk, step_back_clip, turn_clip
 from hrc_drake.human.performer import IDLE_CLIP, Performer, carried, place
 from hrc_drake.human.walking import WalkSegment
 
@@ -147,4 +147,50 @@ def _turn_clip(body: HumanBody, step_degrees: float) -> Clip:
     return turn_clip(body, step_degrees)
 
 
-Segment = ClipSegment | TurnSegment | WalkSegment
+STEP_BACK_ROUNDING = 0.05
+"""m: steps back are authored (once per distance) for multiples of this."""
+
+
+@dataclass(frozen=True, eq=False)
+class StepBackSegment:
+    """Two steps straight back from `position`, facing `yaw`: out from a shelf before
+    turning with what the hands hold, whose corners sweep round further ahead than the
+    hands hold them (hrc_drake.human.planning)."""
+
+    start: float
+    position: tuple[float, float]
+    yaw: float
+    clip: Clip
+    carry: CarryArms | None = None
+
+    @classmethod
+    def between(cls, performer: Performer, start, position, yaw, distance, carry=None):
+        """`distance` (m) is rounded to STEP_BACK_ROUNDING."""
+        rounded = round(distance / STEP_BACK_ROUNDING) * STEP_BACK_ROUNDING
+        return cls(start, position, yaw, _step_back_clip(performer.body, rounded), carry)
+
+    def end(self, performer: Performer) -> float:
+        return self.start + self.clip.duration
+
+    @property
+    def end_position(self) -> tuple[float, float]:
+        """Where the person stands once the steps are taken."""
+        back = float(self.clip.frames[-1, self.clip.joint_names.index("base_x")])
+        return (self.position[0] + back * cos(self.yaw), self.position[1] + back * sin(self.yaw))
+
+    def holding(self, performer: Performer, t: float) -> tuple[str, ...]:
+        return self.carry.hands if self.carry is not None else ()
+
+    def pose(self, performer: Performer, t: float) -> np.ndarray:
+        q = self.clip.sample(min(max(t - self.start, 0.0), self.clip.duration))
+        return carried(place(performer, q, *self.position, self.yaw), self.carry)
+
+    arms_pose = pose
+
+
+@lru_cache(maxsize=64)
+def _step_back_clip(body: HumanBody, distance: float) -> Clip:
+    return step_back_clip(body, distance)
+
+
+Segment = ClipSegment | TurnSegment | StepBackSegment | WalkSegment

@@ -8,17 +8,20 @@ realism audit's measure), independently of the navigation map's polygons.
 """
 
 from dataclasses import dataclass
-from math import cos, radians, sin
+from math import atan2, cos, radians, sin
 
 import numpy as np
+from pydrake.geometry import Box, ProximityProperties
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.framework import DiagramBuilder
 
 from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
 from hrc_drake.human.body import human_body, parse_human
 from hrc_drake.human.clip import load_clips
-from hrc_drake.human.messages import MoveCommand
+from hrc_drake.human.grasp import carry_arms, held_corners
+from hrc_drake.human.messages import Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, cell_obstacles
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.planning import plan_movement
@@ -49,9 +52,10 @@ class Penetration:
 
 
 class Cell:
-    """The furniture welded to the floor and the person beside it in one scene."""
+    """The furniture welded to the floor and the person beside it in one scene, with the
+    box the person holds (`held`: its size) when given."""
 
-    def __init__(self, furniture: list[Furniture]):
+    def __init__(self, furniture: list[Furniture], held: tuple | None = None):
         builder = DiagramBuilder()
         self.plant, self.scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
         parser = model_parser(self.plant)
@@ -64,6 +68,7 @@ class Cell:
             body = self.plant.GetBodyByName("body", model)
             self.plant.WeldFrames(self.plant.world_frame(), body.body_frame(), pose)
         self.person = parse_human(self.plant, DEFAULT_HEIGHT, DEFAULT_MASS)
+        self._held = None if held is None else self._held_box(held)
         self.plant.Finalize()
         self.diagram = builder.Build()
         self.context = self.diagram.CreateDefaultContext()
@@ -75,6 +80,50 @@ class Cell:
         for index in self.plant.GetBodyIndices(self.person):
             for geometry in self.plant.GetCollisionGeometriesForBody(self.plant.get_body(index)):
                 self._names[geometry] = inspector.GetName(geometry).split("::")[-1]
+
+    def _held_box(self, size):
+        """A free body of the box's shape: its collision geometry's id."""
+        inertia = SpatialInertia.SolidBoxWithMass(1.0, *size)
+        box = self.plant.AddRigidBody("held", self.plant.AddModelInstance("held"), inertia)
+        properties = ProximityProperties()
+        return self.plant.RegisterCollisionGeometry(
+            box, RigidTransform(), Box(*size), "held", properties
+        )
+
+    def carries(self, start: tuple[float, float, float], goal, hold: Hold) -> Penetration:
+        """The deepest the box held as `hold` goes into the furniture (SceneGraph's
+        penetration pairs, as the realism audit measures a carried object) while the person
+        carries it from `start` (x, y, yaw in degrees) to the point `goal`."""
+        pose = (start[0], start[1], radians(start[2]))
+        command = MoveCommand(1, (*goal, 0.0), hold=hold)
+        activity = plan_movement(self.performer, command, pose, 0.0)
+        carry = carry_arms(self.performer.body, hold)
+        worst = Penetration(0.0, "", 0.0)
+        for t in np.arange(0.0, activity.end + 1 / RATE, 1 / RATE):
+            corners = held_corners(self.performer.body, carry, activity.pose(self.performer, t))
+            found = self._held_penetration(corners, t)
+            worst = found if found.depth > worst.depth else worst
+        return worst
+
+    def _held_penetration(self, corners: np.ndarray, t: float) -> Penetration:
+        """The held box with `corners` (8 x 3, as hrc_drake.human.grasp gives them) in the
+        furniture."""
+        along = corners[4] - corners[0]
+        X_WB = RigidTransform(RollPitchYaw(0, 0, atan2(along[1], along[0])), corners.mean(axis=0))
+        self.plant.SetFreeBodyPose(self._plant_context, self.plant.GetBodyByName("held"), X_WB)
+        query = self.scene_graph.get_query_output_port().Eval(
+            self.scene_graph.GetMyContextFromRoot(self.context)
+        )
+        worst = Penetration(0.0, "", t)
+        for pair in query.ComputePointPairPenetration():
+            ids = (pair.id_A, pair.id_B)
+            if self._held not in ids or any(g in self._names for g in ids):
+                continue
+            other = pair.id_B if pair.id_A == self._held else pair.id_A
+            if pair.depth > worst.depth:
+                furniture = query.inspector().GetName(other).split("::")[0]
+                worst = Penetration(pair.depth, f"held box in {furniture}", t)
+        return worst
 
     def walks(self, start: tuple[float, float, float], *goals) -> Penetration:
         """The deepest penetration into the furniture while the person walks from `start`

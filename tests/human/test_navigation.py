@@ -24,8 +24,8 @@ from hrc_drake.human.grasp import carry_arms, held_corners
 from hrc_drake.human.messages import Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, Obstacle
 from hrc_drake.human.performer import IDLE_CLIP, Performer, place
-from hrc_drake.human.planning import plan_movement
-from hrc_drake.human.segments import TurnSegment
+from hrc_drake.human.planning import plan_movement, plan_stop
+from hrc_drake.human.segments import StepBackSegment, TurnSegment
 from tests.human.cell_walks import Cell, Furniture
 from tests.human.scene import FLOOR, Run, furniture
 from tests.human.test_actor import _stance_slip
@@ -175,6 +175,49 @@ def test_a_carton_carried_past_a_table_stays_out_of_it(start, goal):
     footprints = [MultiPoint(held_corners(run.body, carry, q)[:, :2]).convex_hull for q in poses]
     assert run.status().results.outcome_of(1) == "succeeded"
     assert min(top.distance(footprint) for footprint in footprints) > 0.0
+
+
+@pytest.mark.parametrize("goal", [(0.0, 1.4), (0.0, 0.4)], ids=["turning right", "turning left"])
+def test_a_tote_taken_off_a_rack_stays_out_of_it_as_the_person_turns_away(goal):
+    """A user's cell: a tote (0.26 m deep, 0.36 m across) taken off a rack's 1.1 m board
+    (our shelf model, its front 0.4 m ahead of the person) and carried away behind the
+    person. Turned on the spot where it was taken, the tote held in front swept 2.5 cm into
+    the rack's upright (the realism audit's figure in the user's run, and here turning
+    right). The person steps back from the rack first: the tote keeps out of it all along,
+    measured in SceneGraph as the audit measures a carried object."""
+    tote = (0.26, 0.36, 0.12)
+    rack = Furniture("rack", "shelf", -1.5, 0.9, 90.0)
+    cell = Cell([Furniture("floor", "floor", 0.0, 0.0), rack], held=tote)
+    carried = cell.carries((-0.9, 0.9, 180.0), goal, Hold("both", tote))
+    assert carried.depth <= LIMIT, carried
+
+
+def test_a_tote_taken_off_a_rack_with_no_room_to_step_back_is_not_carried_off():
+    """The rack of the test above with a table 0.3 m behind the person: stepping back, the
+    person would turn with the table at their back; turned where they stand, the tote would
+    sweep into the rack. The carry fails at once, saying where."""
+    tote = Hold("both", (0.26, 0.36, 0.12))
+    rack = Furniture("rack", "shelf", -1.5, 0.9, 90.0)
+    cell = Cell([rack, Furniture("table", "side_table", -0.3, 0.9, 90.0)])
+    command = MoveCommand(1, (0.0, 1.4, 0.0), hold=tote)
+    with pytest.raises(Unreachable, match="into 'rack' at the walk's start .turning on the spot"):
+        plan_movement(cell.performer, command, (-0.9, 0.9, math.pi), 0.0)
+
+
+def test_a_step_back_keeps_its_feet_planted_and_a_cancel_finishes_it():
+    """Stepping back from the rack (the test above), each foot stays where it stands until
+    it steps; cancelled under way, the two steps end where they would have."""
+    tote = Hold("both", (0.26, 0.36, 0.12))
+    cell = Cell([Furniture("rack", "shelf", -1.5, 0.9, 90.0)])
+    performer, start = cell.performer, (-0.9, 0.9, math.pi)
+    activity = plan_movement(performer, MoveCommand(1, (0.0, 1.4, 0.0), hold=tote), start, 0.0)
+    step = activity.segments[0]
+    assert isinstance(step, StepBackSegment)
+    times = np.arange(0.0, step.end(performer), 1 / 60)
+    assert _stance_slip(performer.body, [step.pose(performer, t) for t in times]) < 0.002
+    stop = plan_stop(performer, activity, start, tote, 0.3)
+    assert stop.final_pose == pytest.approx((*step.end_position, math.pi))
+    assert stop.segments[0] is step
 
 
 def _standing_and_turning(cell: Cell, x: float, y: float, yaw: float) -> float:
