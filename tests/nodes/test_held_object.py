@@ -6,6 +6,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.bt import BTError, Status, load_tree
+from hrc_drake.human import messages as human
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
 from hrc_drake.nodes.stacks import on_top_of_what_lies_there
@@ -111,3 +112,28 @@ def test_a_box_put_down_where_others_lie_goes_on_top_of_them():
     assert on_top_of_what_lies_there(target, held, [held, *one])[2] == pytest.approx(1.02)
     two = [*one, _material(3, (0.02, 0.0, 1.02))]
     assert on_top_of_what_lies_there(target, held, [held, *two])[2] == pytest.approx(1.10)
+
+
+def test_an_animation_keeps_the_arms_out_of_the_objects_where_the_person_stands():
+    """A kitting cell of our own: inspecting at a work table with three kits stacked on it,
+    a hand went 14.1 cm into one; the animation was not told of them as a pick or a reach
+    near them is. The objects within reach of where the person stands (not a far one, not
+    one held) go with the animation."""
+    objects = (
+        _material(1, (0.3, 0.4, 0.95)),
+        _material(2, (3.0, 0.0, 0.95)),
+        _material(3, (0.0, 0.2, 1.0), holder=wp.BOTH_HANDS),
+    )
+    xml = (
+        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
+        '<ActorAnimation animation_name="inspect"/>'
+        "</BehaviorTree></root>"
+    )
+    agent = Agent("human", Places())
+    agent.statuses["workpieces"] = wp.WorkpiecesStatus(
+        time=0.0, objects=objects, results={}, free_slots={}
+    )
+    agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, 1.57))
+    load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
+    (command,) = agent.take_outbox()["human"]
+    assert [box.name for box in command.nearby] == ["material 1"]
