@@ -11,6 +11,8 @@ reported only a realism excess. Refused, the tree's node fails with what would h
 where (the run's summary says so), and `hrc-drake validate` finds it before a run
 (hrc_drake.scenario.tree_findings plans the picks it can know of)."""
 
+from functools import partial
+
 import numpy as np
 
 from hrc_drake.human.activity import Activity
@@ -149,16 +151,12 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
 
 def arrived_going_in(performer: Performer, activity: Activity, carry, furniture):
     """How deep the object the hands carry (`carry`) would be in the furniture in the last
-    ARRIVING seconds of `activity`, a walk, and what it would be in deeper than DEPTH_LIMIT ("" when
-    nothing): a carton carried up to a column of cartons stood 2.4 cm in its top one while
-    its put-down was refused (a cell of our own)."""
+    ARRIVING seconds of `activity`, a walk, and what it would be in deeper than DEPTH_LIMIT
+    ("" when nothing): a carton carried up to a column of cartons stood 2.4 cm in its top one
+    while its put-down was refused (a cell of our own)."""
     times = np.arange(activity.end, activity.end - ARRIVING, -SAMPLE)
-    depth, where = max(
-        _box_depth(
-            furniture, held_corners(performer.body, carry, activity.planned_pose(performer, t))
-        )
-        for t in times
-    )
+    pose = partial(activity.planned_pose, performer)
+    depth, where = _held_depth(performer, carry, pose, times, furniture)
     return depth, _deeper_than_allowed(depth, where, "where the walk ends")
 
 
@@ -166,26 +164,31 @@ def swept_depth(performer: Performer, turn, furniture: Furniture) -> tuple[float
     """How deep the object the hands carry through `turn` (a turn on the spot with a carry)
     goes into the furniture at its deepest (<= 0: it keeps out), and into what: turned on
     the spot, its far corners sweep round further ahead than the hands hold them."""
+    times = np.arange(turn.start, turn.end(performer) + SAMPLE / 2, SAMPLE)
+    pose = partial(turn.pose, performer)
+    return _held_depth(performer, turn.carry, pose, times, furniture)
+
+
+def _held_depth(performer: Performer, carry, pose, times, furniture: Furniture):
+    """How deep the object held as `carry` goes into the furniture at its deepest over
+    `times`, the person posed by `pose(t)`, and into what (0, "": there is no furniture)."""
     if not furniture.pieces:
         return 0.0, ""
-    times = np.arange(turn.start, turn.end(performer) + SAMPLE / 2, SAMPLE)
-    body = performer.body
-    corners = np.array([held_corners(body, turn.carry, turn.pose(performer, t)) for t in times])
-    into = Prisms.of(furniture).shape_depths(corners, HELD_RADII, HELD_SHAPE)[..., 0].max(axis=0)
-    return float(into.max()), furniture.pieces[int(np.argmax(into))].name
+    corners = np.array([held_corners(performer.body, carry, pose(t)) for t in times])
+    return _boxes_depth(furniture, corners)
 
 
 def _box_going_in(furniture: Furniture, corners: np.ndarray, where_then: str) -> str:
     """What a box with `corners` is in deeper than DEPTH_LIMIT ("" when nothing)."""
-    return _deeper_than_allowed(*_box_depth(furniture, corners), where_then)
+    return _deeper_than_allowed(*_boxes_depth(furniture, corners[None]), where_then)
 
 
-def _box_depth(furniture: Furniture, corners: np.ndarray) -> tuple[float, str]:
-    """How deep a box with `corners` is in the furniture, and in which piece (0, "": in
-    none)."""
+def _boxes_depth(furniture: Furniture, corners: np.ndarray) -> tuple[float, str]:
+    """How deep the deepest of boxes with `corners` (boxes, 8, 3) is in the furniture, and
+    in which piece (0, "": there is no furniture)."""
     if not furniture.pieces:
         return 0.0, ""
-    into = Prisms.of(furniture).shape_depths(corners[None], HELD_RADII, HELD_SHAPE)[0, :, 0]
+    into = Prisms.of(furniture).shape_depths(corners, HELD_RADII, HELD_SHAPE)[..., 0].max(axis=0)
     return float(into.max()), furniture.pieces[int(np.argmax(into))].name
 
 

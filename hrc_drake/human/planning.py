@@ -71,11 +71,11 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     A carry stops short of its place where what the hands hold would end in something there
     (at most STOP_SHORT).
     Unreachable when there is no such place or no walk keeps clear of the cell."""
-    activity = _walk(performer, command, pose, t)
     carry = _carry(performer, command.hold)
+    furniture = performer.furniture.with_boxes(command.nearby)
+    activity = _walk(performer, command, pose, t, carry, furniture)
     if carry is None:
         return activity
-    furniture = performer.furniture.with_boxes(command.nearby)
     wanted = np.asarray(command.target_position[:2], dtype=float)
     depth, problem = arrived_going_in(performer, activity, carry, furniture)
     for _ in range(SHORTENINGS):
@@ -86,15 +86,18 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
         end = (x - back * cos(yaw), y - back * sin(yaw))
         if hypot(*(end - wanted)) > STOP_SHORT:
             break
-        activity = _walk(performer, replace(command, target_position=end), pose, t)
+        shorter = replace(command, target_position=end)
+        activity = _walk(performer, shorter, pose, t, carry, furniture)
         depth, problem = arrived_going_in(performer, activity, carry, furniture)
     if problem:
         raise Unreachable(problem)
     return activity
 
 
-def _walk(performer: Performer, command: MoveCommand, pose, t: float) -> Activity:
-    """The walk of `plan_movement`, to the target or the nearest place with room."""
+def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, furniture):
+    """The walk of `plan_movement`, to the target or the nearest place with room, with
+    what the hands hold as `carry` (None: nothing) stepped back from `furniture` before a
+    first turn."""
     clip = performer.clips.get(command.animation_name)
     if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
@@ -105,8 +108,6 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float) -> Activit
     segments: list[Segment] = []
     start = t
     heading = yaw
-    carry = _carry(performer, command.hold)
-    furniture = performer.furniture.with_boxes(command.nearby)
     if carry is not None:
         back = stepped_back(performer, carry, furniture, pose, path, t)
         if back is not None:
