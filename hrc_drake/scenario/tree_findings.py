@@ -35,7 +35,7 @@ from hrc_drake.motion.reach import configuration_problem, reach_problem
 from hrc_drake.nodes.objects import CountObjects, NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
-from hrc_drake.nodes.stacks import on_top_of
+from hrc_drake.nodes.stacks import COVER_OVERLAP, on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.detours import Detours, detour_findings
@@ -46,12 +46,12 @@ from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
 from hrc_drake.tree_types import AreaRef, Pose
 from hrc_drake.wiring import ROBOT_MOTION
-from hrc_drake.workpieces.geometry import Solid
+from hrc_drake.workpieces.geometry import Solid, footprint, overlaps
 from hrc_drake.yaml_check import unknown
 
 ON_IT = 0.01
 """m: an object whose bottom is at most this far above the top of what is taken lies on it
-(`_Checks._lying_on`)."""
+(`_lies_on`)."""
 
 
 def tree_findings(
@@ -294,30 +294,16 @@ class _Checks:
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         grasp = self._grasp(obj, hands)
         clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
-        nearby = self._near(grasp.center, (obj, *self._lying_on(grasp)))
+        nearby = self._near(grasp.center, (obj, *self._lying_on(obj)))
         command = AnimateCommand(0, clip, grasp=grasp, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 
-    def _lying_on(self, grasp: Grasp) -> list:
-        """The objects at the start lying on or in what `grasp` takes (their bottoms at most
-        ON_IT above its top, their centres over it): whether they are still there when it is
-        taken is the tree's doing (the machine cell's takes the checked parts out of the tote
-        before it takes the tote; planned with them, the tote went 7.6 cm into a part); the
-        run refuses the pick if they are."""
-        center, size = np.asarray(grasp.center), np.asarray(grasp.size)
-        c, s = math.cos(grasp.yaw), math.sin(grasp.yaw)
-        types, found = self.scenario.workpieces.types, []
-        for obj in self.scene.objects:
-            middle, _, extent = box_at(obj.pose, types[obj.type].shape, types[obj.type].size)
-            across = np.array([[c, s], [-s, c]]) @ (np.asarray(middle[:2]) - center[:2])
-            bottom, top = middle[2] - extent[2] / 2, center[2] + size[2] / 2
-            if (
-                middle[2] > center[2]
-                and bottom <= top + ON_IT
-                and np.all(abs(across) <= size[:2] / 2)
-            ):
-                found.append(obj)
-        return found
+    def _lying_on(self, taken) -> list:
+        """The objects at the start lying on or in `taken` (`_lies_on`): whether they are
+        still there when it is taken is the tree's doing (the machine cell's takes the
+        checked parts out of the tote before it takes the tote; planned with them, the tote
+        went 7.6 cm into a part); the run refuses the pick if they are."""
+        return [obj for obj in self.scene.objects if obj is not taken and _lies_on(obj, taken)]
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
         """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run
@@ -515,3 +501,18 @@ def _finders(nodes, pick) -> list:
 def _hands(known, pick) -> str:
     """The hands a pick takes with, as its `hand` port says (auto: by the object)."""
     return ([v.value for v in known.get((id(pick), "hand"), ())] or ["auto"])[0]
+
+
+def _lies_on(upper, lower) -> bool:
+    """Whether the scene object `upper` lies on or in `lower`: higher than its middle, its
+    bottom at most ON_IT above its top, and their outlines overlapping as the run's
+    NextObject counts one lying on another (hrc_drake.nodes.stacks.covered)."""
+    up, down = upper.pose.translation()[2], lower.pose.translation()[2]
+    bottom, top = up - upper.solid.height / 2, down + lower.solid.height / 2
+    return (
+        up > down
+        and bottom <= top + ON_IT
+        and overlaps(
+            footprint(upper.solid, upper.pose), footprint(lower.solid, lower.pose), COVER_OVERLAP
+        )
+    )
