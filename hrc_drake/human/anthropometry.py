@@ -26,6 +26,13 @@ DEFAULT_HEIGHT = 1.75
 DEFAULT_MASS = 75.0
 HEIGHT_RANGE = (1.45, 1.95)
 """m: from below a 1st-percentile woman to a 99th-percentile man of ANSUR II"""
+WRIST_RADIUS = 0.028
+"""m: the forearm's slim end, round the wrist's girth (about 17.5 cm for men, 15.3 cm for
+women in ANSUR II; docs/human-body.md). The forearm as thick as below the elbow (0.036) to
+the wrist put the wrist of a palm flat on a box's side 1 cm into the box (a kit taken off
+another in a squat)."""
+TAPER = 0.6
+"""Where along the forearm, from the elbow, it has thinned to the wrist's girth."""
 
 
 def _rev(name, axis, lower, upper) -> Dof:
@@ -270,8 +277,14 @@ def _arm_bodies(side: str, d: _Dimensions, s: dict, mass: float) -> list[Body]:
         0.016 * mass,
         (0, 0, -0.43 * fa),
         _cylinder_inertia(0.016 * mass, R(0.035), fa),
-        (Collision("lower_arm", _capsule_between(0.0, -fa, R(0.036))),),
-        (Visual("skin", _capsule_between(0.0, -fa, R(0.036))),),
+        (
+            Collision("lower_arm", _capsule_between(0.0, -TAPER * fa, R(0.036))),
+            Collision("lower_arm", _capsule_between(-TAPER * fa, -fa, R(WRIST_RADIUS))),
+        ),
+        (
+            Visual("skin", _capsule_between(0.0, -TAPER * fa, R(0.036))),
+            Visual("skin", _capsule_between(-TAPER * fa, -fa, R(WRIST_RADIUS))),
+        ),
     )
     hand_body = Body(
         f"{side}_hand",

@@ -14,7 +14,7 @@ from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.cell_walks import Cell, Furniture
-from tests.human.scene import FLOOR, SAMPLE, Run, furniture
+from tests.human.scene import FLOOR, SAMPLE, Posed, Run, furniture
 
 INTO_FURNITURE = 0.01
 """m: how far a body segment may go into the cell's geometry (the audit's limit)."""
@@ -460,6 +460,50 @@ def test_a_box_taken_out_of_the_pallets_block_has_each_palm_on_its_face(taken, o
     for side, off in _palms_from_faces(run, grasp).items():
         assert 0.0 <= off <= HAND_ON_OBJECT, (side, off)
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+KIT = (0.4, 0.3, 0.15)
+"""Kits of parts stacked on a pallet by hand (a kitting cell of our own)."""
+NOT_IN_WHAT_IS_TAKEN = 0.003
+"""m: how far a forearm may be in the object its hands hold (SceneGraph's depth of a capsule
+lying along a face; on main it lay 1 cm in)."""
+
+
+def test_the_forearms_keep_out_of_a_kit_taken_off_another_in_a_squat():
+    """A kitting cell of our own at 25.2 s: the top kit of two on a pallet taken in a squat,
+    the person 0.5 m before it. With the palms on the kit's sides and the wrists straight,
+    each forearm lay along a side, 1.0 cm in the kit at the grasp and all the way up (the
+    audit: 1.2 cm). The wrists now bend the forearms off the sides, at the grasp and as the
+    kit rises (measured in SceneGraph, the kit carried by the hands as they hold it)."""
+    below, taken = (0.0, 0.55, 0.144 + KIT[2] / 2), (0.0, 0.55, 0.144 + 1.5 * KIT[2])
+    grasp = Grasp("both", taken, 0.0, KIT)
+    schedule = [(0.1, AnimateCommand(1, "pick_floor", grasp=grasp, nearby=(Box(below, 0.0, KIT),)))]
+    pallet = furniture("euro_pallet", 0.0, 0.75, 90)
+    start = (0.0, 0.55 - KIT[1] / 2 - 0.5, np.pi / 2)
+    run = Run(schedule, start, [FLOOR, pallet], ARMS, objects=[(KIT, RigidTransform(below))])
+    clip = load_clips()["pick_floor"]
+    run.record(0.1 + clip.events["grasp"] + 0.02)
+    body = run.body
+    in_hands = _between_the_hands(body, run.positions()[body.plant_index]).inverse() @ (
+        RigidTransform(taken)
+    )
+    deepest = 0.0
+    for t in np.arange(run.simulator.get_context().get_time(), 0.1 + clip.duration, 1 / 30):
+        run.record(t)
+        q = run.positions()[body.plant_index]
+        held = Posed(q, [(KIT, _between_the_hands(body, q) @ in_hands)])
+        deepest = max(deepest, -held.distance(0, ("lower_arm", "upper_arm")))
+    assert deepest <= NOT_IN_WHAT_IS_TAKEN, deepest
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def _between_the_hands(body, q) -> RigidTransform:
+    """The frame midway between the hands' grasp frames, x from the right hand to the left:
+    what two palms on its sides hold moves with it."""
+    left, right = (body.frame_pose(f"{s}_hand_grasp", q).translation() for s in ("left", "right"))
+    across = left - right
+    yaw = np.arctan2(across[1], across[0])
+    return RigidTransform(RotationMatrix.MakeZRotation(yaw), (left + right) / 2)
 
 
 @pytest.mark.parametrize("x", [0.55, 1.27], ids=["in front", "0.67 m beside"])
