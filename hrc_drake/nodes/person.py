@@ -17,6 +17,11 @@ from hrc_drake.workpieces.geometry import yaw_of
 
 NEARBY = 0.8
 """m: objects closer than this (floor distance) to a target are ones the arms may touch."""
+STILL = 0.01
+"""m/s: an object the robot holds is one the arms keep out of while it is this still (the
+robot stopped with it over where the person works: a forearm went 14.9 cm through a carton
+hanging from a stopped gripper, a user's palletizing cell); moving, it will be elsewhere by
+the time the arms get there."""
 HOLDERS = {human.ONE_HAND: wp.RIGHT_HAND, human.BOTH_HANDS: wp.BOTH_HANDS}
 HANDS_OF = {holder: hands for hands, holder in HOLDERS.items()}
 
@@ -43,15 +48,16 @@ class PersonCommandNode(CommandNode):
         return hold_of(grasp_of(obj, HANDS_OF[obj.holder]), self._heading())
 
     def objects_near(self, point, taken: int | None = None) -> tuple[human.Box, ...]:
-        """The free objects within NEARBY of `point` on the floor (not `taken`): what the
-        person's arms, and what the hands hold, keep out of there."""
+        """The objects within NEARBY of `point` on the floor (not `taken`) that are free or
+        held still by the robot: what the person's arms, and what the hands hold, keep out
+        of there."""
         status = self.agent.workpieces
         if status is None:
             return ()
         return tuple(
-            human.Box(*box_of(obj), name=f"{obj.type} {obj.id}")
+            human.Box(*box_of(obj), name=_named(obj))
             for obj in status.objects
-            if obj.holder is None
+            if _in_the_way(obj)
             and obj.id != taken
             and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
         )
@@ -170,3 +176,16 @@ class SetCalledTo(SyncActionNode):
 
 
 NODES = (ActorAnimation, ActorMovement, ActorCarry, IsCalled, SetCalledTo)
+
+
+def _in_the_way(obj: wp.ObjectStatus) -> bool:
+    """Whether the person's arms keep out of `obj`: free, or held STILL by the robot."""
+    if obj.holder is None:
+        return True
+    return obj.holder not in HANDS_OF and np.linalg.norm(obj.velocity.translational()) < STILL
+
+
+def _named(obj: wp.ObjectStatus) -> str:
+    """How a refusal names `obj` ('carton 8', 'carton 8 the robot holds')."""
+    name = f"{obj.type} {obj.id}"
+    return name if obj.holder is None else f"{name} the {obj.holder} holds"

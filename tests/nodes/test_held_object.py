@@ -1,6 +1,8 @@
 """The boxes the person handles: HeldObject finds the box the robot holds out at a hand-over,
 NextObject which free box is taken next, ActorPlace where a box put down goes."""
 
+from dataclasses import replace
+
 import pytest
 from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
@@ -137,3 +139,31 @@ def test_an_animation_keeps_the_arms_out_of_the_objects_where_the_person_stands(
     load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
     (command,) = agent.take_outbox()["human"]
     assert [box.name for box in command.nearby] == ["material 1"]
+
+
+@pytest.mark.parametrize("speed, kept", [(0.0, True), (0.3, False)], ids=["still", "moving"])
+def test_a_pick_keeps_the_arms_out_of_a_box_the_stopped_robot_holds_over_it(speed, kept):
+    """A user's palletizing cell: the robot, stopped as the person came, held a carton just
+    over the belt's end while the person took the next one off the belt: a forearm went
+    14.9 cm through the hanging carton and the carton lifted went 16.4 cm into it. What the
+    robot holds still is among what the pick's arms keep out of (a refusal names it); moving,
+    it will be elsewhere by then."""
+    taken = _material(1, (0.5, 0.0, 0.95))
+    hanging = replace(
+        _material(2, (0.5, 0.0, 1.1), holder=wp.ROBOT_HOLDER),
+        velocity=SpatialVelocity([0.0, 0.0, 0.0], [speed, 0.0, 0.0]),
+    )
+    xml = (
+        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
+        '<ActorPick object_id="1"/>'
+        "</BehaviorTree></root>"
+    )
+    agent = Agent("human", Places())
+    agent.statuses["workpieces"] = wp.WorkpiecesStatus(
+        time=0.0, objects=(taken, hanging), results={}, free_slots={}
+    )
+    agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, 0.0))
+    load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
+    (command,) = agent.take_outbox()["human"]
+    names = [box.name for box in command.nearby]
+    assert names == (["material 2 the robot holds"] if kept else []), names
