@@ -229,6 +229,21 @@ def _metres(value) -> str:
     return "none (the robot never moved near the person)" if value is None else f"{value:.3f} m"
 
 
+def _margin_line(margin: dict) -> str:
+    """The safety margin and what set it: the least separation - S_p (where and when), or a
+    contact (its ratio to ISO/TS 15066's limit; the SSM margin and its place beside it: a
+    margin of -5.10 m printed with where the separation was least read as a miscalculation
+    next to 'SSM violations: 0')."""
+    at = margin.get("at")
+    where = f"{at['region']} / {at['part']} at {at['time']:.1f} s" if at else ""
+    line = f"safety margin: {_metres(margin['value'])}"
+    value, ssm = margin["value"], margin.get("ssm")
+    if value is not None and (ssm is None or value < ssm):
+        beside = f"; SSM margin {_metres(ssm)} ({where})" if where else ""
+        return f"{line}, set by a contact at {margin['contact_ratio']:g} × its limit{beside}"
+    return f"{line} ({where})" if where else line
+
+
 def key_metrics(metrics: dict) -> list[str]:
     """The figures a user looks at first: output, safety, how much the robot was slowed,
     and whether the person moved as a person does (the realism audit)."""
@@ -259,9 +274,7 @@ def key_metrics(metrics: dict) -> list[str]:
         lines.append("the monitor knew every point of the person's body (no safety sensors)")
     margin = metrics.get("margin") or {}
     if "value" in margin:
-        at = margin.get("at")
-        where = f" ({at['region']} / {at['part']} at {at['time']:.1f} s)" if at else ""
-        lines.append(f"safety margin: {_metres(margin['value'])}{where}")
+        lines.append(_margin_line(margin))
     verdict = realism_verdict(metrics.get("realism") or {})
     if verdict:
         lines.append(f"realism: {verdict[0]}")

@@ -139,3 +139,32 @@ def test_the_sweep_counts_runs_that_break_the_standard_and_the_realism_limits():
         "over_limits": 2,
         "measures": {"carried_tilt_deg": 1, "foot_slip": 2, "penetration_static": 1},
     }
+
+
+AT = {"region": "chest", "part": "carried object", "time": 110.1}
+
+
+@pytest.mark.parametrize(
+    "margin, line",
+    [
+        (
+            {"value": 0.1417, "ssm": 0.1417, "contact_ratio": 0.0, "at": AT},
+            "safety margin: 0.142 m (chest / carried object at 110.1 s)",
+        ),
+        (
+            {"value": -5.1024, "ssm": 0.1417, "contact_ratio": 11.2048, "at": AT},
+            "safety margin: -5.102 m, set by a contact at 11.2048 × its limit; "
+            "SSM margin 0.142 m (chest / carried object at 110.1 s)",
+        ),
+        (
+            {"value": 0.3, "ssm": None, "contact_ratio": 0.4},
+            "safety margin: 0.300 m, set by a contact at 0.4 × its limit",
+        ),
+    ],
+    ids=["separation", "contact", "contact only"],
+)
+def test_the_summary_says_what_set_the_safety_margin(margin, line):
+    """A user's palletizing cell: 'safety margin: -5.10 m (chest / carried object at
+    110.1 s)' under 'SSM violations: 0' read as a miscalculation; the -5.10 came from a
+    contact 11.2 times its limit, not from that place. The line says which set it."""
+    assert key_metrics({"margin": margin}) == [line]
