@@ -89,21 +89,36 @@ def model_plant(name: str):
 
 
 def catalogue() -> str:
-    """The guide's table of the cell models: footprint, the height of their largest top
-    face (where things go) and of their highest point."""
+    """The guide's table of the cell models: footprint, the heights of the faces things go
+    on (to the millimetre: an object's centre is put half its height above one) and of their
+    highest point."""
     rows = [
-        "| model | file | footprint x × y (m) | surface (m) | top (m) |",
+        "| model | file | footprint x × y (m) | surfaces (m) | top (m) |",
         "|---|---|---|---|---|",
     ]
     for name in cell_models():
-        (piece,) = furniture(cell_obstacles(*model_plant(name)))
+        plant, inspector = model_plant(name)
+        (piece,) = furniture(cell_obstacles(plant, inspector))
         x0, y0, x1, y1 = piece.outline.bounds
+        surfaces = ", ".join(f"{z:.3f}" for z in _surfaces(plant, inspector, piece.outline.area))
         rows.append(
             f"| {name} ![{name}](building-a-cell/{name}.png) "
             f"| `package://{MODEL_PACKAGE}/cell/{name}.sdf` | {x1 - x0:.2f} × {y1 - y0:.2f} "
-            f"| {piece.surface:.2f} | {piece.top:.2f} |"
+            f"| {surfaces} | {piece.top:.3f} |"
         )
     return "\n".join(rows)
+
+
+def _surfaces(plant, inspector, footprint: float) -> list[float]:
+    """The tops of a model's boxes that cover at least half its footprint: a table's top, a
+    pallet's deck, each of a shelf's boards (a user put totes on boards guessed from the
+    shelf's lowest), not a rail or a post."""
+    tops = {
+        round(X_WG.translation()[2] + shape.height() / 2, 3)
+        for _, shape, X_WG in anchored_collision_shapes(plant, inspector)
+        if isinstance(shape, Box) and shape.width() * shape.depth() >= footprint / 2
+    }
+    return sorted(tops)
 
 
 def draw_model(name: str, path: Path) -> None:
