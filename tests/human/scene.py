@@ -20,6 +20,9 @@ from hrc_drake.ports import message_value
 from hrc_drake.systems.human_actor import add_human
 
 SAMPLE = 1.0 / 60.0
+COLLISION_SHAPES = 21
+"""The body's collision shapes: one per ISO/TS 15066 region's body part, the forearms two
+each (thinning to the wrist, docs/human-body.md)."""
 
 
 class ScriptedCommands(LeafSystem):

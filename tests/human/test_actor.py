@@ -20,7 +20,7 @@ from hrc_drake.human.segments import TurnSegment
 from hrc_drake.human.skeleton import REGIONS
 from hrc_drake.safety.geometry import human_parts
 from hrc_drake.wiring import HUMAN_MODEL
-from tests.human.scene import FLOOR, SAMPLE, Run, furniture
+from tests.human.scene import COLLISION_SHAPES, FLOOR, SAMPLE, Run, furniture
 
 
 def test_setup_then_idle_at_the_start_pose():
@@ -332,4 +332,4 @@ def test_regions_cover_every_collision_geometry():
     run = Run([])
     inspector = run.scene_graph.model_inspector()
     parts = human_parts(run.plant, inspector, run.plant.GetModelInstanceByName(HUMAN_MODEL))
-    assert len(parts) == 19 and {part.name for part in parts} == set(REGIONS)
+    assert len(parts) == COLLISION_SHAPES and {part.name for part in parts} == set(REGIONS)

@@ -12,6 +12,7 @@ from hrc_drake.human.grasp import arm_indices, hand_tasks, palm_targets
 from hrc_drake.human.messages import Grasp
 from hrc_drake.human.sdf import REGION_SEPARATOR
 from hrc_drake.human.skeleton import COLORS, REGIONS
+from tests.human.scene import COLLISION_SHAPES
 
 
 @pytest.mark.parametrize("height", [1.55, 1.75, 1.95])
@@ -71,7 +72,7 @@ def test_every_region_is_present_and_colours_are_set():
     assert regions == set(REGIONS)
     expected = {tuple(round(c, 6) for c in rgba[:3]) for rgba in COLORS.values()}
     assert {tuple(round(c, 6) for c in rgb) for rgb in colours} == expected
-    assert inspector.NumGeometriesWithRole(Role.kProximity) == 19
+    assert inspector.NumGeometriesWithRole(Role.kProximity) == COLLISION_SHAPES
 
 
 def test_frames_for_hands_head_and_feet():
