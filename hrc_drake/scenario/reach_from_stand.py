@@ -5,7 +5,8 @@ says it first. So does a pick of an object that a NextObject finds in an area, f
 objects that lie there at the start (a pallet's far row: "hand stays 0.27 m from the
 target", every time the person tried), and a place after such a pick, for an object of
 the type it finds (a tote put into a shelf's compartment from too close: "the head would
-go 3.4 cm into 'shelf'").
+go 3.4 cm into 'shelf'"). A pick's objects are where the tree last left them on its
+way to it (`object_source`): found by the NextObject on its own path, or put down since.
 
 Where the person stands is known statically only along the tree's certain paths: the last
 walk among the earlier children of the Sequences above the node. A Fallback's earlier
@@ -25,6 +26,7 @@ from hrc_drake.bt.status import FAILURE
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.targeting import MAX_HORIZONTAL_REACH, TARGETED
 from hrc_drake.known_values import Known
+from hrc_drake.nodes.objects import NextObject
 from hrc_drake.nodes.person import ActorMovement
 from hrc_drake.nodes.targeted import ActorPick, ActorPlace, ActorReach
 from hrc_drake.scenario.located import Finding, Locator
@@ -38,6 +40,8 @@ Taken = Callable[[TreeNode], list[tuple[str, np.ndarray, Callable]]]
 """The objects a pick node may take, as far as known before the run: a label, the centre,
 and what keeps the person from taking it from a place to stand (the walk's known target,
 None: the person's start): why the hands cannot get there, or ""."""
+Kind = type | Callable[[TreeNode], bool]
+"""A kind of node: its class, or what says whether a node is one."""
 Placing = Callable[[TreeNode, np.ndarray, list, list], Callable | None]
 """For the last pick before a place node, the place's target point, where the person may
 stand at the pick (as `_stand_points`; [] when not known) and every pick known to have run
@@ -72,7 +76,7 @@ def reach_findings(
     reaches, or that the hands cannot get to from all of them (`known`: the known values by
     (id(node), port); `start`: the person's start on the floor)."""
     limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
-    parents = {id(child): node for node in nodes for child in node.children_nodes()}
+    parents = parents_of(nodes)
     for node in nodes:
         if isinstance(node, ActorPlace | ActorReach):
             port = "target"
@@ -115,14 +119,14 @@ def _placings(place, parents, targets, placing: Placing, stands_at) -> list:
     """`targets` of a place node with what keeps the person from putting down there what
     the last pick before it took (unchanged when no pick is known to come before);
     `stands_at(pick)`: where the person may stand at that pick."""
-    pick = _last_before(place, parents, ActorPick)
+    pick = held_at(place, parents)
     if not isinstance(pick, ActorPick):
         return targets
     at_pick, picks = stands_at(pick), _all_before(place, parents, ActorPick)
     return [(v, p, None if p is None else placing(pick, p, at_pick, picks)) for v, p, _ in targets]
 
 
-def _all_before(node: TreeNode, parents: dict, kind: type) -> list[TreeNode]:
+def _all_before(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
     """The nodes of `kind` in the earlier children of the Sequences above `node`: they have
     run when it starts (a tote put where an earlier pick took one from was planned on top
     of that one, and validate said an arm would go into it, a cell of our own)."""
@@ -136,9 +140,9 @@ def _all_before(node: TreeNode, parents: dict, kind: type) -> list[TreeNode]:
     return found
 
 
-def _all_of(node: TreeNode, kind: type) -> list[TreeNode]:
+def _all_of(node: TreeNode, kind: Kind) -> list[TreeNode]:
     """The nodes of `kind` in the subtree of `node`."""
-    own = [node] if isinstance(node, kind) else []
+    own = [node] if _is(node, kind) else []
     return own + [n for c in node.children_nodes() for n in _all_of(c, kind)]
 
 
@@ -184,7 +188,52 @@ def walk_before(node: TreeNode, parents: dict) -> TreeNode | None | object:
     return _last_before(node, parents, ActorMovement)
 
 
-def _last_before(node: TreeNode, parents: dict, kind: type) -> TreeNode | None | object:
+def parents_of(nodes: list[TreeNode]) -> dict[int, TreeNode]:
+    """Each node's parent, by id(child)."""
+    return {id(child): node for node in nodes for child in node.children_nodes()}
+
+
+def held_at(node: TreeNode, parents: dict) -> TreeNode | None | object:
+    """The pick whose object the hands hold when `node` starts (as `_last_before`)."""
+    return _last_before(node, parents, ActorPick)
+
+
+def object_source(pick: TreeNode, parents: dict) -> TreeNode | None | object:
+    """Where what `pick` takes was last left on the way to it (as `_last_before`): the node
+    that last wrote the entry it reads (a NextObject on another branch of a Fallback or
+    WeightedRandom has not run), or a put-down of what an earlier pick of that entry took
+    (a carton put on a table is taken from the table, not from where it was found)."""
+    entry = _entry(pick, "inputs")
+    if entry is None:
+        return UNKNOWN
+    return _last_before(pick, parents, partial(_leaves_object, entry, parents))
+
+
+def finder_of(pick: TreeNode, parents: dict) -> TreeNode | None:
+    """The NextObject that found what `pick` takes, through the put-downs of it since
+    (None: not known, or a literal id)."""
+    source = object_source(pick, parents)
+    if isinstance(source, ActorPlace):
+        return finder_of(held_at(source, parents), parents)
+    return source if isinstance(source, NextObject) else None
+
+
+def _leaves_object(entry, parents: dict, node: TreeNode) -> bool:
+    """Whether `node` writes `entry` (an action; a SubTree's port only passes it on) or puts
+    down what a pick that read it took."""
+    if isinstance(node, ActorPlace):
+        held = held_at(node, parents)
+        return isinstance(held, ActorPick) and _entry(held, "inputs") is entry
+    outputs = node.config.outputs.values()
+    return not node.children_nodes() and any(getattr(o, "entry", None) is entry for o in outputs)
+
+
+def _entry(node: TreeNode, ports: str):
+    """The blackboard entry of `node`'s object_id port among its `ports` (None: a literal)."""
+    return getattr(getattr(node.config, ports).get("object_id"), "entry", None)
+
+
+def _last_before(node: TreeNode, parents: dict, kind: Kind) -> TreeNode | None | object:
     """The last node of `kind` that has run when `node` starts (a walk: the person stands
     at its end; a pick: the hands hold what it took). None: none before it (the person
     stands at their start); UNKNOWN: not known statically."""
@@ -200,12 +249,12 @@ def _last_before(node: TreeNode, parents: dict, kind: type) -> TreeNode | None |
     return None
 
 
-def _last_of(node: TreeNode, kind: type) -> TreeNode | None | object:
+def _last_of(node: TreeNode, kind: Kind) -> TreeNode | None | object:
     """The last node of `kind` that has run once `node` succeeded (None: there is none in
     it)."""
     if not _holds(node, kind):
         return None
-    if isinstance(node, kind):
+    if _is(node, kind):
         return node if not node.config.preconditions else UNKNOWN
     if isinstance(node, SubTreeNode):
         return _last_of(node.child, kind)
@@ -216,9 +265,13 @@ def _last_of(node: TreeNode, kind: type) -> TreeNode | None | object:
     return UNKNOWN
 
 
-def _holds(node: TreeNode, kind: type) -> bool:
+def _holds(node: TreeNode, kind: Kind) -> bool:
     """Whether a node of `kind` is in the subtree of `node`."""
-    return isinstance(node, kind) or any(_holds(c, kind) for c in node.children_nodes())
+    return _is(node, kind) or any(_holds(c, kind) for c in node.children_nodes())
+
+
+def _is(node: TreeNode, kind: Kind) -> bool:
+    return isinstance(node, kind) if isinstance(kind, type) else kind(node)
 
 
 def _is_sequence(node: TreeNode) -> bool:

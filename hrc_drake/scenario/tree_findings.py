@@ -40,7 +40,14 @@ from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
 from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
-from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
+from hrc_drake.scenario.reach_from_stand import (
+    finder_of,
+    held_at,
+    object_source,
+    parents_of,
+    point_text,
+    reach_findings,
+)
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
@@ -141,16 +148,17 @@ class _Checks:
         if self.scenario.human is None:
             return iter(())
         known = {(id(node), port): values for node, port, values in inputs}
+        parents = parents_of(tree.node_list)
 
         def point(value: Known):
             pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
             return None if pose is None else np.asarray(pose.position)
 
         def taken(pick):
-            return self._taken(tree.node_list, known, pick, agent)
+            return self._taken(parents, known, pick, agent)
 
         def placing(pick, target, at_pick, picks):
-            return self._placing(tree.node_list, known, pick, target, agent, at_pick, picks)
+            return self._placing(parents, known, pick, target, agent, at_pick, picks)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
@@ -181,36 +189,35 @@ class _Checks:
         except NoWay:
             return None
 
-    def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
-        """The objects at the start that a pick may take, each with its label, centre and
-        what keeps the person from taking it (`_lying_in`)."""
+    def _taken(self, parents, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
+        """The objects that a pick may take, each with its label, centre and what keeps the
+        person from taking it (`_lying_in`)."""
         hands = _hands(known, pick)
         return [
             (label, obj.pose.translation(), partial(self._pick_problem, obj, agent, hands))
-            for label, obj in self._lying_in(nodes, known, pick)
+            for label, obj in self._lying_in(parents, known, pick, agent)
         ]
 
-    def _placing(self, nodes, known, pick, target, agent, at_pick, picks=()):
+    def _placing(self, parents, known, pick, target, agent, at_pick, picks=()):
         """What keeps the person from putting down at `target` what `pick` took: an object
-        of the one type the NextObjects it takes from filter for (None: not known), held
+        of the one type the NextObject it takes from filters for (None: not known), held
         as the pick takes those of them lying in its area from where the person stands
         there (`at_pick`), when that is one way; what any of `picks` (those that have run
         before the put-down) may have taken is gone from where it lay."""
         types = {
             parse_filter(wanted.value).get("type")
-            for finder in _finders(nodes, pick)
-            for wanted in known.get((id(finder), "filter"), ())
+            for wanted in known.get((id(finder_of(pick, parents)), "filter"), ())
         }
         if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
             return None
         (kind,) = types
         hands = _hands(known, pick)
-        taken = [obj for _, obj in self._lying_in(nodes, known, pick)]
+        taken = [obj for _, obj in self._lying_in(parents, known, pick, agent)]
         holds = {
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
-        gone = taken + [obj for other in picks for _, obj in self._lying_in(nodes, known, other)]
+        gone = taken + [o for p in picks for _, o in self._lying_in(parents, known, p, agent)]
         return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
@@ -257,21 +264,38 @@ class _Checks:
         command = AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 
-    def _lying_in(self, nodes, known, pick) -> list[tuple]:
+    def _lying_in(self, parents, known, pick, agent) -> list[tuple]:
         """The objects at the start that `pick` may take, with their labels: those of the
-        type a NextObject filters for (by type alone) in its known area, where it writes the
-        entry the pick reads."""
-        found = []
-        for finder in _finders(nodes, pick):
-            where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
-            for area in known.get((id(finder), "area"), ()):
-                for wanted in known.get((id(finder), "filter"), ()):
-                    condition = parse_filter(wanted.value)
-                    found += [
-                        (f"{obj.label} in area '{area.value.name}' ({where})", obj)
-                        for obj in self._in_area(area, condition)
-                    ]
-        return found
+        type the NextObject that last wrote the entry the pick reads filters for (by type
+        alone) in its known area; moved where a put-down of them since leaves them."""
+        source = object_source(pick, parents)
+        if isinstance(source, ActorPlace):
+            return self._put_down(parents, known, source, agent)
+        if not isinstance(source, NextObject):
+            return []
+        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
+        return [
+            (f"{obj.label} in area '{area.value.name}' ({where})", obj)
+            for area in known.get((id(source), "area"), ())
+            for wanted in known.get((id(source), "filter"), ())
+            for obj in self._in_area(area, parse_filter(wanted.value))
+        ]
+
+    def _put_down(self, parents, known, place, agent) -> list[tuple]:
+        """What the pick before `place` may have taken, where `place` puts it down: at its
+        known targets, on top of what lies there (as the run puts it, hrc_drake.nodes.stacks)."""
+        config = place.config
+        where = f"put down by {config.registration_id} at {config.file}:{config.line}"
+        points = [_resolved(agent, v.value) for v in known.get((id(place), "target"), ())]
+        moved = []
+        for label, obj in self._lying_in(parents, known, held_at(place, parents), agent):
+            lying = [(o.solid, o.pose) for o in self.scene.objects if o is not obj]
+            moved += [
+                (f"{label}, {where}", _moved(obj, on_top_of(p.position, obj.solid, lying)))
+                for p in points
+                if p is not None
+            ]
+        return moved
 
     def _in_area(self, area: Known, condition: dict) -> list:
         """The initial objects in a known area that a filter of their type alone takes."""
@@ -484,18 +508,9 @@ def _xyz(p) -> str:
     return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"
 
 
-def _finders(nodes, pick) -> list:
-    """The NextObjects that write the entry `pick` reads its object from (none for a
-    literal id)."""
-    entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
-    if entry is None:
-        return []
-    return [
-        finder
-        for finder in nodes
-        if isinstance(finder, NextObject)
-        and getattr(finder.config.outputs.get("object_id"), "entry", None) is entry
-    ]
+def _moved(obj, point):
+    """`obj` (an initial object) with its centre at `point`, turned as it was."""
+    return dataclasses.replace(obj, pose=RigidTransform(obj.pose.rotation(), point))
 
 
 def _hands(known, pick) -> str:
