@@ -4,10 +4,12 @@ where an earlier put-down of it left it. A palletizing cell of a user (#26) had 
 say a carton put on the QC table was "1.81-2.21 m away" on the pallet, and a pick at the
 belt's end plan the pallet's cartons (the other branch's NextObject)."""
 
+import dataclasses
+
 import pytest
 
 from tests.corpus.corpus_helpers import assert_one_line_error, expected_place, write_workspace
-from tests.corpus.test_bad_cells import OBJECTS, PART_ON_TABLE, person
+from tests.corpus.test_bad_cells import CASES, OBJECTS, PART_ON_TABLE, person
 
 OTHER_TABLE = (
     "human:\n",
@@ -109,3 +111,42 @@ def test_a_pick_really_out_of_reach_is_still_found(name, tmp_path, hrc_drake):
     bad = case(tree, tuple(says), at)
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, bad))
     assert_one_line_error(status, err, expected_place(tmp_path, bad), *says)
+
+
+def test_each_thing_a_fallback_may_have_written_is_judged(tmp_path, hrc_drake):
+    """A user's pattern (#26): take a part found on the table, or else one made at a pose
+    of its own. Validate said nothing of a pick whose object a Fallback chose; the made
+    part lies 2.5 m from where the person stands, and the line names the SpawnObject."""
+    tree = (
+        '<ActorMovement target="table_front"/>\n'
+        "      <Fallback>\n"
+        '        <NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>\n'
+        '        <SpawnObject type="part" pose="2.4;0.8;0.93" object_id="{p}"/>\n'
+        "      </Fallback>\n"
+        '      <ActorPick object_id="{p}"/>'
+    )
+    says = (
+        "port 'object_id': part made at '2.4;0.8;0.93' (SpawnObject at ",
+        "at (2.40, 0.80, 0.93) is 2.49 m from where the person stands (location 'table_front'",
+    )
+    bad = case(tree, says)
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, bad))
+    assert_one_line_error(status, err, expected_place(tmp_path, bad), *says)
+
+
+def test_a_put_down_after_a_fallback_that_found_the_object_is_judged(tmp_path, hrc_drake):
+    """A user's flow-rack cell (#26): the box found and walked to in a Fallback's first
+    try (else it waits), then taken and put where an arm goes into the rack. Validate
+    said nothing, the run refused the put-down; the try that found it is judged."""
+    base = CASES["a put-down into a shelf from where the tote carried there is in its board"]
+    find = '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
+    walk = '<ActorMovement target="table_front"/>'
+    tree = base.files[base.found_in]
+    assert find + walk in tree
+    tried = f"<Fallback><Sequence>{find}{walk}</Sequence><AlwaysSuccess/></Fallback>"
+    says = (*(t.replace("): ", " gave: ") for t in base.says), "), holding what NextObject at ")
+    bad = dataclasses.replace(
+        base, says=says, files={**base.files, base.found_in: tree.replace(find + walk, tried)}
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, bad))
+    assert_one_line_error(status, err, expected_place(tmp_path, bad), *bad.says)
