@@ -37,10 +37,22 @@ from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
 from hrc_drake.nodes.stacks import COVER_OVERLAP, on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
-from hrc_drake.scenario.cell_findings import CellScene, stand_problem, walk_problem
+from hrc_drake.scenario.cell_findings import (
+    CellScene,
+    InitialObject,
+    stand_problem,
+    walk_problem,
+)
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
-from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
+from hrc_drake.scenario.reach_from_stand import (
+    finder_of,
+    held_at,
+    object_source,
+    parents_of,
+    point_text,
+    reach_findings,
+)
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
@@ -99,6 +111,7 @@ class _Checks:
         self.reach_problems: dict[tuple, str] = {}
         """What reach_problem said of each target (one pose may be read by many nodes)."""
         self.walk_problems: dict[tuple, str] = {}
+        self.planned_problems: dict[tuple, str] = {}
 
     @cached_property
     def planner(self) -> MotionPlanner:
@@ -141,16 +154,17 @@ class _Checks:
         if self.scenario.human is None:
             return iter(())
         known = {(id(node), port): values for node, port, values in inputs}
+        parents = parents_of(tree.node_list)
 
         def point(value: Known):
             pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
             return None if pose is None else np.asarray(pose.position)
 
-        def taken(pick):
-            return self._taken(tree.node_list, known, pick, agent)
+        def taken(pick, way):
+            return self._taken(parents, way, known, pick, agent)
 
-        def placing(pick, target, at_pick, picks):
-            return self._placing(tree.node_list, known, pick, target, agent, at_pick, picks)
+        def placing(pick, target, at_pick, picks, way):
+            return self._placing(parents, way, known, pick, target, agent, at_pick, picks)
 
         start = self.scenario.human.start[:2]
         return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
@@ -181,36 +195,39 @@ class _Checks:
         except NoWay:
             return None
 
-    def _taken(self, nodes, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
-        """The objects at the start that a pick may take, each with its label, centre and
-        what keeps the person from taking it (`_lying_in`)."""
+    def _taken(self, parents, way, known, pick, agent) -> list[tuple[str, np.ndarray, object]]:
+        """The objects that a pick may take the `way` the tree went, each with its label,
+        centre and what keeps the person from taking it (`_lying_in`)."""
         hands = _hands(known, pick)
         return [
             (label, obj.pose.translation(), partial(self._pick_problem, obj, agent, hands))
-            for label, obj in self._lying_in(nodes, known, pick)
+            for label, obj in self._lying_in(parents, way, known, pick, agent)
         ]
 
-    def _placing(self, nodes, known, pick, target, agent, at_pick, picks=()):
-        """What keeps the person from putting down at `target` what `pick` took: an object
-        of the one type the NextObjects it takes from filter for (None: not known), held
-        as the pick takes those of them lying in its area from where the person stands
-        there (`at_pick`), when that is one way; what any of `picks` (those that have run
+    def _placing(self, parents, way, known, pick, target, agent, at_pick, picks=()):
+        """What keeps the person from putting down at `target` what `pick` took the `way`
+        the tree went: an object of the one type the NextObject it takes from filters for,
+        held as the pick takes those of them lying in its area from where the person stands
+        there (`at_pick`), when that is one way (None: not known, nor when none lie there at
+        the start or a SpawnObject makes it: held as guessed, validate said an arm went
+        into a table the run put down on, #26); what any of `picks` (those that have run
         before the put-down) may have taken is gone from where it lay."""
         types = {
             parse_filter(wanted.value).get("type")
-            for finder in _finders(nodes, pick)
-            for wanted in known.get((id(finder), "filter"), ())
+            for wanted in known.get((id(finder_of(pick, parents, way)), "filter"), ())
         }
         if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
             return None
         (kind,) = types
         hands = _hands(known, pick)
-        taken = [obj for _, obj in self._lying_in(nodes, known, pick)]
+        taken = [obj for _, obj in self._lying_in(parents, way, known, pick, agent)]
+        if not taken:
+            return None
         holds = {
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
-        gone = taken + [obj for other in picks for _, obj in self._lying_in(nodes, known, other)]
+        gone = taken + [o for p in picks for _, o in self._lying_in(parents, way, known, p, agent)]
         return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
@@ -257,21 +274,57 @@ class _Checks:
         command = AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 
-    def _lying_in(self, nodes, known, pick) -> list[tuple]:
-        """The objects at the start that `pick` may take, with their labels: those of the
-        type a NextObject filters for (by type alone) in its known area, where it writes the
-        entry the pick reads."""
-        found = []
-        for finder in _finders(nodes, pick):
-            where = f"{finder.config.registration_id} at {finder.config.file}:{finder.config.line}"
-            for area in known.get((id(finder), "area"), ()):
-                for wanted in known.get((id(finder), "filter"), ()):
-                    condition = parse_filter(wanted.value)
-                    found += [
-                        (f"{obj.label} in area '{area.value.name}' ({where})", obj)
-                        for obj in self._in_area(area, condition)
-                    ]
-        return found
+    def _lying_in(self, parents, way, known, pick, agent) -> list[tuple]:
+        """The objects that `pick` may take the `way` the tree went, with their labels:
+        those at the start of the type the NextObject that last wrote the entry the pick
+        reads filters for (by type alone) in its known area, or the one the SpawnObject
+        that did makes at its known pose; moved where a put-down of them since leaves them."""
+        source = object_source(pick, parents, way)
+        if isinstance(source, ActorPlace):
+            return self._put_down(parents, way, known, source, agent)
+        if not isinstance(source, NextObject | SpawnObject):
+            return []
+        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
+        if isinstance(source, SpawnObject):
+            return self._made(known, source, agent, where)
+        return [
+            (f"{obj.label} in area '{area.value.name}' ({where})", obj)
+            for area in known.get((id(source), "area"), ())
+            for wanted in known.get((id(source), "filter"), ())
+            for obj in self._in_area(area, parse_filter(wanted.value))
+        ]
+
+    def _made(self, known, spawn, agent, where: str) -> list[tuple]:
+        """The object `spawn` makes at each of its known poses, with its label."""
+        types = self.scenario.workpieces.types
+        made = []
+        for kind in known.get((id(spawn), "type"), ()):
+            for value in known.get((id(spawn), "pose"), ()):
+                pose = _resolved(agent, value.value) if isinstance(value.value, Pose) else None
+                if kind.value in types and pose is not None:
+                    label = f"{kind.value} made at {value} ({where})"
+                    solid = Solid.of(types[kind.value])
+                    made.append(
+                        (label, InitialObject((), label, kind.value, solid, pose.to_transform()))
+                    )
+        return made
+
+    def _put_down(self, parents, way, known, place, agent) -> list[tuple]:
+        """What the pick before `place` may have taken, where `place` puts it down: at its
+        known targets, on top of what lies there (as the run puts it, hrc_drake.nodes.stacks)."""
+        config = place.config
+        where = f"put down by {config.registration_id} at {config.file}:{config.line}"
+        points = [_resolved(agent, v.value) for v in known.get((id(place), "target"), ())]
+        moved = []
+        held = held_at(place, parents, way)
+        for label, obj in self._lying_in(parents, way, known, held, agent):
+            lying = [(o.solid, o.pose) for o in self.scene.objects if o is not obj]
+            moved += [
+                (f"{label}, {where}", _moved(obj, on_top_of(p.position, obj.solid, lying)))
+                for p in points
+                if p is not None
+            ]
+        return moved
 
     def _in_area(self, area: Known, condition: dict) -> list:
         """The initial objects in a known area that a filter of their type alone takes."""
@@ -308,7 +361,14 @@ class _Checks:
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
         """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run
         would plan it (refused where it goes into the furniture even with the head and arms
-        kept out, which is worked out only where the plan itself goes in); "" when they can."""
+        kept out, which is worked out only where the plan itself goes in); "" when they can.
+        Asked once per command and place (each way the tree goes asks again)."""
+        key = (repr(command), tuple(stand))
+        if key not in self.planned_problems:
+            self.planned_problems[key] = self._plan_problem(command, stand)
+        return self.planned_problems[key]
+
+    def _plan_problem(self, command: AnimateCommand, stand) -> str:
         performer = self.performer
         try:
             activity = plan_animation(performer, command, stand, 0.0)
@@ -484,18 +544,9 @@ def _xyz(p) -> str:
     return "(" + ", ".join(f"{v:.2f}" for v in p) + ")"
 
 
-def _finders(nodes, pick) -> list:
-    """The NextObjects that write the entry `pick` reads its object from (none for a
-    literal id)."""
-    entry = getattr(pick.config.inputs.get("object_id"), "entry", None)
-    if entry is None:
-        return []
-    return [
-        finder
-        for finder in nodes
-        if isinstance(finder, NextObject)
-        and getattr(finder.config.outputs.get("object_id"), "entry", None) is entry
-    ]
+def _moved(obj, point):
+    """`obj` (an initial object) with its centre at `point`, turned as it was."""
+    return dataclasses.replace(obj, pose=RigidTransform(obj.pose.rotation(), point))
 
 
 def _hands(known, pick) -> str:
