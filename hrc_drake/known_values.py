@@ -83,7 +83,7 @@ def known_inputs(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[TreeNod
 
 
 def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | None]]:
-    """(node, port, key, the nearest key that is set) of every input a node reads from a
+    """(node, port, key, a hint: `_hint`) of every input a node reads from a
     blackboard entry that nothing ever sets: no scenario entry or SubTree literal, no
     node's output, SetBlackboard or script (reading it ends a run: "blackboard entry 'key'
     is not set"); and of every key a node's script (a Script port, a pre- or
@@ -94,6 +94,7 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
     if written is None:
         return
     created = {key.lstrip("@") for node in tree.node_list for key in _script_assigned(node)}
+    names = _written_names(tree, written)
     for node in tree.node_list:
         for port, binding in node.config.inputs.items():
             entry = getattr(binding, "entry", None)
@@ -101,14 +102,47 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
                 continue
             if isinstance(node, Switch) and port in node.case_ports:
                 continue
-            yield node, port, binding.key, closest(binding.key, _set_keys(node, written))
+            yield node, port, binding.key, _hint(binding.key, node, written, names)
         for port, key in _script_reads(node):
             entry = node.blackboard.entry(key)
             if entry is None and key.lstrip("@") in created:
                 continue
             if entry is not None and (entry.value is not UNSET or id(entry) in written):
                 continue
-            yield node, port, key, closest(key, _set_keys(node, written))
+            yield node, port, key, _hint(key, node, written, names)
+
+
+SUBTREE_HINT = (
+    "'{key}' is set outside this SubTree, whose blackboard is its own: pass it in on the "
+    'SubTree ({key}="{{{key}}}") or give the SubTree _autoremap="true"'
+)
+
+
+def _hint(key: str, node: TreeNode, written: set[int], names: set[str]) -> str | None:
+    """What the user probably meant by an unset `key` (None: no guess): a key written on
+    another blackboard was set outside a SubTree that does not see it (a user's inspection
+    SubTree read a route its caller set, and was told "did you mean 'robot_speed'?"); else
+    the nearest key that is set where the node reads."""
+    if key.lstrip("@") in names:
+        return SUBTREE_HINT.format(key=key.lstrip("@"))
+    near = closest(key, _set_keys(node, written))
+    return f"did you mean '{near}'?" if near else None
+
+
+def _written_names(tree: Tree, written: set[int]) -> set[str]:
+    """The keys written on every blackboard of the tree: of the written entries, and those a
+    SetBlackboard or a script writes before anything declares them."""
+    names = {
+        key
+        for node in tree.node_list
+        for key, entry in node.blackboard.local_entries().items()
+        if id(entry) in written
+    }
+    for node in tree.node_list:
+        names.update(key.lstrip("@") for key in _script_assigned(node))
+        if isinstance(node, SetBlackboard):
+            names.add(_set_key(node))
+    return names
 
 
 def _written_entries(tree: Tree) -> set[int] | None:
@@ -218,10 +252,15 @@ class _KnownValues:
 
 
 def _set_entry(node: SetBlackboard) -> Entry | None:
-    """The entry a SetBlackboard writes (`output_key="key"` or `"{key}"`), if declared."""
-    binding = node.config.inputs.get("output_key")
-    key = binding.key if isinstance(binding, EntryRef) else getattr(binding, "value", "")
+    """The entry a SetBlackboard writes, if declared."""
+    key = _set_key(node)
     return node.blackboard.entry(key) if key else None
+
+
+def _set_key(node: SetBlackboard) -> str:
+    """The key a SetBlackboard writes (`output_key="key"` or `"{key}"`)."""
+    binding = node.config.inputs.get("output_key")
+    return binding.key if isinstance(binding, EntryRef) else getattr(binding, "value", "")
 
 
 def _copied(values: list[Known], node: SetBlackboard) -> list[Known]:

@@ -148,6 +148,17 @@ CASES = {
         ),
         'input="{at}"',
     ),
+    "a SubTree reads what its caller set": Case(
+        T,
+        '<SubTree ID="Reach" at="pick_spot"/>\n',
+        '<SetBlackboard output_key="at" value="pick_spot"/><SubTree ID="Reach"/>\n',
+        (
+            "port 'input': blackboard entry 'at' is never set",
+            "('at' is set outside this SubTree, whose blackboard is its own: pass it in on "
+            'the SubTree (at="{at}") or give the SubTree _autoremap="true")',
+        ),
+        'input="{at}"',
+    ),
     "a script counts from a key never set": Case(
         T,
         MOVE,
