@@ -141,8 +141,12 @@ class _Worker:
         self.spec: RunSpec | None = None
 
     def start(self, spec: RunSpec) -> None:
+        """Hands the worker its run; one that died before taking it (killed between runs:
+        the send broke the sweep with BrokenPipeError) is reported by `_finished` as it is
+        when it dies during the run."""
         self.spec = spec
-        self.connection.send(spec)
+        with contextlib.suppress(OSError):
+            self.connection.send(spec)
 
     def result(self) -> dict | None:
         try:

@@ -10,10 +10,13 @@ import signal
 import subprocess
 import sys
 import time
+from multiprocessing import get_context
 from pathlib import Path
 
 from hrc_drake.scenario import resolve_scenario_path
 from hrc_drake.sweep import parse_seeds, plan, sweep
+from hrc_drake.sweep.execute import _finished, _Worker
+from hrc_drake.sweep.rows import RunSpec
 from tests.corpus.corpus_helpers import Case, write_workspace
 
 BASE = resolve_scenario_path("base")
@@ -119,6 +122,23 @@ def wait_for(condition, seconds=60.0):
 def alive(pid: int) -> bool:
     status = Path(f"/proc/{pid}/status")
     return status.is_file() and "State:\tZ" not in status.read_text()
+
+
+def test_a_worker_killed_before_it_takes_its_run_is_a_failed_row():
+    """Killed between runs, as the sweep handed it the next one: the send broke the whole
+    sweep (BrokenPipeError; CI, once, with the machine loaded). It is that run's failed
+    row, as a worker killed during its run is."""
+    context = get_context("spawn")
+    worker = _Worker(context)
+    worker.process.kill()
+    worker.process.join()
+    worker.start(RunSpec("base", seed=4))
+    rows: list[dict] = []
+    free = _finished([worker], rows.append, context)
+    assert [row["seed"] for row in rows] == [4]
+    assert "the worker process running this run died (killed by SIGKILL)" in rows[0]["error"]
+    for fresh in free:
+        fresh.stop()
 
 
 def test_a_killed_worker_is_a_failed_row_and_retry_failed_runs_it_again(tmp_path, hrc_drake):
