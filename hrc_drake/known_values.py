@@ -94,7 +94,7 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
     if written is None:
         return
     created = {key.lstrip("@") for node in tree.node_list for key in _script_assigned(node)}
-    names = _written_names(tree, written)
+    names = created | _written_names(tree, written)
     for node in tree.node_list:
         for port, binding in node.config.inputs.items():
             entry = getattr(binding, "entry", None)
@@ -131,18 +131,14 @@ def _hint(key: str, node: TreeNode, written: set[int], names: set[str]) -> str |
 
 def _written_names(tree: Tree, written: set[int]) -> set[str]:
     """The keys written on every blackboard of the tree: of the written entries, and those a
-    SetBlackboard or a script writes before anything declares them."""
-    names = {
+    SetBlackboard writes before anything declares them (a script's: `created`)."""
+    declared = {
         key
         for node in tree.node_list
         for key, entry in node.blackboard.local_entries().items()
         if id(entry) in written
     }
-    for node in tree.node_list:
-        names.update(key.lstrip("@") for key in _script_assigned(node))
-        if isinstance(node, SetBlackboard):
-            names.add(_set_key(node))
-    return names
+    return declared | {_set_key(n) for n in tree.node_list if isinstance(n, SetBlackboard)}
 
 
 def _written_entries(tree: Tree) -> set[int] | None:

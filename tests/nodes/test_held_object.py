@@ -126,19 +126,22 @@ def test_an_animation_keeps_the_arms_out_of_the_objects_where_the_person_stands(
         _material(2, (3.0, 0.0, 0.95)),
         _material(3, (0.0, 0.2, 1.0), holder=wp.BOTH_HANDS),
     )
-    xml = (
-        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
-        '<ActorAnimation animation_name="inspect"/>'
-        "</BehaviorTree></root>"
-    )
+    nearby = _nearby_told('<ActorAnimation animation_name="inspect"/>', objects, 1.57)
+    assert nearby == ["material 1"]
+
+
+def _nearby_told(node_xml: str, objects, heading: float) -> list[str]:
+    """The objects a tree of one person node tells the person to keep the arms out of,
+    the person at the origin facing `heading`, with `objects` in the cell."""
+    xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{node_xml}</BehaviorTree></root>'
     agent = Agent("human", Places())
     agent.statuses["workpieces"] = wp.WorkpiecesStatus(
-        time=0.0, objects=objects, results={}, free_slots={}
+        time=0.0, objects=tuple(objects), results={}, free_slots={}
     )
-    agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, 1.57))
+    agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, heading))
     load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
     (command,) = agent.take_outbox()["human"]
-    assert [box.name for box in command.nearby] == ["material 1"]
+    return [box.name for box in command.nearby]
 
 
 @pytest.mark.parametrize("speed, kept", [(0.0, True), (0.3, False)], ids=["still", "moving"])
@@ -153,17 +156,5 @@ def test_a_pick_keeps_the_arms_out_of_a_box_the_stopped_robot_holds_over_it(spee
         _material(2, (0.5, 0.0, 1.1), holder=wp.ROBOT_HOLDER),
         velocity=SpatialVelocity([0.0, 0.0, 0.0], [speed, 0.0, 0.0]),
     )
-    xml = (
-        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
-        '<ActorPick object_id="1"/>'
-        "</BehaviorTree></root>"
-    )
-    agent = Agent("human", Places())
-    agent.statuses["workpieces"] = wp.WorkpiecesStatus(
-        time=0.0, objects=(taken, hanging), results={}, free_slots={}
-    )
-    agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, 0.0))
-    load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
-    (command,) = agent.take_outbox()["human"]
-    names = [box.name for box in command.nearby]
+    names = _nearby_told('<ActorPick object_id="1"/>', (taken, hanging), 0.0)
     assert names == (["material 2 the robot holds"] if kept else []), names
