@@ -3,7 +3,7 @@
 Every command carries a sequence number `seq`. Each issuer's input port (`<issuer>_command`,
 hrc_drake.wiring) holds its recent commands; the actor acts once on each new seq. A command
 arriving while a Movement or Animation runs is rejected; Cancel stops the running one;
-SetCalled is a flag and never conflicts.
+InTheWay may change the running walk; SetCalled is a flag and never conflicts.
 """
 
 from dataclasses import dataclass
@@ -73,6 +73,9 @@ class MoveCommand:
     """What the hands hold meanwhile (they keep it in the carry posture)."""
     nearby: tuple[Box, ...] = ()
     """Objects near the target: what the hands hold keeps out of them where the walk ends."""
+    in_the_way: tuple[Box, ...] = ()
+    """Objects standing over the floor (what the robot holds still): a walk that would pass
+    through one goes round it."""
 
 
 @dataclass(frozen=True)
@@ -99,12 +102,22 @@ class CancelCommand:
 
 
 @dataclass(frozen=True)
+class InTheWayCommand:
+    """What now stands over the floor (the robot stopped holding it): a walk under way whose
+    rest would pass through one of `boxes` comes to a stop and goes round them, or, with no
+    way round, stays stopped and fails. Never busy: it comes while a walk runs."""
+
+    seq: int
+    boxes: tuple[Box, ...]
+
+
+@dataclass(frozen=True)
 class SetCalledCommand:
     seq: int
     called: bool
 
 
-HumanCommand = MoveCommand | AnimateCommand | CancelCommand | SetCalledCommand
+HumanCommand = MoveCommand | AnimateCommand | CancelCommand | InTheWayCommand | SetCalledCommand
 
 
 @dataclass(frozen=True)

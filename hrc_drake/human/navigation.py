@@ -92,6 +92,8 @@ from there leaves it as from inside)."""
 EXIT_SPACING = 0.05
 """m: a start or goal with no room is left through one of the free floor's edge points
 this far apart (the nearest that a straight step reaches)."""
+KEPT_MAPS = 8
+"""Maps with extra obstacles (`with_obstacles`) kept per map."""
 SEARCH_STEP, SEARCH_RINGS, SEARCH_DIRECTIONS = 0.05, 15, 16
 """A place to stand that does not work moves to the nearest that does on these rings."""
 ROBOT_KEEP_OUT = 0.5
@@ -157,6 +159,19 @@ def cell_obstacles(plant, inspector) -> list[Obstacle]:
     return found
 
 
+def box_obstacle(name: str, center, yaw: float, size) -> Obstacle | None:
+    """The obstacle of a box standing over the floor (centre, heading, extents along its
+    own axes), None when it lies outside the body's height band."""
+    low, high = center[2] - size[2] / 2, center[2] + size[2] / 2
+    if high < BAND[0] or low > BAND[1]:
+        return None
+    c, s = cos(yaw), sin(yaw)
+    half = ((-1, -1), (1, -1), (1, 1), (-1, 1))
+    corners = [(u * size[0] / 2, v * size[1] / 2) for u, v in half]
+    outline = Polygon([(center[0] + c * u - s * v, center[1] + s * u + c * v) for u, v in corners])
+    return Obstacle(name, outline, low, high)
+
+
 def _corners(shape) -> np.ndarray | None:
     """The corners of the box round a box or cylinder (in its frame)."""
     if isinstance(shape, Box):
@@ -180,6 +195,7 @@ class NavigationMap:
         self.height = height
         self.body = tuple(s.scaled(height / DEFAULT_HEIGHT) for s in BODY)
         self._reach = [self._body_at(o.low, o.high) for o in obstacles]
+        self._keep_out_areas = tuple(keep_out)
         self.keep_out = unary_union(list(keep_out)) if keep_out else Polygon()
         self.keep_out_clearance = max(s.walking for s in self.body) + WALK_MARGIN
         grown = [grown_outline(o.outline, self.clearance(o)) for o in obstacles] + [
@@ -191,6 +207,30 @@ class NavigationMap:
         self._edge = corners.boundary
         self._corners = [p for polygon in _polygons(corners) for p in _rings_of(polygon)]
         self._outlines = np.array([o.outline for o in obstacles], dtype=object)
+        self._with: dict[tuple[Obstacle, ...], NavigationMap] = {}
+
+    def with_obstacles(self, extra: tuple[Obstacle, ...]) -> "NavigationMap":
+        """This map with the `extra` obstacles too (what the robot holds still over the
+        floor). The last KEPT_MAPS are kept: a robot stopped holding something stays so
+        for several walks, and a map's graph is built on its first walk."""
+        if extra not in self._with:
+            if len(self._with) >= KEPT_MAPS:
+                del self._with[next(iter(self._with))]
+            obstacles = [*self.obstacles, *extra]
+            self._with[extra] = NavigationMap(obstacles, self._keep_out_areas, self.height)
+        return self._with[extra]
+
+    def walked_into(self, path, obstacles: tuple[Obstacle, ...]) -> tuple[Obstacle, ...]:
+        """The `obstacles` that the walking body, swept along the polyline `path`, enters
+        deeper than STAND_TOLERANCE (none along an empty path)."""
+        if not path:
+            return ()
+        line = LineString(path) if len(path) > 1 else Point(path[0])
+        return tuple(
+            o
+            for o in obstacles
+            if line.distance(o.outline) < self._body_at(o.low, o.high).walking - STAND_TOLERANCE
+        )
 
     def _body_at(self, low: float, high: float) -> BodySlice:
         """The body's slices that share heights with [low, high], as one (the largest of

@@ -23,6 +23,7 @@ from hrc_drake.human.grasp import (
     release_targets,
 )
 from hrc_drake.human.hand_ways import WITHDRAWAL, withdrawal
+from hrc_drake.human.in_the_way import in_the_way
 from hrc_drake.human.messages import NULL_QUATERNION, AnimateCommand, Box, Hold, MoveCommand
 from hrc_drake.human.navigation import NavigationMap, NoWay
 from hrc_drake.human.palm_room import room_for_the_palms
@@ -73,7 +74,8 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
     Unreachable when there is no such place or no walk keeps clear of the cell."""
     carry = _carry(performer, command.hold)
     furniture = performer.furniture.with_boxes(command.nearby)
-    activity = _walk(performer, command, pose, t, carry, furniture)
+    navigation = _walked_on(performer, command, pose)
+    activity = _walk(performer, command, pose, t, carry, furniture, navigation)
     if carry is None:
         return activity
     wanted = np.asarray(command.target_position[:2], dtype=float)
@@ -87,24 +89,36 @@ def plan_movement(performer: Performer, command: MoveCommand, pose, t: float) ->
         if hypot(*(end - wanted)) > STOP_SHORT:
             break
         shorter = replace(command, target_position=end)
-        activity = _walk(performer, shorter, pose, t, carry, furniture)
+        activity = _walk(performer, shorter, pose, t, carry, furniture, navigation)
         depth, problem = arrived_going_in(performer, activity, carry, furniture)
     if problem:
         raise Unreachable(problem)
     return activity
 
 
-def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, furniture):
-    """The walk of `plan_movement`, to the target or the nearest place with room, with
-    what the hands hold as `carry` (None: nothing) stepped back from `furniture` before a
-    first turn."""
+def _walked_on(performer: Performer, command: MoveCommand, pose) -> NavigationMap | None:
+    """The map the walk goes on: the cell's, with what stands in its way (the command's
+    `in_the_way`) too where the walk on the cell's would pass through it."""
+    navigation = performer.navigation
+    obstacles = in_the_way(command.in_the_way)
+    if navigation is None or not obstacles:
+        return navigation
+    if navigation.walked_into(_path(navigation, command, pose[:2]), obstacles):
+        return navigation.with_obstacles(obstacles)
+    return navigation
+
+
+def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, furniture, navigation):
+    """The walk of `plan_movement` on `navigation`, to the target or the nearest place
+    with room, with what the hands hold as `carry` (None: nothing) stepped back from
+    `furniture` before a first turn."""
     clip = performer.clips.get(command.animation_name)
     if clip is None or not walks(clip):
         raise Unreachable(f"'{command.animation_name}' is not a walking animation")
     x, y, yaw = pose
     standing = _yaw_of(command.target_quaternion)
     oriented = tuple(command.target_quaternion) != NULL_QUATERNION
-    path = _path(performer, command, (x, y))
+    path = _path(navigation, command, (x, y))
     segments: list[Segment] = []
     start = t
     heading = yaw
@@ -113,7 +127,7 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, fur
         if back is not None:
             segments.append(back)
             start = back.end(performer)
-            path = _path(performer, command, back.end_position)
+            path = _path(navigation, command, back.end_position)
     distance = command.animation_distance or clip.animation_distance
     speed = distance / clip.duration
     stretches = _stretches(path)
@@ -145,12 +159,11 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, fur
     return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
 
 
-def _path(performer: Performer, command: MoveCommand, start) -> list[tuple[float, float]]:
+def _path(navigation: NavigationMap | None, command: MoveCommand, start) -> list:
     """The walk's path from `start` (x, y): round the cell's geometry to the nearest place
-    to stand that has room (the navigation map), through the command's waypoints."""
+    to stand that has room (on `navigation`), through the command's waypoints."""
     goal = tuple(command.target_position[:2])
     waypoints = command.waypoints
-    navigation = performer.navigation
     if navigation is not None:
         oriented = tuple(command.target_quaternion) != NULL_QUATERNION
         yaw = _yaw_of(command.target_quaternion) if oriented else None

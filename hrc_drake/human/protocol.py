@@ -8,6 +8,7 @@ issuer's new commands, plans their activities (hrc_drake.human.planning), finish
 that is done, fires clip events and samples the pose; `status` is what the person reports.
 """
 
+from dataclasses import replace
 from math import hypot
 from typing import NamedTuple
 
@@ -18,10 +19,12 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.going_in import refuse_going_in
 from hrc_drake.human.grasp import hold_of
+from hrc_drake.human.in_the_way import in_the_way, rest_of_walk
 from hrc_drake.human.messages import (
     CancelCommand,
     Hold,
     HumanStatus,
+    InTheWayCommand,
     MoveCommand,
     SetCalledCommand,
 )
@@ -82,6 +85,8 @@ class ActorState(NamedTuple):
     """Joint positions at the last update."""
     hold: Hold | None = None
     """What the hands hold once the current activity is done (the last command said)."""
+    move: MoveCommand | None = None
+    """The walk under way (what it goes round when something comes into its way)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -153,6 +158,8 @@ def _take_commands(performer: Performer, state: ActorState, t: float, commands: 
 def _handle(performer: Performer, state: ActorState, command, t: float) -> ActorState:
     if isinstance(command, SetCalledCommand):
         return _record(state._replace(called=command.called), command.seq, SUCCEEDED)
+    if isinstance(command, InTheWayCommand):
+        return _record(_go_round(performer, state, command.boxes, t), command.seq, SUCCEEDED)
     if isinstance(command, CancelCommand):
         if state.running < 0:
             return _record(state, command.seq, SUCCEEDED, "nothing to cancel")
@@ -189,6 +196,7 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
         running=command.seq,
         animation=command.animation_name,
         hold=hold_after(command, state.anchor),
+        move=command if isinstance(command, MoveCommand) else None,
     )
     if _aimed(command):
         try:
@@ -196,6 +204,29 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
         except Unreachable as error:
             return _record(state, command.seq, FAILED, str(error))
     return _record(switched, command.seq, RUNNING)
+
+
+def _go_round(performer: Performer, state: ActorState, boxes: tuple, t: float) -> ActorState:
+    """The walk under way, if the rest of it would pass through one of `boxes`: coming to a
+    stop in a step or two and walking on round them; with no way round, stopped, and its
+    command failed saying what is in the way."""
+    if state.state != "MOVEMENT" or performer.navigation is None:
+        return state
+    obstacles = in_the_way(boxes)
+    blocking = performer.navigation.walked_into(rest_of_walk(state.activity, t), obstacles)
+    if not blocking:
+        return state
+    stop = plan_stop(performer, state.activity, state.base, state.hold, t)
+    walking, t0 = still_stepping(performer, stop, t)
+    command = replace(state.move, in_the_way=boxes)
+    try:
+        activity = plan_movement(performer, command, stop.final_pose, t0)
+    except Unreachable as error:
+        names = ", ".join(f"'{o.name}'" for o in blocking)
+        state = _record(state, state.running, FAILED, f"{names} in the way: {error}")
+        return _switch(performer, state, stop, t, state="IDLE", running=-1, animation=IDLE_CLIP)
+    activity = Activity.plan(performer, (*walking, *activity.segments), activity.final_pose)
+    return _switch(performer, state, activity, t, move=command)
 
 
 def _aimed(command) -> bool:

@@ -135,6 +135,7 @@ class ActorMovement(PersonCommandNode):
         target = self.agent.resolve_pose(self.get_input("target"))
         distance = self.get_input("animation_distance")
         hold = self.hold()
+        self._seen = self._held_still()
         return human.MoveCommand(
             seq,
             target_position=target.position,
@@ -143,7 +144,30 @@ class ActorMovement(PersonCommandNode):
             animation_distance=distance if distance > 0 else None,
             hold=hold,
             nearby=self.objects_near(target.position) if hold is not None else (),
+            in_the_way=tuple(self._seen.values()),
         )
+
+    def on_running(self) -> Status:
+        """The walk's outcome; meanwhile, when the robot comes to a stop holding something,
+        the person is told it is in the way (a person walked through a carton hanging from
+        a gripper stopped over the walkway, a user's palletizing cell)."""
+        still = self._held_still()
+        if still.keys() - self._seen.keys():
+            boxes = tuple(still.values())
+            self.agent.send(self.actor, lambda seq: human.InTheWayCommand(seq, boxes))
+        self._seen = still
+        return super().on_running()
+
+    def _held_still(self) -> dict[int, human.Box]:
+        """What the robot holds still, by object id: it stands over the floor."""
+        status = self.agent.workpieces
+        if status is None:
+            return {}
+        return {
+            obj.id: human.Box(*box_of(obj), name=_named(obj))
+            for obj in status.objects
+            if obj.holder is not None and _in_the_way(obj)
+        }
 
 
 class ActorCarry(ActorMovement):
