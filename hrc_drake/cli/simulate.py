@@ -114,6 +114,7 @@ def _run(args) -> int:
         _print_node_failures(scenario.name, stopped.report.metrics)
         raise
     _print_node_failures(scenario.name, report.metrics)
+    _warn_of_findings(scenario, resolve_scenario_path(args.scenario))
     print(
         f"{scenario.name}: simulated {report.metrics['duration']:.1f} s in "
         f"{report.wall_time:.1f} s (real-time factor {report.real_time_factor:.1f})"
@@ -122,6 +123,22 @@ def _run(args) -> int:
         print(f"  {line}")
     print_files(report.files)
     return 0
+
+
+def _warn_of_findings(scenario, path) -> None:
+    """What `validate` finds, as warnings after a run that completed: a user who runs a
+    cell without validating it learns of its mistakes with the run's outcome (a user's
+    palletizing cell ran 120 s with 6 of validate's lines unread). A finding may be a false
+    alarm (validate cannot know a tree's conditions), so it does not stop a run; a run that
+    stops says only why, in one line."""
+    from hrc_drake.scenario.findings import findings
+
+    found = findings(scenario, path)
+    for finding in found:
+        print(f"{PROG}: warning: {finding}", file=sys.stderr)
+    if found:
+        lines = f"{len(found)} line{'s' if len(found) != 1 else ''}"
+        print(f"{PROG}: warning: validate finds {lines} above in the cell as run", file=sys.stderr)
 
 
 def _serve_groot(port: int, host: str | None, station):

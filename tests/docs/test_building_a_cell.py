@@ -66,6 +66,20 @@ def test_the_validate_line_the_guide_quotes_is_validates(tmp_path, hrc_drake, mo
     assert err.removeprefix("hrc-drake: error: ").split() == quoted.split()
 
 
+def test_a_run_of_a_cell_validate_refuses_runs_and_warns(tmp_path, hrc_drake, monkeypatch):
+    """A user who runs without validating sees the run and validate's lines as warnings."""
+    cell = GUIDE_SCRIPT.write_guide_cell(tmp_path)
+    cell.write_text(cell.read_text().replace(*NO_ROOM))
+    monkeypatch.chdir(tmp_path)
+    status, out, err = hrc_drake("run", "cell.yaml", "--duration", "0.2", "--out", "run")
+    quoted = re.search(r"```text\n(.*?)```", GUIDE.read_text(), re.DOTALL).group(1)
+    first, last = err.strip().split("\n")
+    assert status == 0 and (tmp_path / "run" / "report.json").is_file()
+    assert first.removeprefix("hrc-drake: warning: ").split() == quoted.split()
+    assert last == "hrc-drake: warning: validate finds 1 line above in the cell as run"
+    assert "simulated 0.2 s" in out
+
+
 def released(metrics: dict) -> int:
     """Parts the robot let go of (on the belt)."""
     robot = metrics["bt"]["robot"]
