@@ -158,14 +158,16 @@ def _holding(hands: str, center, heading: float, left, size) -> dict:
     """The palms on the side faces of an object of `size` (its extents along the faces,
     across them, up) whose centre is at `center`, `left` the faces' normal towards the
     person's left: the palms back along the faces, towards the person, as far as
-    `palm_back`."""
+    `palm_back`, and turned with the faces (held to the person's heading, a palm 45° to the
+    face of a part turned 135° went 1.02 cm into it with its edge, a user's cell)."""
     depth, width, height = size
     toward = np.array([left[1], -left[0], 0.0])  # along the faces, ahead for `left` ahead
     if toward @ [math.cos(heading), math.sin(heading), 0.0] < 0:
         toward = -toward
     held = np.asarray(center, dtype=float) - palm_back(hands, depth) * toward
     held = held + [0.0, 0.0, grip_lift(height)]
-    return _on_sides(hands, held, left, width, facing(heading, grip_style(height)))
+    along = math.atan2(toward[1], toward[0])
+    return _on_sides(hands, held, left, width, facing(along, grip_style(height)))
 
 
 def reach_target(body: HumanBody, point, heading: float) -> dict:

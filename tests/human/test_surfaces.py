@@ -517,6 +517,21 @@ def test_a_part_taken_in_one_hand_beside_another_is_taken():
     assert realism_verdict(report.metrics["realism"])[0].startswith("within its limits")
 
 
+PART_TURNED = Path(__file__).resolve().parent / "cells" / "part_turned" / "cell.yaml"
+
+
+def test_a_part_turned_to_the_person_is_taken_with_the_palm_on_its_face():
+    """A user's machine-tending cell, cut down: a 6 cm part the robot left turned 135°
+    taken in the right hand. The palm kept the person's heading, 45° to the part's face,
+    and its edge went 1.02 cm into the part; turned with the face, it closes on it."""
+    report = run(load_scenario(PART_TURNED), duration=3.0)
+    pick = report.metrics["bt"]["human"]["ActorPick::3"]
+    assert (pick["successes"], pick["failures"]) == (1, 0), pick
+    into = report.metrics["realism"]["penetration_objects"]
+    assert into["max"] <= 0.003, into
+    assert report.metrics["realism"]["hand_object_gap"]["max"] <= 0.015
+
+
 def _between_the_hands(body, q) -> RigidTransform:
     """The frame midway between the hands' grasp frames, x from the right hand to the left:
     what two palms on its sides hold moves with it."""
