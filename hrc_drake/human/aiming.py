@@ -7,7 +7,7 @@ person squats (pelvis height and legs), and a target that still stays out of rea
 `Unreachable`. Feet outrank hands: the person bends rather than sliding a foot.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from pydrake.math import RigidTransform
@@ -56,6 +56,10 @@ class AimedMotion:
     held: tuple[float, float] = (0.0, 0.0)
     """The clip times between which the aimed hands are on their targets or hold what they
     took (on their way there and back they are free)."""
+    resting: tuple[np.ndarray, np.ndarray] | None = None
+    """(joint indices, positions) of an arm that is not aimed, held as it hangs standing
+    at ease: one hand takes or puts down, and the other does not reach out with it into the
+    air (towards a robot standing there, a user's machine-tending cell)."""
 
     def holds(self, clip_time: float) -> bool:
         return self.held[0] <= clip_time <= self.held[1]
@@ -80,8 +84,18 @@ class AimedMotion:
         a, b = self.offsets[first + k], self.offsets[first + k + 1]
         return a + (u - k) * (b - a)
 
+    def with_the_other_arm_at_ease(self, body: HumanBody, idle) -> "AimedMotion":
+        """This motion with the arm that is not aimed hanging as in the `idle` clip's first
+        pose."""
+        (free,) = (side for side in SIDES if side not in self.hands)
+        indices = arm_indices(body, (free,))
+        return replace(self, resting=(indices, idle.sample(0.0)[indices]))
+
     def pose(self, placed: np.ndarray, clip_time: float) -> np.ndarray:
-        return placed + self.offset(clip_time)
+        q = placed + self.offset(clip_time)
+        if self.resting is not None:
+            q[self.resting[0]] = self.resting[1]
+        return q
 
 
 def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:

@@ -72,7 +72,8 @@ class MoveCommand:
     hold: Hold | None = None
     """What the hands hold meanwhile (they keep it in the carry posture)."""
     nearby: tuple[Box, ...] = ()
-    """Objects near the target: what the hands hold keeps out of them where the walk ends."""
+    """Objects near the start and the target: the arms keep out of them as the person turns
+    there, and what the hands hold where the walk ends."""
     in_the_way: tuple[Box, ...] = ()
     """Objects standing over the floor (what the robot holds still): a walk that would pass
     through one goes round it."""

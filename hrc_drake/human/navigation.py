@@ -221,16 +221,24 @@ class NavigationMap:
         return self._with[extra]
 
     def walked_into(self, path, obstacles: tuple[Obstacle, ...]) -> tuple[Obstacle, ...]:
-        """The `obstacles` that the walking body, swept along the polyline `path`, enters
-        deeper than STAND_TOLERANCE (none along an empty path)."""
+        """The `obstacles` that the walking body, swept along the polyline `path` short of
+        its end, or the body stepping round on the spot at its end, enters deeper than
+        STAND_TOLERANCE (none along an empty path): the end is a place to stand, judged as
+        `stand_problem` judges one (a walk told again and again of what stood beside its
+        place, walked there again each time)."""
         if not path:
             return ()
-        line = LineString(path) if len(path) > 1 else Point(path[0])
-        return tuple(
-            o
-            for o in obstacles
-            if line.distance(o.outline) < self._body_at(o.low, o.high).walking - STAND_TOLERANCE
-        )
+        end = Point(path[-1])
+        line = LineString(path) if len(path) > 1 else end
+        found = []
+        for o in obstacles:
+            body = self._body_at(o.low, o.high)
+            swept = line.buffer(body.walking - STAND_TOLERANCE)
+            passing = swept.difference(end.buffer(body.walking + CORNER_MARGIN))
+            standing = end.distance(o.outline) < body.turning - STAND_TOLERANCE
+            if standing or passing.intersects(o.outline):
+                found.append(o)
+        return tuple(found)
 
     def _body_at(self, low: float, high: float) -> BodySlice:
         """The body's slices that share heights with [low, high], as one (the largest of

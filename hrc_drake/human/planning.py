@@ -156,7 +156,7 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, fur
             )
     if not segments:
         segments.append(TurnSegment.between(performer, t, (x, y), yaw, yaw, carry))
-    return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)))
+    return Activity.plan(performer, segments, (*path[-1], wrap_angle(final_yaw)), furniture)
 
 
 def _path(navigation: NavigationMap | None, command: MoveCommand, start) -> list:
@@ -213,6 +213,8 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
             furniture,
             lowest,
         )
+    if aim is not None and len(aim.hands) == 1:
+        aim = aim.with_the_other_arm_at_ease(performer.body, performer.clips[IDLE_CLIP])
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
     return Activity.plan(performer, (segment,), pose, furniture, _reached_for(clip, command, t))
 

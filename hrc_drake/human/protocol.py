@@ -158,8 +158,8 @@ def _take_commands(performer: Performer, state: ActorState, t: float, commands: 
 def _handle(performer: Performer, state: ActorState, command, t: float) -> ActorState:
     if isinstance(command, SetCalledCommand):
         return _record(state._replace(called=command.called), command.seq, SUCCEEDED)
-    if isinstance(command, InTheWayCommand):
-        return _record(_go_round(performer, state, command.boxes, t), command.seq, SUCCEEDED)
+    if isinstance(command, InTheWayCommand):  # news, not an action: no result to report
+        return _go_round(performer, state, command.boxes, t)
     if isinstance(command, CancelCommand):
         if state.running < 0:
             return _record(state, command.seq, SUCCEEDED, "nothing to cancel")

@@ -47,20 +47,31 @@ class PersonCommandNode(CommandNode):
             return None
         return hold_of(grasp_of(obj, HANDS_OF[obj.holder]), self._heading())
 
-    def objects_near(self, point, taken: int | None = None) -> tuple[human.Box, ...]:
+    def objects_near(
+        self, point, taken: int | None = None, robot: bool = True
+    ) -> tuple[human.Box, ...]:
         """The objects within NEARBY of `point` on the floor (not `taken`) that are free or
-        held still by the robot: what the person's arms, and what the hands hold, keep out
-        of there."""
+        held still by the robot, and the robot while it stands still (`robot`): what the
+        person's arms, and what the hands hold, keep out of there."""
         status = self.agent.workpieces
-        if status is None:
-            return ()
-        return tuple(
+        objects = status.objects if status is not None else ()
+        boxes = [
             human.Box(*box_of(obj), name=_named(obj))
-            for obj in status.objects
-            if _in_the_way(obj)
-            and obj.id != taken
-            and np.hypot(*(obj.pose.translation()[:2] - np.asarray(point[:2]))) <= NEARBY
-        )
+            for obj in objects
+            if _in_the_way(obj) and obj.id != taken
+        ]
+        if robot:
+            boxes += self.robot_at_rest()
+        return tuple(b for b in boxes if np.hypot(*np.subtract(b.center[:2], point[:2])) <= NEARBY)
+
+    def robot_at_rest(self) -> list[human.Box]:
+        """The robot's parts, while it stands still, as boxes (a hand went 3.7 cm into a
+        stopped gripper picking a part beside it, a user's machine-tending cell; a person
+        walked into a stopped arm 24 times in a user's palletizing cell)."""
+        status = self.agent.safety
+        if status is None or status.robot_speed >= STILL or not len(status.robot_parts):
+            return []
+        return robot_boxes(*status.robot_parts)
 
     def _heading(self) -> float:
         status = self.agent.human
@@ -72,6 +83,31 @@ class PersonCommandNode(CommandNode):
         14.1 cm into one, a kitting cell of our own)."""
         status = self.agent.human
         return tuple(status.base_pose[:2]) if status is not None else (0.0, 0.0)
+
+
+ROBOT = "the robot at rest"
+"""What a refusal calls the robot's parts."""
+
+
+def robot_boxes(starts, spans, radii) -> list[human.Box]:
+    """Boxes round the cylinders of capsules (starts and spans, parts × 3, and radii;
+    the robot's own shapes are cylinders): each in pieces no longer than its radius, so
+    that the boxes round a slanted one stay close to it."""
+    boxes = []
+    for start, span, radius in zip(starts, spans, radii, strict=True):
+        length = float(np.linalg.norm(span))
+        pieces = max(1, int(np.ceil(length / radius)))
+        piece = span / pieces
+        along, up = float(np.hypot(piece[0], piece[1])), abs(float(piece[2]))
+        yaw = float(np.arctan2(piece[1], piece[0])) if along > 1e-9 else 0.0
+        level, upright = (along, up) / np.maximum(length / pieces, 1e-9)
+        size = (along + 2 * radius * upright, 2 * radius, up + 2 * radius * level)
+        if length < 1e-9:
+            size = (2 * radius,) * 3
+        for k in range(pieces):
+            center = tuple((start + (k + 0.5) * piece).tolist())
+            boxes.append(human.Box(center, yaw, size, name=ROBOT))
+    return boxes
 
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
@@ -143,14 +179,22 @@ class ActorMovement(PersonCommandNode):
             animation_name=self.get_input("animation_name"),
             animation_distance=distance if distance > 0 else None,
             hold=hold,
-            nearby=self.objects_near(target.position) if hold is not None else (),
+            nearby=self._near_the_ends(target.position),
             in_the_way=tuple(self._seen.values()),
         )
 
+    def _near_the_ends(self, target) -> tuple[human.Box, ...]:
+        """The objects near where the walk starts and where it ends: the arms keep out of
+        them as the person turns there (a hand swung 1.2 cm into a KLT just put down on a
+        cart, turning to walk off: a user's hand-over cell), and what the hands hold out of
+        them where the walk ends."""
+        boxes = (*self.objects_near(self._position()), *self.objects_near(target))
+        return tuple(dict.fromkeys(boxes))
+
     def on_running(self) -> Status:
-        """The walk's outcome; meanwhile, when the robot comes to a stop holding something,
-        the person is told it is in the way (a person walked through a carton hanging from
-        a gripper stopped over the walkway, a user's palletizing cell)."""
+        """The walk's outcome; meanwhile, when the robot comes to a stop, the person is told
+        it and what it holds are in the way (a person walked through a carton hanging from a
+        gripper stopped over the walkway, a user's palletizing cell)."""
         still = self._held_still()
         if still.keys() - self._seen.keys():
             boxes = tuple(still.values())
@@ -158,15 +202,18 @@ class ActorMovement(PersonCommandNode):
         self._seen = still
         return super().on_running()
 
-    def _held_still(self) -> dict[int, human.Box]:
-        """What the robot holds still, by object id: it stands over the floor."""
+    def _held_still(self) -> dict:
+        """What stands still over the floor besides the cell: the robot at rest, its parts
+        by number, and what it holds still, by object id."""
         status = self.agent.workpieces
-        if status is None:
-            return {}
+        objects = status.objects if status is not None else ()
         return {
-            obj.id: human.Box(*box_of(obj), name=_named(obj))
-            for obj in status.objects
-            if obj.holder is not None and _in_the_way(obj)
+            **{("robot", k): box for k, box in enumerate(self.robot_at_rest())},
+            **{
+                obj.id: human.Box(*box_of(obj), name=_named(obj))
+                for obj in objects
+                if obj.holder is not None and _in_the_way(obj)
+            },
         }
 
 

@@ -259,6 +259,10 @@ class ActorHandOver(TargetedAction):
     def grasp(self) -> human.Grasp | None:
         return self.taking_grasp() if self.takes() else None
 
+    def nearby(self, target) -> tuple[human.Box, ...]:
+        """As any targeted action's, but the hands go to the robot's cup."""
+        return self.objects_near(target, self.taken_id(), robot=False)
+
     def object_command(self, seq: int):
         if not self.takes():
             return wp.Transfer(seq, self.get_input("object_id"), wp.ROBOT_HOLDER)

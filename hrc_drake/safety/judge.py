@@ -162,6 +162,7 @@ class Judge:
             ssm_enabled=config.ssm,
             sensing=sensing,
             sensed_protective=sensed_protective,
+            robot_parts=reading.robot,
         )
         return _replaced(now, totals=updated_totals(before, now, config.moving_speed))
 

@@ -6,6 +6,7 @@ The status carries the current measurement and the run's running totals, so the 
 the end of a run is enough for its safety metrics.
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -135,6 +136,10 @@ class SafetyStatus:
     the monitor knows the person's body)"""
     sensed_protective: float = math.nan
     """S_p at the nearest detection, with that sensor's response time, C and Z_d (m)"""
+    robot_parts: tuple = dataclasses.field(default=(), compare=False)
+    """the robot's parts (links, tool, what it holds) as the monitor bounds them: capsules'
+    starts and spans (parts × 3, world) and radii (what a person keeps out of while the
+    robot stands still)"""
 
     @property
     def protective(self) -> float:

@@ -1,6 +1,8 @@
-"""A person walking where the robot holds something still over the floor goes round it, as
-a person does round a carton hanging from a stopped gripper (a user's palletizing cell: the
-pelvis 16.6 cm in it). The body's overlap with the carton is measured in SceneGraph."""
+"""A person walking where the robot stands still, or holds something still, over the floor
+goes round it, as a person does round a carton hanging from a stopped gripper (a user's
+palletizing cell: the pelvis 16.6 cm in it) or a stopped arm; and turning where objects
+stand, keeps the arms out of them. The body's overlap with a carton is measured in
+SceneGraph; with the robot, by the run's safety monitor."""
 
 from pathlib import Path
 
@@ -80,6 +82,39 @@ def test_a_person_walks_round_a_carton_the_robot_holds_where_they_would_stand(wa
     scenario = overridden(load_scenario(PAST_THE_GRIPPER), [("parameters.wait_msec", wait)])
     report = run(scenario)
     walk = report.metrics["bt"]["human"]["ActorMovement::3"]
+    assert (walk["successes"], walk["failures"]) == (1, 0), walk
+    verdict = realism_verdict(report.metrics["realism"])[0]
+    assert verdict.startswith("within its limits"), verdict
+
+
+ROUND_THE_ARM = Path(__file__).resolve().parent / "cells" / "round_the_arm" / "cell.yaml"
+
+
+@pytest.mark.parametrize(
+    "wait", ["6000", "3000"], ids=["at rest before the walk", "coming to rest during it"]
+)
+def test_a_person_walks_round_the_robots_arm_at_rest(wait):
+    """The robot stands still with its arm stretched out 1.05 m over the floor (no speed and
+    separation monitoring, so it stays there) where the person walks past: the chest went
+    16.8 cm into link_5, 13 contacts with the robot at rest. The walk goes round the arm."""
+    scenario = overridden(load_scenario(ROUND_THE_ARM), [("parameters.wait_msec", wait)])
+    report = run(scenario)
+    walk = report.metrics["bt"]["human"]["ActorMovement::3"]
+    assert (walk["successes"], walk["failures"]) == (1, 0), walk
+    contacts = report.metrics["safety"]["contacts"]
+    assert contacts["count"] == 0, contacts
+    assert report.metrics["safety"]["min_separation"]["distance"] > 0.03
+
+
+TURN_FROM_THE_CART = Path(__file__).resolve().parent / "cells" / "turn_from_the_cart" / "cell.yaml"
+
+
+def test_turning_away_from_a_box_just_put_down_keeps_the_hand_out_of_it():
+    """A user's hand-over cell, cut down: a KLT carried to a cart and put down at its edge;
+    turning to walk off, the free hand swung 1.16 cm into it (the walk's turn kept the arms
+    out of the cart, not of what stands on it)."""
+    report = run(load_scenario(TURN_FROM_THE_CART))
+    walk = report.metrics["bt"]["human"]["ActorMovement::6"]
     assert (walk["successes"], walk["failures"]) == (1, 0), walk
     verdict = realism_verdict(report.metrics["realism"])[0]
     assert verdict.startswith("within its limits"), verdict

@@ -178,6 +178,22 @@ def test_a_hand_reaching_into_a_bin_comes_over_its_near_wall(inside):
     assert worst.depth <= INTO_FURNITURE, worst
 
 
+def test_a_part_taken_in_one_hand_leaves_the_other_hanging_at_ease():
+    """The pick clip reaches out with both hands; taking a part in the right hand only, the
+    left reached out into the air with it (towards a robot standing there, a user's
+    machine-tending cell). It hangs as standing at ease, at the person's side."""
+    cell = Cell([Furniture("table", "side_table", 0.0, 0.75)])
+    grasp = Grasp("right", (0.0, 0.42, 0.77), np.pi / 2, SMALL_PART)
+    command = AnimateCommand(1, "pick_table", grasp=grasp)
+    performer = cell.performer
+    activity = plan_animation(performer, command, STANDING, 0.0)
+    ahead = max(
+        performer.body.frame_pose("left_hand_grasp", activity.pose(performer, t)).translation()[1]
+        for t in np.arange(0.0, activity.end, SAMPLE)
+    )
+    assert ahead < 0.25, ahead
+
+
 def test_material_is_taken_off_a_shelf_board_at_chest_height():
     """The hands rise in front of the board's edge, where the arms must be kept out of it,
     then close on the material: a correction found for the arms on their way up must not

@@ -3,6 +3,7 @@ NextObject which free box is taken next, ActorPlace where a box put down goes.""
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
@@ -12,6 +13,7 @@ from hrc_drake.human import messages as human
 from hrc_drake.nodes import hrc_registry
 from hrc_drake.nodes.agent import Agent, Places
 from hrc_drake.nodes.stacks import on_top_of_what_lies_there
+from hrc_drake.safety.messages import SafetyStatus
 from hrc_drake.workpieces import messages as wp
 
 
@@ -130,18 +132,64 @@ def test_an_animation_keeps_the_arms_out_of_the_objects_where_the_person_stands(
     assert nearby == ["material 1"]
 
 
-def _nearby_told(node_xml: str, objects, heading: float) -> list[str]:
+def _nearby_told(node_xml: str, objects, heading: float, safety=None) -> list[str]:
     """The objects a tree of one person node tells the person to keep the arms out of,
-    the person at the origin facing `heading`, with `objects` in the cell."""
+    the person at the origin facing `heading`, with `objects` in the cell and the safety
+    monitor's `safety` status."""
+    return [box.name for box in _told(node_xml, objects, heading, safety).nearby]
+
+
+def _told(node_xml: str, objects, heading: float, safety=None):
+    """The command a tree of one person node sends (as `_nearby_told`)."""
     xml = f'<root BTCPP_format="4"><BehaviorTree ID="Main">{node_xml}</BehaviorTree></root>'
     agent = Agent("human", Places())
     agent.statuses["workpieces"] = wp.WorkpiecesStatus(
         time=0.0, objects=tuple(objects), results={}, free_slots={}
     )
     agent.statuses["human"] = human.HumanStatus(base_pose=(0.0, 0.0, heading))
+    agent.statuses["safety"] = safety
     load_tree(xml, hrc_registry(), agent=agent).tick(0.0)
     (command,) = agent.take_outbox()["human"]
-    return [box.name for box in command.nearby]
+    return command
+
+
+def _robot(speed: float) -> SafetyStatus:
+    """The monitor's status of a robot whose forearm (0.6 m, radius 0.06) slants down from
+    (0.3, 0, 1.3) to the gripper over (0.5, 0, 1.0), moving at `speed`."""
+    starts = np.array([[0.3, 0.0, 1.3], [0.5, 0.0, 1.15]])
+    spans = np.array([[0.2, 0.0, -0.15], [0.0, 0.0, -0.15]])
+    return SafetyStatus(robot_speed=speed, robot_parts=(starts, spans, np.array([0.06, 0.03])))
+
+
+@pytest.mark.parametrize("speed, kept", [(0.0, True), (0.3, False)], ids=["at rest", "moving"])
+def test_a_pick_keeps_the_arms_out_of_the_robot_at_rest(speed, kept):
+    """A user's machine-tending cell: the robot stopped with its wrist over the outfeed
+    table, and the person's hand went 3.7 cm into the gripper picking a part beside it.
+    The robot at rest is among what the arms keep out of, in boxes that hold each capsule
+    the safety monitor bounds it by; moving, it will be elsewhere by then."""
+    taken = _material(1, (0.5, 0.3, 0.95))
+    command = _told('<ActorPick object_id="1"/>', (taken,), 0.0, _robot(speed))
+    robot = [box for box in command.nearby if box.name == "the robot at rest"]
+    assert bool(robot) == kept
+    if kept:
+        for point in ([0.3, 0.0, 1.3], [0.4, 0.059, 1.225], [0.5, 0.0, 1.0], [0.5, 0.029, 1.05]):
+            assert any(_inside(point, box) for box in robot), point
+        volume = sum(np.prod(box.size) for box in robot)
+        assert volume < 3 * (np.pi * 0.06**2 * 0.25 + np.pi * 0.03**2 * 0.15)
+
+
+def test_a_hand_over_reaches_into_the_robots_cup_at_rest():
+    held = replace(_material(1, (0.5, 0.0, 0.95)), holder=wp.ROBOT_HOLDER)
+    node = '<ActorHandOver object_id="1"/>'
+    assert "the robot at rest" not in _nearby_told(node, (held,), 0.0, _robot(0.0))
+
+
+def _inside(point, box: human.Box) -> bool:
+    """Whether `point` lies in `box` (its centre, heading and extents)."""
+    offset = np.subtract(point, box.center)
+    c, s = np.cos(box.yaw), np.sin(box.yaw)
+    local = (c * offset[0] + s * offset[1], -s * offset[0] + c * offset[1], offset[2])
+    return all(abs(v) <= size / 2 + 1e-9 for v, size in zip(local, box.size, strict=True))
 
 
 @pytest.mark.parametrize("speed, kept", [(0.0, True), (0.3, False)], ids=["still", "moving"])
