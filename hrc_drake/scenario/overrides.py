@@ -15,6 +15,7 @@ import itertools
 import types
 import typing
 
+import numpy as np
 import yaml
 from pydrake.common.yaml import yaml_load_typed
 
@@ -72,12 +73,15 @@ def _field_type(schema, path: str):
         fields = schema_fields(_options(kind)[0])
         if fields is None:
             done = ".".join(path.split(".")[:depth])
+            if _a_list(kind):
+                return f"'{done}' is a list: {LIST_ITEMS} (change it in the scenario file)"
             return f"'{done}' has no fields"
         if name not in fields:
             return f"unknown field '{name}'{did_you_mean(name, fields)}"
         kind = fields[name]
     if scalar_of(kind) is None:
-        return "only number, boolean and text fields can be set"
+        listed = " (a list: change it in the scenario file)" if _a_list(kind) else ""
+        return f"only number, boolean and text fields can be set{listed}"
     return kind
 
 
@@ -149,6 +153,15 @@ def _check_settable(obj, names: list[str], path: str, new_entries: bool = False)
 
 def _mapping(kind) -> bool:
     return typing.get_origin(_options(kind)[0]) is dict
+
+
+def _a_list(kind) -> bool:
+    """Whether `kind` is a list or vector field (--set reaches no item of one)."""
+    option = _options(kind)[0]
+    return typing.get_origin(option) in (list, tuple) or option is np.ndarray
+
+
+LIST_ITEMS = "--set reaches fields and mapping entries, not a list's items"
 
 
 def scalar_of(kind):

@@ -82,6 +82,17 @@ CASES = {
         ("run", "{s}", "--set", "cell=1"),
         ("--set cell: only number, boolean and text fields can be set",),
     ),
+    "set an item of a list": (
+        ("run", "{s}", "--set", "workpieces.objects.0.pose=1"),
+        (
+            "--set workpieces.objects.0.pose: 'workpieces.objects' is a list: --set reaches "
+            "fields and mapping entries, not a list's items (change it in the scenario file)",
+        ),
+    ),
+    "set a vector": (
+        ("run", "{s}", "--set", "locations.door.translation=1"),
+        ("(a list: change it in the scenario file)",),
+    ),
     "set a number in scientific notation": (
         ("run", "{s}", "--set", "duration=-1e3"),
         ("--set duration=-1000.0: must be positive",),
