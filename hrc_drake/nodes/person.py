@@ -66,8 +66,8 @@ class PersonCommandNode(CommandNode):
 
     def robot_at_rest(self) -> list[human.Box]:
         """The robot's parts, while it stands still, as boxes (a hand went 3.7 cm into a
-        stopped gripper picking a part beside it, a user's machine-tending cell; a person
-        walked into a stopped arm 24 times in a user's palletizing cell)."""
+        stopped gripper picking a part beside it, a user's machine-tending cell; walking
+        past an arm stopped stretched out over the floor, the chest went 16.8 cm into it)."""
         status = self.agent.safety
         if status is None or status.robot_speed >= STILL or not len(status.robot_parts):
             return []
@@ -171,7 +171,7 @@ class ActorMovement(PersonCommandNode):
         target = self.agent.resolve_pose(self.get_input("target"))
         distance = self.get_input("animation_distance")
         hold = self.hold()
-        self._seen = self._held_still()
+        self._seen = self._still_over_the_floor()
         return human.MoveCommand(
             seq,
             target_position=target.position,
@@ -195,14 +195,14 @@ class ActorMovement(PersonCommandNode):
         """The walk's outcome; meanwhile, when the robot comes to a stop, the person is told
         it and what it holds are in the way (a person walked through a carton hanging from a
         gripper stopped over the walkway, a user's palletizing cell)."""
-        still = self._held_still()
+        still = self._still_over_the_floor()
         if still.keys() - self._seen.keys():
             boxes = tuple(still.values())
             self.agent.send(self.actor, lambda seq: human.InTheWayCommand(seq, boxes))
         self._seen = still
         return super().on_running()
 
-    def _held_still(self) -> dict:
+    def _still_over_the_floor(self) -> dict:
         """What stands still over the floor besides the cell: the robot at rest, its parts
         by number, and what it holds still, by object id."""
         status = self.agent.workpieces
