@@ -10,13 +10,12 @@ body is still outside the surface's edge (`behind_edge`).
 """
 
 from dataclasses import dataclass
-from math import cos, sin
 
 import numpy as np
 import shapely
 from shapely.geometry import LineString, Point, Polygon
 
-from hrc_drake.human.navigation import Obstacle
+from hrc_drake.human.navigation import Obstacle, box_obstacle
 
 RESTING = 0.02
 """m: a point this far above a surface, or less, rests on it."""
@@ -35,7 +34,7 @@ class Furniture:
         standing near what the hands work on."""
         if not boxes:
             return self
-        return Furniture((*self.pieces, *(_piece(box) for box in boxes)))
+        return Furniture((*self.pieces, *(box_obstacle(box) for box in boxes)))
 
     def not_over(self, area: Polygon, height: float) -> "Furniture":
         """The furniture but the pieces that stand over the middle of a floor area wholly
@@ -150,15 +149,3 @@ class Furniture:
 def _stands_on(top: Obstacle, under: Obstacle) -> bool:
     """Whether `top` rests on `under`."""
     return abs(under.high - top.low) <= RESTING and under.outline.intersects(top.outline)
-
-
-def _piece(box) -> Obstacle:
-    """A box (centre, heading, extents) as a prism."""
-    c, s = cos(box.yaw), sin(box.yaw)
-    half_x, half_y, half_z = (extent / 2 for extent in box.size)
-    x, y, z = box.center
-    corners = [
-        (x + c * u - s * v, y + s * u + c * v)
-        for u, v in ((-half_x, -half_y), (half_x, -half_y), (half_x, half_y), (-half_x, half_y))
-    ]
-    return Obstacle(box.name, Polygon(corners), z - half_z, z + half_z)

@@ -152,24 +152,29 @@ def cell_obstacles(plant, inspector) -> list[Obstacle]:
         if corners is None:
             continue
         world = np.array([X_WG @ c for c in corners])
-        if world[:, 2].max() < BAND[0] or world[:, 2].min() > BAND[1]:
+        if not in_band(world[:, 2].min(), world[:, 2].max()):
             continue
         outline = MultiPoint(world[:, :2].tolist()).convex_hull
         found.append(Obstacle(name, outline, world[:, 2].min(), world[:, 2].max()))
     return found
 
 
-def box_obstacle(name: str, center, yaw: float, size) -> Obstacle | None:
-    """The obstacle of a box standing over the floor (centre, heading, extents along its
-    own axes), None when it lies outside the body's height band."""
-    low, high = center[2] - size[2] / 2, center[2] + size[2] / 2
-    if high < BAND[0] or low > BAND[1]:
-        return None
-    c, s = cos(yaw), sin(yaw)
-    half = ((-1, -1), (1, -1), (1, 1), (-1, 1))
-    corners = [(u * size[0] / 2, v * size[1] / 2) for u, v in half]
-    outline = Polygon([(center[0] + c * u - s * v, center[1] + s * u + c * v) for u, v in corners])
-    return Obstacle(name, outline, low, high)
+def box_obstacle(box) -> Obstacle:
+    """A box (centre, heading, extents along its own axes, name: a human.messages.Box) as
+    an obstacle: its floor outline and the heights it spans."""
+    c, s = cos(box.yaw), sin(box.yaw)
+    half_x, half_y, half_z = (extent / 2 for extent in box.size)
+    x, y, z = box.center
+    corners = [
+        (x + c * u - s * v, y + s * u + c * v)
+        for u, v in ((-half_x, -half_y), (half_x, -half_y), (half_x, half_y), (-half_x, half_y))
+    ]
+    return Obstacle(box.name, Polygon(corners), z - half_z, z + half_z)
+
+
+def in_band(low: float, high: float) -> bool:
+    """Whether something spanning these heights reaches into the body's height band."""
+    return high >= BAND[0] and low <= BAND[1]
 
 
 def _corners(shape) -> np.ndarray | None:

@@ -184,9 +184,7 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
             activity, mode = plan_animation(performer, command, state.anchor, t0), "ANIMATION"
     except Unreachable as error:
         return _record(state, command.seq, FAILED, str(error))
-    if walking:
-        segments = (*walking, *activity.segments)
-        activity = Activity.plan(performer, segments, activity.final_pose)
+    activity = _after_stepping(performer, walking, activity)
     switched = _switch(
         performer,
         state,
@@ -225,8 +223,14 @@ def _go_round(performer: Performer, state: ActorState, boxes: tuple, t: float) -
         names = ", ".join(f"'{o.name}'" for o in blocking)
         state = _record(state, state.running, FAILED, f"{names} in the way: {error}")
         return _switch(performer, state, stop, t, state="IDLE", running=-1, animation=IDLE_CLIP)
-    activity = Activity.plan(performer, (*walking, *activity.segments), activity.final_pose)
-    return _switch(performer, state, activity, t, move=command)
+    return _switch(performer, state, _after_stepping(performer, walking, activity), t, move=command)
+
+
+def _after_stepping(performer: Performer, walking: tuple, activity: Activity) -> Activity:
+    """`activity` after the walk or turn still coming to a stop (`walking`, if any)."""
+    if not walking:
+        return activity
+    return Activity.plan(performer, (*walking, *activity.segments), activity.final_pose)
 
 
 def _aimed(command) -> bool:

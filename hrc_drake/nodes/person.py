@@ -9,6 +9,7 @@ import numpy as np
 from hrc_drake.bt import ConditionNode, InputPort, Range, Status, SyncActionNode
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import hold_of
+from hrc_drake.human.in_the_way import robot_boxes
 from hrc_drake.nodes.command import CommandNode
 from hrc_drake.tree_types import Pose
 from hrc_drake.wiring import HUMAN
@@ -68,10 +69,11 @@ class PersonCommandNode(CommandNode):
         """The robot's parts, while it stands still, as boxes (a hand went 3.7 cm into a
         stopped gripper picking a part beside it, a user's machine-tending cell; walking
         past an arm stopped stretched out over the floor, the chest went 16.8 cm into it)."""
+        return robot_boxes(*self.agent.safety.robot_parts) if self._robot_still() else []
+
+    def _robot_still(self) -> bool:
         status = self.agent.safety
-        if status is None or status.robot_speed >= STILL or not len(status.robot_parts):
-            return []
-        return robot_boxes(*status.robot_parts)
+        return status is not None and status.robot_speed < STILL and len(status.robot_parts) > 0
 
     def _heading(self) -> float:
         status = self.agent.human
@@ -83,31 +85,6 @@ class PersonCommandNode(CommandNode):
         14.1 cm into one, a kitting cell of our own)."""
         status = self.agent.human
         return tuple(status.base_pose[:2]) if status is not None else (0.0, 0.0)
-
-
-ROBOT = "the robot at rest"
-"""What a refusal calls the robot's parts."""
-
-
-def robot_boxes(starts, spans, radii) -> list[human.Box]:
-    """Boxes round the cylinders of capsules (starts and spans, parts × 3, and radii;
-    the robot's own shapes are cylinders): each in pieces no longer than its radius, so
-    that the boxes round a slanted one stay close to it."""
-    boxes = []
-    for start, span, radius in zip(starts, spans, radii, strict=True):
-        length = float(np.linalg.norm(span))
-        pieces = max(1, int(np.ceil(length / radius)))
-        piece = span / pieces
-        along, up = float(np.hypot(piece[0], piece[1])), abs(float(piece[2]))
-        yaw = float(np.arctan2(piece[1], piece[0])) if along > 1e-9 else 0.0
-        level, upright = (along, up) / np.maximum(length / pieces, 1e-9)
-        size = (along + 2 * radius * upright, 2 * radius, up + 2 * radius * level)
-        if length < 1e-9:
-            size = (2 * radius,) * 3
-        for k in range(pieces):
-            center = tuple((start + (k + 0.5) * piece).tolist())
-            boxes.append(human.Box(center, yaw, size, name=ROBOT))
-    return boxes
 
 
 def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
@@ -171,7 +148,7 @@ class ActorMovement(PersonCommandNode):
         target = self.agent.resolve_pose(self.get_input("target"))
         distance = self.get_input("animation_distance")
         hold = self.hold()
-        self._seen = self._still_over_the_floor()
+        self._seen = self._still_ids()
         return human.MoveCommand(
             seq,
             target_position=target.position,
@@ -180,7 +157,7 @@ class ActorMovement(PersonCommandNode):
             animation_distance=distance if distance > 0 else None,
             hold=hold,
             nearby=self._near_the_ends(target.position),
-            in_the_way=tuple(self._seen.values()),
+            in_the_way=self._still_over_the_floor(),
         )
 
     def _near_the_ends(self, target) -> tuple[human.Box, ...]:
@@ -195,26 +172,29 @@ class ActorMovement(PersonCommandNode):
         """The walk's outcome; meanwhile, when the robot comes to a stop, the person is told
         it and what it holds are in the way (a person walked through a carton hanging from a
         gripper stopped over the walkway, a user's palletizing cell)."""
-        still = self._still_over_the_floor()
-        if still.keys() - self._seen.keys():
-            boxes = tuple(still.values())
+        still = self._still_ids()
+        if still - self._seen:
+            boxes = self._still_over_the_floor()
             self.agent.send(self.actor, lambda seq: human.InTheWayCommand(seq, boxes))
         self._seen = still
         return super().on_running()
 
-    def _still_over_the_floor(self) -> dict:
-        """What stands still over the floor besides the cell: the robot at rest, its parts
-        by number, and what it holds still, by object id."""
+    def _still_ids(self) -> set:
+        """What stands still over the floor, by name: the robot at rest, and by id what it
+        holds still (checked at every tick of a walk, so without building any boxes)."""
+        robot = {"robot"} if self._robot_still() else set()
+        return robot | {obj.id for obj in self._held_still()}
+
+    def _still_over_the_floor(self) -> tuple[human.Box, ...]:
+        """What stands still over the floor besides the cell: the robot at rest and what it
+        holds still."""
+        held = (human.Box(*box_of(obj), name=_named(obj)) for obj in self._held_still())
+        return (*self.robot_at_rest(), *held)
+
+    def _held_still(self) -> list[wp.ObjectStatus]:
         status = self.agent.workpieces
         objects = status.objects if status is not None else ()
-        return {
-            **{("robot", k): box for k, box in enumerate(self.robot_at_rest())},
-            **{
-                obj.id: human.Box(*box_of(obj), name=_named(obj))
-                for obj in objects
-                if obj.holder is not None and _in_the_way(obj)
-            },
-        }
+        return [obj for obj in objects if obj.holder is not None and _in_the_way(obj)]
 
 
 class ActorCarry(ActorMovement):
