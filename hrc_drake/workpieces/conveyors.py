@@ -76,22 +76,30 @@ class Belt:
         across = (outline - self.start) @ self.across
         return Extent(along.min(), along.max(), across.min(), across.max())
 
+    def under(self, outline: np.ndarray) -> bool:
+        """Whether some of the outline is over the belt."""
+        e, half = self.extent(outline), self.width / 2
+        return e.front > 0.0 and e.back < self.length and e.left > -half and e.right < half
+
     def past_end(self, p_W: np.ndarray) -> bool:
         return float((p_W[:2] - self.start) @ self.axis) > self.length
 
     def velocity(self, speed: float) -> np.ndarray:
         return np.array([*(speed * self.axis), 0.0])
 
-    def plan(self, riders: dict[int, np.ndarray], dt: float) -> dict[int, float]:
-        """Speed along the belt of each rider (id -> outline) for the next `dt`."""
+    def plan(self, riders: dict[int, np.ndarray], dt: float, blockers=()) -> dict[int, float]:
+        """Speed along the belt of each rider (id -> outline) for the next `dt`; `blockers`
+        (outlines) stop the riders behind them as a rider ahead does: what is held just over
+        the belt (a carton taken off a queueing belt's end: the next one moved into its
+        place, 4.1 cm into it, in a user's palletizing cell)."""
         extents = {i: self.extent(outline) for i, outline in riders.items()}
         speeds: dict[int, float] = {}
-        moved_ahead: list[Extent] = []
+        moved_ahead: list[Extent] = [self.extent(outline) for outline in blockers]
         for i in sorted(extents, key=lambda i: (-extents[i].front, i)):
             extent = extents[i]
             limit = self.length if self.queues else math.inf
             for ahead in moved_ahead:
-                if not extent.beside(ahead):
+                if ahead.front >= extent.front and not extent.beside(ahead):
                     limit = min(limit, ahead.back - self.queue_gap)
             advance = min(self.speed * dt, max(limit - extent.front, 0.0))
             speeds[i] = advance / dt

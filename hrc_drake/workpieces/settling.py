@@ -7,6 +7,7 @@ lifted onto it (never sinks); pieces past the end of a removing belt leave."""
 import numpy as np
 from pydrake.multibody.math import SpatialVelocity
 
+from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import with_height
 from hrc_drake.workpieces.messages import object_id_of_support
 from hrc_drake.workpieces.step import Step
@@ -37,9 +38,16 @@ def settle(step: Step, instantly: bool) -> None:
     something fixed stays put, and so does a belt rider at rest: the belt's end or riders
     at rest ahead of it hold it back (one ahead that moved would leave it room), and a
     piece landing on the belt can only hold it back more. So only moving pieces are
-    looked at; every rider still counts in its belt's plan."""
+    looked at; every rider still counts in its belt's plan. What is held just over a belt
+    holds its riders back as a rider does, but it may go at any update: while it is there,
+    and at the update after, its belt's riders are looked at too."""
     free = [p for p in step.pieces.values() if p.holder is None]
-    active = free if instantly or step.changed else [p for p in free if _moving(p)]
+    held_back = _belts_held_back(step)
+    active = (
+        free
+        if instantly or step.changed
+        else [p for p in free if _moving(p) or p.support in held_back]
+    )
     if not active:
         return
     active.sort(key=lambda p: (p.bottom, p.id))
@@ -73,6 +81,31 @@ def _support(step: Step, piece: Piece, others: list[Surface], instantly: bool) -
     return support
 
 
+HELD_OVER_THE_BELT = 0.1
+"""m: what is held with its bottom this little above a belt stands in its riders' way."""
+
+
+def _held_over(belt: Belt, pieces) -> list[np.ndarray]:
+    """The outlines of what is held just over the belt."""
+    return [
+        p.footprint
+        for p in pieces
+        if p.holder is not None
+        and p.bottom < belt.height + HELD_OVER_THE_BELT
+        and belt.under(p.footprint)
+    ]
+
+
+def _belts_held_back(step: Step) -> set[str]:
+    """The belts with something held just over them now or at the last update."""
+    now, before = step.pieces.values(), step.before.pieces.values()
+    return {
+        name
+        for name, belt in step.cell.belts.items()
+        if _held_over(belt, now) or _held_over(belt, before)
+    }
+
+
 def _belt_speeds(step: Step) -> dict[int, float]:
     speeds = {}
     for name, belt in step.cell.belts.items():
@@ -81,7 +114,8 @@ def _belt_speeds(step: Step) -> dict[int, float]:
             for p in step.pieces.values()
             if p.holder is None and p.support == name
         }
-        speeds |= belt.plan(riders, step.config.period)
+        held = _held_over(belt, step.pieces.values())
+        speeds |= belt.plan(riders, step.config.period, held)
     return speeds
 
 

@@ -24,6 +24,7 @@ class Step:
 
     def __init__(self, cell: Workcell, world: World, now: float, frames: dict[str, Sampled]):
         self.cell = cell
+        self.before = world
         self.config = cell.config
         self.now = now
         self.next_id = world.next_id

@@ -9,15 +9,17 @@ from pydrake.common.schema import Transform
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject, WorkpiecesConfig
-from hrc_drake.workpieces.messages import ROBOT_HOLDER, Despawn
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Despawn
 from tests.workpieces.workpieces_rig import (
     BELT_TOP,
     CONVEYOR_Y,
     PART_HEIGHT,
+    TOOL_DOWN,
     build_rig,
     carry_to,
     config_with,
     part_on_table,
+    path,
 )
 
 SPEED = 0.2
@@ -137,3 +139,32 @@ def test_a_part_dropped_behind_a_standing_queue_rides_up_to_it():
     assert dropped.support == "belt"
     assert not dropped.velocity.get_coeffs().any()
     assert x_of(end, 1) + PART_WIDTH / 2 == pytest.approx(1.0 - 2 * PART_LENGTH)
+
+
+def test_a_part_held_just_over_the_queue_end_keeps_the_next_one_back_until_lifted():
+    """The robot takes the front part of a standing queue and holds it 2 cm over the belt:
+    the next part stays behind it (it moved up into the held part's place, 4.1 cm into a
+    carton a person had just taken in a user's cell), and moves up once the part is lifted
+    clear."""
+    front = 1.0 - PART_LENGTH / 2
+    top = BELT_TOP + PART_HEIGHT
+    tool = path(
+        [
+            (0.0, (front, CONVEYOR_Y, top), TOOL_DOWN),
+            (5.2, (front, CONVEYOR_Y, top), TOOL_DOWN),
+            (5.6, (front, CONVEYOR_Y, top + 0.02), TOOL_DOWN),
+            (7.0, (front, CONVEYOR_Y, top + 0.02), TOOL_DOWN),
+            (7.5, (front, CONVEYOR_Y, top + 0.3), TOOL_DOWN),
+        ]
+    )
+    grip = Attach(seq=1, holder=ROBOT_HOLDER, object_id=3, max_mass=3.0)
+    config = config_with(objects=[on_belt(x, CONVEYOR_Y) for x in (-0.2, 0.1, 0.4)])
+    rig = build_rig(config, commands={"robot_gripper": [(5.1, grip)]}, tool=tool)
+    held = rig.advance(6.9)
+    assert held.object(3).holder == ROBOT_HOLDER
+    assert held.object(3).pose.translation()[2] == pytest.approx(BELT_TOP + 0.02 + PART_HEIGHT / 2)
+    assert x_of(held, 2) + PART_LENGTH / 2 == pytest.approx(1.0 - PART_LENGTH)
+    assert x_of(held, 1) + PART_LENGTH / 2 == pytest.approx(1.0 - 2 * PART_LENGTH)
+    lifted = rig.advance(9.0)
+    assert x_of(lifted, 2) + PART_LENGTH / 2 == pytest.approx(1.0)
+    assert x_of(lifted, 1) + PART_LENGTH / 2 == pytest.approx(1.0 - PART_LENGTH)
