@@ -90,6 +90,11 @@ class WalkSegment:
     final_turn: float = 0.0
     """How far the heading turns from the last leg's direction over the walk's last steps
     (`final_room`), so that the person arrives facing the way they are to stand."""
+    feet_from: dict = field(default_factory=dict)
+    """After a halt, per side (since, until, position, forward): how far the foot's sole was,
+    in the walk before, from where this one has it; it fades out by the foot's next strike,
+    so a foot goes on from where it was to its new step (a fade of the whole pose went on
+    after the foot had landed and slid it 2-7 cm along the floor)."""
 
     def facing_at_the_end(self, yaw: float) -> "WalkSegment":
         """The walk turning to face `yaw` over its last steps where the corner rule allows
@@ -104,15 +109,31 @@ class WalkSegment:
     def halted(self, performer: Performer, t: float) -> "WalkSegment":
         """This walk coming to a stop from t as soon as it can: the feet keep the steps they
         have taken and close in a step or two; a foot in the air lands where the slowing body
-        needs it (the step planned at full pace would land ahead of where the body stops)."""
+        needs it (the step planned at full pace would land ahead of where the body stops).
+        A walk already coming to a stop goes on as it is (told again to stop, it came to a
+        stop on a profile that forgot the first one's: the pelvis jumped)."""
+        if self.halt is not None and t >= self.halt[0]:
+            return self
         speed = self.speed_at(t)
         ramp = max(SPEED_RAMP * min(speed / self.speed, 1.0), 1e-3)
-        walk = replace(self, halt=(t, self.distance(t), speed, ramp))
+        walk = replace(self, halt=(t, self.distance(t), speed, ramp), feet_from={})
         kept = {
             side: stances[: bisect_right(strikes, t)]
             for side, (stances, strikes) in self.steps.items()
         }
-        return walk.stepped(performer, kept)
+        walk = walk.stepped(performer, kept)
+        return replace(walk, feet_from=walk._feet_offsets(performer, self, t))
+
+    def _feet_offsets(self, performer: Performer, before: "WalkSegment", t: float) -> dict:
+        """`feet_from` taking over from the walk `before` at t."""
+        theirs, ours = before._sole_targets(performer, t), self._sole_targets(performer, t)
+        offsets = {}
+        for side, (_, strikes) in self.steps.items():
+            k = bisect_right(strikes, t)
+            until = strikes[k] if k < len(strikes) else self.over
+            (p, f, _), (p0, f0, _) = theirs[side], ours[side]
+            offsets[side] = (t, until, np.subtract(p, p0), np.subtract(f, f0))
+        return offsets
 
     def stepped(self, performer: Performer, kept=None) -> "WalkSegment":
         """This walk with its footsteps planned: the feet leave their standing places at the
@@ -245,6 +266,34 @@ class WalkSegment:
     def pose(self, performer: Performer, t: float) -> np.ndarray:
         return self._pose(performer, t, feet=True)
 
+    def _sole_targets(self, performer: Performer, t: float, pelvis=None, speed=None) -> dict:
+        """Per side, where the sole goes at t (position, forward axis, how far short of it
+        the leg may fall); `pelvis` and `speed` as at t, when already worked out."""
+        clip = performer.clips[self.clip]
+        pelvis = self.distance(t) if pelvis is None else pelvis
+        speed = self.speed_at(t) if speed is None else speed
+        clip_pace = min(speed / (clip.animation_distance / clip.duration), 1.0)
+        gait_profile = performer.gait(clip)
+        targets = {}
+        for side, (stances, strikes) in self.steps.items():
+            k = max(bisect_right(strikes, t) - 1, 0)
+            target = sole_target(
+                gait_profile,
+                stances,
+                k,
+                side,
+                t,
+                clip.duration,
+                performer.legs.half_foot,
+                pelvis,
+                clip_pace,
+                self.spot,
+            )
+            if side in self.feet_from:
+                target = _carried_over(target, self.feet_from[side], t)
+            targets[side] = target
+        return targets
+
     def arms_pose(self, performer: Performer, t: float) -> np.ndarray:
         """The pose as far as the arms are concerned: the legs as the clip has them, the
         feet not placed (placing them moves the legs' joints only, and no arm hangs from
@@ -267,23 +316,7 @@ class WalkSegment:
         x, y = self.point(along)
         q[ix], q[iy], q[iyaw] = 0.0, 0.0, 0.0
         q = place(performer, q, x - sin(heading) * sideways, y + cos(heading) * sideways, heading)
-        gait_profile = performer.gait(clip)
-        clip_pace = min(speed / (clip.animation_distance / clip.duration), 1.0)
-        targets = {}
-        for side, (stances, strikes) in self.steps.items():
-            k = max(bisect_right(strikes, t) - 1, 0)
-            targets[side] = sole_target(
-                gait_profile,
-                stances,
-                k,
-                side,
-                t,
-                clip.duration,
-                performer.legs.half_foot,
-                pelvis,
-                clip_pace,
-                self.spot,
-            )
+        targets = self._sole_targets(performer, t, pelvis, speed)
         iz = performer.index("pelvis_height")
         reach = min(
             performer.legs.highest_pelvis(q, s, position, forward, _least_knee(slack))
@@ -291,6 +324,18 @@ class WalkSegment:
         )
         q[iz] = min(q[iz], reach)
         return carried(_feet_placed(performer.legs, q, targets) if feet else q, self.carry)
+
+
+def _carried_over(target, offset, t: float):
+    """A sole's `target` with the `offset` (since, until, position, forward) of the walk
+    before a halt, fading out from `since` to `until`."""
+    since, until, position, forward = offset
+    if t >= until:
+        return target
+    w = 1.0 - minimum_jerk((t - since) / max(until - since, 1e-9))
+    moved_forward = np.add(target[1], w * forward)
+    moved_forward /= np.linalg.norm(moved_forward)
+    return tuple(np.add(target[0], w * position)), tuple(moved_forward), target[2]
 
 
 def _feet_placed(legs, q: np.ndarray, targets: dict) -> np.ndarray:

@@ -4,6 +4,7 @@ palletizing cell: the pelvis 16.6 cm in it) or a stopped arm; and turning where 
 stand, keeps the arms out of them. The body's overlap with a carton is measured in
 SceneGraph; with the robot, by the run's safety monitor."""
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,7 @@ from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
 from hrc_drake.scenario.overrides import overridden
 from tests.human.scene import FLOOR, Run, furniture
+from tests.human.test_actor import STANCE_SLIP, _stance_slip
 
 CARTON = Box((0.6, 0.0, 1.0), 0.0, (0.3, 0.4, 0.25), "carton 1 the robot holds")
 """A carton at chest height over the middle of the walk from (-1.5, 0) to (2.5, 0)."""
@@ -44,6 +46,27 @@ def test_a_walk_under_way_goes_round_a_carton_that_comes_to_rest_in_its_way():
     status = run.status()
     assert status.results.outcome_of(1) == "succeeded"
     assert np.hypot(*np.subtract(status.base_pose[:2], GOAL[:2])) < 0.05
+
+
+def test_a_walk_told_twice_that_the_robot_came_to_rest_in_its_way_stops_once_on_its_feet():
+    """The robot's boxes change as it comes to rest (a second message 50 ms after the first):
+    the walk already coming to a stop goes on stopping as it was; stopped again on a new
+    profile, its pelvis jumped and a landed foot slid 2.6 cm."""
+    move = MoveCommand(1, GOAL)
+    moved = replace(CARTON, center=(0.62, 0.0, 1.0))
+    told = (move, InTheWayCommand(2, (CARTON,)))
+    carton = (CARTON.size, RigidTransform(list(CARTON.center)))
+    run = Run(
+        [(0.1, move), (1.0, told), (1.05, (*told, InTheWayCommand(3, (moved,))))],
+        start_pose=(-1.5, 0.0, 0.0),
+        cell=(FLOOR,),
+        objects=[carton],
+    )
+    _, stopping = run.record(3.0)
+    assert _stance_slip(run.body, stopping) < STANCE_SLIP
+    run.record(9.0)
+    assert run.overlap[0] <= 0.01, run.overlap
+    assert run.status().results.outcome_of(1) == "succeeded"
 
 
 def test_a_carton_at_rest_off_the_way_leaves_the_walk_as_it_was():
