@@ -208,10 +208,10 @@ class _Checks:
         """What keeps the person from putting down at `target` what `pick` took the `way`
         the tree went: an object of the one type the NextObject it takes from filters for,
         held as the pick takes those of them lying in its area from where the person stands
-        there (`at_pick`), when that is one way (None: not known, nor when none lie there at
-        the start or a SpawnObject makes it: held as guessed, validate said an arm went
-        into a table the run put down on, #26); what any of `picks` (those that have run
-        before the put-down) may have taken is gone from where it lay."""
+        there (`at_pick`), when that is one way; held either way round when it is not (none
+        lie there at the start: a part the robot's tree makes and puts there, whose drop
+        into a floor bin the run refused, a user's cell); what any of `picks` (those that
+        have run before the put-down) may have taken is gone from where it lay."""
         types = {
             parse_filter(wanted.value).get("type")
             for wanted in known.get((id(finder_of(pick, parents, way)), "filter"), ())
@@ -221,8 +221,6 @@ class _Checks:
         (kind,) = types
         hands = _hands(known, pick)
         taken = [obj for _, obj in self._lying_in(parents, way, known, pick, agent)]
-        if not taken:
-            return None
         holds = {
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
@@ -256,11 +254,11 @@ class _Checks:
         taken=(),
     ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
-        `hands` (as `held` says, when known; else as if taken facing it as they stand
-        there), down at `target`, as the run would plan it: on top of the objects at the
-        start lying there (hrc_drake.nodes.stacks; at the target as given, a tote put where
-        another lay was planned inside it), but those the pick may have `taken`, which are
-        gone from where they lay; "" when they can."""
+        `hands` (as `held` says, when known; else either way round as if taken facing it
+        as they stand there: "" if one works), down at `target`, as the run would plan it:
+        on top of the objects at the start lying there (hrc_drake.nodes.stacks; at the
+        target as given, a tote put where another lay was planned inside it), but those the
+        pick may have `taken`, which are gone from where they lay; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
@@ -268,11 +266,22 @@ class _Checks:
             hands = grasp_hands(size, shape.mass, shape.attributes)
         lying = [(obj.solid, obj.pose) for obj in self.scene.objects if obj not in taken]
         target = tuple(on_top_of(target, Solid.of(shape), lying))
-        hold = held or hold_of(Grasp(hands, target, yaw, size), yaw)
+        holds = (
+            [held]
+            if held
+            else [
+                hold_of(Grasp(hands, target, yaw + turn, size), yaw) for turn in (0.0, math.pi / 2)
+            ]
+        )
         clip = "place_table" if target[2] >= TABLE_HEIGHT else "place_floor"
         nearby = self._near(target, taken)
-        command = AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby)
-        return self._planned_problem(command, (x, y, yaw))
+        problems = [
+            self._planned_problem(
+                AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby), (x, y, yaw)
+            )
+            for hold in holds
+        ]
+        return "" if "" in problems else problems[0]
 
     def _lying_in(self, parents, way, known, pick, agent) -> list[tuple]:
         """The objects that `pick` may take the `way` the tree went, with their labels:

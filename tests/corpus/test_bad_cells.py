@@ -584,6 +584,32 @@ CASES = {
             ),
         ],
     ),
+    "a drop into a bin's floor of a part none lie where it is found at the start": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>'
+        '<ActorPick object_id="{p}" hand="right"/>'
+        '<ActorMovement target="bin_front"/><ActorPlace target="1.0;3.1;0.072"/>',
+        (
+            "port 'target': '1.0;3.1;0.072' at (1.00, 3.10, 0.07), put down where the person "
+            "stands (location 'bin_front', ActorMovement at ",
+            "): the right arm would go ",
+            " cm into 'bin' ",
+        ),
+        "ActorPlace",
+        changes=[
+            (
+                "human:\n",
+                "  - add_model: {name: bin, file: package://hrc_drake_models/cell/bin.sdf}\n"
+                "  - add_weld: {parent: world, child: bin::body, X_PC: {translation: [1.0, 3.1, 0]}}\n"
+                "human:\n",
+            ),
+            (
+                "locations:\n",
+                "locations:\n  bin_front: {translation: [1.0, 2.6, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, 90]}}\n",
+            ),
+        ],
+    ),
     "a put-down whose tote would be in the board above where it is put": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
