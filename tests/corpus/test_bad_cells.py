@@ -600,7 +600,8 @@ CASES = {
             (
                 "human:\n",
                 "  - add_model: {name: bin, file: package://hrc_drake_models/cell/bin.sdf}\n"
-                "  - add_weld: {parent: world, child: bin::body, X_PC: {translation: [1.0, 3.1, 0]}}\n"
+                "  - add_weld: {parent: world, child: bin::body, "
+                "X_PC: {translation: [1.0, 3.1, 0]}}\n"
                 "human:\n",
             ),
             (
