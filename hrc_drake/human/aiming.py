@@ -56,10 +56,10 @@ class AimedMotion:
     held: tuple[float, float] = (0.0, 0.0)
     """The clip times between which the aimed hands are on their targets or hold what they
     took (on their way there and back they are free)."""
-    resting: tuple[np.ndarray, np.ndarray] | None = None
-    """(joint indices, positions) of an arm that is not aimed, held as it hangs standing
-    at ease: one hand takes or puts down, and the other does not reach out with it into the
-    air (towards a robot standing there, a user's machine-tending cell)."""
+    resting: "HangingArm | None" = None
+    """The arm that is not aimed, hanging at ease: one hand takes or puts down, and the
+    other does not reach out with it into the air (towards a robot standing there, a
+    user's machine-tending cell)."""
 
     def holds(self, clip_time: float) -> bool:
         return self.held[0] <= clip_time <= self.held[1]
@@ -88,14 +88,85 @@ class AimedMotion:
         """This motion with the arm that is not aimed hanging as in the `idle` clip's first
         pose."""
         (free,) = (side for side in SIDES if side not in self.hands)
-        indices = arm_indices(body, (free,))
-        return replace(self, resting=(indices, idle.sample(0.0)[indices]))
+        return replace(self, resting=HangingArm.of(body, free, idle.sample(0.0)))
 
     def pose(self, placed: np.ndarray, clip_time: float) -> np.ndarray:
         q = placed + self.offset(clip_time)
-        if self.resting is not None:
-            q[self.resting[0]] = self.resting[1]
+        return q if self.resting is None else self.resting.over(q)
+
+
+CHEST_TURNS = (
+    ("pelvis_tilt", "y", 1.0),
+    ("pelvis_list", "x", 1.0),
+    ("lumbar_flexion", "y", 1.0),
+    ("lumbar_bending", "x", -1.0),
+    ("thorax_flexion", "y", 1.0),
+    ("thorax_rotation", "z", 1.0),
+)
+"""The joints from the pelvis's heading to the chest, in order, with their axes (the
+body's joint frames are not turned)."""
+SHOULDER = ("shoulder_flexion", "shoulder_abduction", "shoulder_rotation")
+DEEP_BEND, ELBOW_PER_BEND = 0.8, 1.2
+"""Beyond DEEP_BEND (rad) of the trunk from upright, the hanging arm's elbow bends by
+ELBOW_PER_BEND times as much: stooping to the floor, the hand hung to the floor (0.96 cm
+into it, cooperation) and into the wall of a floor bin (a user's packing cell)."""
+"""A shoulder's joints: about the chest's -y, then x, then -z."""
+
+
+@dataclass(frozen=True, eq=False)
+class HangingArm:
+    """An arm hanging at ease as it does standing, however the trunk bends and turns: the
+    shoulder turns so that the upper arm keeps its standing orientation in the world. Held
+    at its standing joint angles, it went up behind the back of a person stooping over a
+    floor bin (a user's packing cell)."""
+
+    arm: np.ndarray
+    standing: np.ndarray
+    shoulder: tuple[int, int, int]
+    chest: tuple[int, ...]
+    upper_arm: np.ndarray
+    """The upper arm's orientation standing, in the frame of the pelvis's heading."""
+    elbow: int
+
+    @classmethod
+    def of(cls, body: HumanBody, side: str, standing: np.ndarray) -> "HangingArm":
+        arm = arm_indices(body, (side,))
+        shoulder = tuple(body.index(f"{side}_{name}") for name in SHOULDER)
+        chest = tuple(body.index(name) for name, _, _ in CHEST_TURNS)
+        f, a, r = (standing[i] for i in shoulder)
+        upper_arm = _chest(standing, chest) @ _turn("y", -f) @ _turn("x", a) @ _turn("z", -r)
+        elbow = body.index(f"{side}_elbow_flexion")
+        return cls(arm, standing[arm], shoulder, chest, upper_arm, elbow)
+
+    def over(self, q: np.ndarray) -> np.ndarray:
+        """q with this arm hanging."""
+        q[self.arm] = self.standing
+        chest = _chest(q, self.chest)
+        S = chest.T @ self.upper_arm  # = Ry(-f) Rx(a) Rz(-r)
+        flexion, abduction, rotation = self.shoulder
+        q[abduction] = np.arcsin(np.clip(-S[1, 2], -1.0, 1.0))
+        q[flexion] = -np.arctan2(S[0, 2], S[2, 2])
+        q[rotation] = -np.arctan2(S[1, 0], S[1, 1])
+        bend = np.arccos(np.clip(chest[2, 2], -1.0, 1.0))
+        q[self.elbow] += ELBOW_PER_BEND * max(bend - DEEP_BEND, 0.0)
         return q
+
+
+def _chest(q: np.ndarray, chest: tuple[int, ...]) -> np.ndarray:
+    """The chest's orientation in the frame of the pelvis's heading."""
+    R = np.eye(3)
+    for index, (_, axis, sign) in zip(chest, CHEST_TURNS, strict=True):
+        R = R @ _turn(axis, sign * q[index])
+    return R
+
+
+def _turn(axis: str, angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    if axis == "x":
+        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+    if axis == "y":
+        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:
