@@ -403,13 +403,15 @@ class _Checks:
         )
 
     def _standing_at(self, agent, stand: Known | None, facing) -> tuple[float, float, float]:
-        """Where the person stands and which way they face: the walk's target, facing as it
-        says or towards what they take (None: their start)."""
+        """Where the person stands and which way they face: where the walk to its target
+        ends (the nearest place with room, as the run's walk moves it: judged from inside a
+        table, a pick from it was a second line after the place's own), facing as it says or
+        towards what they take (None: their start)."""
         if stand is None:
             x, y, yaw_deg = self.scenario.human.start
             return x, y, math.radians(yaw_deg)
         pose = _resolved(agent, stand.value)
-        x, y, _ = pose.position
+        x, y = self._walk_end(agent, stand) or pose.position[:2]
         yaw = _heading(pose)
         return x, y, math.atan2(facing[1] - y, facing[0] - x) if yaw is None else yaw
 

@@ -5,6 +5,7 @@ probably meant, and exit status 2. On the code before these checks, validate pas
 one of them."""
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -265,6 +266,29 @@ CASES = {
             "work_table: the nearest place with room to stand and turn is [0.00, 1.43]",
         ),
         '<ActorMovement target="{spot}"',
+    ),
+    "a pick from a place to stand inside the table (judged from where the walk ends)": replace(
+        person(
+            '<ActorAnimation animation_name="wave"/>',
+            '<ActorMovement target="in_table"/>'
+            '<NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>'
+            '<ActorPick object_id="{p}"/>',
+            (
+                "locations.in_table: (0.00, 1.00) lies within the floor outline of work_table: "
+                "the nearest place with room to stand and turn is [0.00, 1.43]",
+            ),
+            "ActorMovement",
+            changes=[
+                ("safety:\n", f"{OBJECTS}{PART_ON_TABLE}safety:\n"),
+                (
+                    "locations:\n",
+                    "locations:\n  in_table: {translation: [0.0, 1.0, 0.0], "
+                    "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+                ),
+            ],
+        ),
+        at="in_table:",
+        found_in=S,
     ),
     "a place to walk to without room to turn": person(
         '<ActorMovement target="door"/>',
