@@ -372,6 +372,16 @@ def _tried_before(choice: TreeNode, child: TreeNode, kind: Kind) -> bool:
     return any(_holds(s, kind) for s in _earlier_siblings(choice, child))
 
 
+def failed_tries(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
+    """The nodes of `kind` among the tries of the Fallback right above `node` before it:
+    when `node` runs, they have failed (a SpawnObject that restocks a board after the
+    NextObject that looks there finds nothing: the board is empty)."""
+    parent = parents.get(id(node))
+    if not (isinstance(parent, SequentialControl) and _is_choice(parent)):
+        return []
+    return [s for s in _earlier_siblings(parent, node) if _is(s, kind)]
+
+
 def _holds(node: TreeNode, kind: Kind) -> bool:
     """Whether a node of `kind` is in the subtree of `node`."""
     return _is(node, kind) or any(_holds(c, kind) for c in node.children_nodes())

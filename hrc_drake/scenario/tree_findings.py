@@ -46,6 +46,7 @@ from hrc_drake.scenario.cell_findings import (
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import (
+    failed_tries,
     finder_of,
     held_at,
     object_source,
@@ -199,23 +200,40 @@ class _Checks:
         """The objects that a pick may take the `way` the tree went, each with its label,
         centre and what keeps the person from taking it (`_lying_in`)."""
         hands = _hands(known, pick)
+        gone = self._not_found(object_source(pick, parents, way), parents, known)
         return [
-            (label, obj.pose.translation(), partial(self._pick_problem, obj, agent, hands))
+            (label, obj.pose.translation(), partial(self._pick_problem, obj, agent, hands, gone))
             for label, obj in self._lying_in(parents, way, known, pick, agent)
+        ]
+
+    def _not_found(self, source, parents, known) -> list:
+        """The objects at the start that are not there when `source` runs: those the
+        NextObjects before it in a Fallback look for (they found none; a user's restocking
+        SpawnObject was judged making a part inside the one on the board at the start)."""
+        if not isinstance(source, SpawnObject):
+            return []
+        return [
+            obj
+            for finder in failed_tries(source, parents, NextObject)
+            for area in known.get((id(finder), "area"), ())
+            for wanted in known.get((id(finder), "filter"), ())
+            for obj in self._in_area(area, parse_filter(wanted.value))
         ]
 
     def _placing(self, parents, way, known, pick, target, agent, at_pick, picks=()):
         """What keeps the person from putting down at `target` what `pick` took the `way`
-        the tree went: an object of the one type the NextObject it takes from filters for,
+        the tree went: an object of the one type the NextObject it takes from filters for
+        (or the SpawnObject makes: a user's KLT put down into a shelf's board, missed),
         held as the pick takes those of them lying in its area from where the person stands
         there (`at_pick`), when that is one way; held either way round when it is not (none
         lie there at the start: a part the robot's tree makes and puts there, whose drop
         into a floor bin the run refused, a user's cell); what any of `picks` (those that
         have run before the put-down) may have taken is gone from where it lay."""
+        finder = id(finder_of(pick, parents, way))
         types = {
-            parse_filter(wanted.value).get("type")
-            for wanted in known.get((id(finder_of(pick, parents, way)), "filter"), ())
+            parse_filter(wanted.value).get("type") for wanted in known.get((finder, "filter"), ())
         }
+        types |= {made.value for made in known.get((finder, "type"), ())}
         if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
             return None
         (kind,) = types
@@ -349,14 +367,14 @@ class _Checks:
             and region.contains(obj.pose.translation()[:2])
         ]
 
-    def _pick_problem(self, obj, agent, hands: str, stand: Known | None) -> str:
+    def _pick_problem(self, obj, agent, hands: str, gone, stand: Known | None) -> str:
         """Why the person standing at `stand` (a walk's known target, facing as it says or
         the object; None: their start) cannot take `obj` there with `hands` (the pick's
-        port), as the run would plan the pick; "" when they can."""
+        port), as the run would plan the pick, the objects `gone` gone; "" when they can."""
         x, y, yaw = self._standing_at(agent, stand, obj.pose.translation())
         grasp = self._grasp(obj, hands)
         clip = "pick_table" if grasp.center[2] >= TABLE_HEIGHT else "pick_floor"
-        nearby = self._near(grasp.center, (obj, *self._lying_on(obj)))
+        nearby = self._near(grasp.center, (obj, *self._lying_on(obj), *gone))
         command = AnimateCommand(0, clip, grasp=grasp, nearby=nearby)
         return self._planned_problem(command, (x, y, yaw))
 

@@ -635,6 +635,25 @@ CASES = {
             ),
         ],
     ),
+    "a put-down into the table of a part the tree makes": person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<SpawnObject type="part" pose="0.2;0.85;0.93" object_id="{p}"/>'
+        '<ActorMovement target="table_front"/><ActorPick object_id="{p}"/>'
+        '<ActorPlace target="-0.2;0.85;0.9"/>',
+        (
+            "port 'target': '-0.2;0.85;0.9' at (-0.20, 0.85, 0.90), put down where the person "
+            "stands (location 'table_front', ActorMovement at ",
+            "): what the hands hold would be 3.0 cm into 'work_table' where it is put",
+        ),
+        "ActorPlace",
+        changes=[
+            (
+                "locations:\n",
+                "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+                "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+            ),
+        ],
+    ),
     "a put-down whose tote would be in the board above where it is put": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'

@@ -76,6 +76,14 @@ FINE = {
         '<ActorAnimation animation_name="wave"/>'
     ),
     "a pick after its own branch's NextObject": either_table("other_front"),
+    "a pick of what a Fallback makes where the part it looks for lies at the start": (
+        '<ActorMovement target="table_front"/>\n'
+        "      <Fallback>\n"
+        '        <NextObject area="table" filter="type=part" object_id="{p}" pose="{at}"/>\n'
+        '        <SpawnObject type="part" pose="0.0;0.6;0.93" object_id="{p}"/>\n'
+        "      </Fallback>\n"
+        '      <ActorPick object_id="{p}"/>'
+    ),
 }
 
 
@@ -83,7 +91,9 @@ FINE = {
 def test_a_pick_where_the_tree_has_left_its_object_is_not_judged_elsewhere(
     name, tmp_path, hrc_drake
 ):
-    """The code before said the part lay 2.36 m away (on the first table) for both."""
+    """The code before said the part lay 2.36 m away (on the first table) for the first two;
+    for the third, that the part made where the one found lies would go into it (a user's
+    restocking SpawnObject runs only when the NextObject before it finds none)."""
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case(FINE[name])))
     assert status == 0, err
 
