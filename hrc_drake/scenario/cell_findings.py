@@ -322,10 +322,13 @@ def stand_problem(navigation: NavigationMap, x: float, y: float, yaw: float | No
     return f"{what}: the nearest place with room to stand and turn is {_xy(spot)}"
 
 
-def walk_problem(navigation: NavigationMap, start, x: float, y: float, yaw: float | None) -> str:
+def walk_problem(
+    navigation: NavigationMap, start, x: float, y: float, yaw: float | None, closing_gap
+) -> str:
     """Why no walk from `start` (x, y) reaches the place a walk to (x, y) facing `yaw` ends
     at (the nearest with room, as the person's planner moves it): "" when one does, or when
-    no place near has room (stand_problem says so)."""
+    no place near has room (stand_problem says so). `closing_gap(start, goal)` names the gap
+    a little too narrow that closes the way, if one does ("")."""
     try:
         goal = navigation.clear_spot(x, y, yaw)
     except NoWay:
@@ -333,10 +336,13 @@ def walk_problem(navigation: NavigationMap, start, x: float, y: float, yaw: floa
     try:
         navigation.path(start, goal)
     except NoWay:
+        why = closing_gap(start, goal) or (
+            "the gaps on the way are narrower than a walking person, or the robot's inner "
+            "working space closes them"
+        )
         return (
             f"no walk from the person's start {_xy(start)} to {_xy(goal)} keeps clear of the "
-            "cell (the gaps on the way are narrower than a walking person, or the robot's "
-            "inner working space closes them)"
+            f"cell ({why})"
         )
     return ""
 

@@ -105,13 +105,23 @@ class Detours:
         gap = self._gap(LineString(slim))
         if gap is None:
             return "", None
-        (a, b), width, needed, middle = gap
         message = (
             f"the {walk} from {_xy(start)} to {_xy(goal)} goes round: {length:.1f} m for "
-            f"{straight:.1f} m straight; the gap between '{a}' and '{b}' is {width:.2f} m, "
-            f"{needed:.2f} m needed"
+            f"{straight:.1f} m straight; {_gap_words(gap)}"
         )
+        middle = gap[3]
         return message, (middle.x, middle.y, 0.0)
+
+    def closing_gap(self, start, goal) -> str:
+        """The gap a little too narrow for this person that closes every way from `start`
+        to `goal`, where a slimmer person walks through ("": none such; a user's carry round
+        a bin was said to have no way, naming no gap)."""
+        try:
+            slim = [start, *self._slimmer.path(start, goal), goal]
+        except NoWay:
+            return ""
+        gap = self._gap(LineString(slim))
+        return "" if gap is None else _gap_words(gap)
 
     def _gap(self, way: LineString):
         """The gap the slimmer person's `way` passes through that is narrowest for this
@@ -131,6 +141,11 @@ class Detours:
             if needed > width:
                 found.append(((a.name, b.name), width, needed, across.interpolate(0.5, True)))
         return max(found, key=lambda gap: gap[2] - gap[1], default=None)
+
+
+def _gap_words(gap) -> str:
+    (a, b), width, needed, _ = gap
+    return f"the gap between '{a}' and '{b}' is {width:.2f} m, {needed:.2f} m needed"
 
 
 def _shift_to_open(a: Piece, b: Piece, across: LineString, steps: int = 20) -> float:

@@ -539,7 +539,9 @@ class _Checks:
         key = (round(x, 9), round(y, 9), yaw)
         if key not in self.walk_problems:
             start = self.scenario.human.start[:2]
-            self.walk_problems[key] = walk_problem(self.scene.navigation, start, x, y, yaw)
+            self.walk_problems[key] = walk_problem(
+                self.scene.navigation, start, x, y, yaw, self._detours.closing_gap
+            )
         return self.walk_problems[key]
 
 

@@ -312,6 +312,17 @@ CASES = {
         "0;1.7;0",
         changes=[("human:\n", f"{ISLAND}human:\n")],
     ),
+    "a place to walk to closed in by tables but for gaps a little too narrow": person(
+        '<ActorMovement target="door"/>',
+        '<ActorMovement target="0;1.7;0"/>',
+        (
+            "port 'target': '0;1.7;0': no walk from the person's start [2.00, 2.00] to "
+            "[0.00, 1.70] keeps clear of the cell (the gap between 'right_table' and "
+            "'back_table' is 0.70 m, 0.76 m needed)",
+        ),
+        "0;1.7;0",
+        changes=[("human:\n", f"{ISLAND.replace('[0.0, 2.7, 0.0]', '[0.0, 3.4, 0.0]')}human:\n")],
+    ),
     "a walk round a gap a little too narrow": person(
         '<ActorMovement target="door"/>',
         '<ActorMovement target="2.0;1.9;0"/>\n      <ActorMovement target="door"/>',
