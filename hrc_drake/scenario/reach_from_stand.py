@@ -328,7 +328,7 @@ def _last_before(
                 if (last := _last_of(sibling, kind, way)) is not None:
                     return last
         elif _is_choice(parent):
-            if _tried_before(parent, child, kind):
+            if failed_tries(parent, child, kind):
                 return UNKNOWN  # a Fallback's failed tries
         elif not isinstance(parent, SubTreeNode) and not _runs_first(parent, child):
             return UNKNOWN  # a Parallel's others, a loop
@@ -354,7 +354,7 @@ def _last_of(node: TreeNode, kind: Kind, way: Way) -> TreeNode | None | object:
         if chosen.config.preconditions:
             return UNKNOWN
         last = _last_of(chosen, kind, way)
-        return UNKNOWN if last is None and _tried_before(node, chosen, kind) else last
+        return UNKNOWN if last is None and failed_tries(node, chosen, kind) else last
     return UNKNOWN
 
 
@@ -364,22 +364,13 @@ def _is_choice(node: TreeNode) -> bool:
     return fallback or isinstance(node, WeightedRandom | Switch)
 
 
-def _tried_before(choice: TreeNode, child: TreeNode, kind: Kind) -> bool:
-    """Whether a node of `kind` is among the tries of a Fallback `choice` before `child`,
-    which failed (and may have run it or not); another choice runs only `child`."""
-    if not isinstance(choice, SequentialControl):
-        return False
-    return any(_holds(s, kind) for s in _earlier_siblings(choice, child))
-
-
-def failed_tries(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
-    """The nodes of `kind` among the tries of the Fallback right above `node` before it:
-    when `node` runs, they have failed (a SpawnObject that restocks a board after the
-    NextObject that looks there finds nothing: the board is empty)."""
-    parent = parents.get(id(node))
-    if not (isinstance(parent, SequentialControl) and _is_choice(parent)):
+def failed_tries(parent: TreeNode, child: TreeNode, kind: Kind) -> list[TreeNode]:
+    """The tries of a Fallback `parent` before `child` holding a node of `kind`: they failed
+    when `child` runs, having run it or not (a restocking SpawnObject after the NextObject
+    that found nothing); another node has none."""
+    if not (isinstance(parent, SequentialControl) and parent.stops_on is not FAILURE):
         return []
-    return [s for s in _earlier_siblings(parent, node) if _is(s, kind)]
+    return [s for s in _earlier_siblings(parent, child) if _holds(s, kind)]
 
 
 def _holds(node: TreeNode, kind: Kind) -> bool:

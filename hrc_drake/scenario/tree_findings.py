@@ -214,7 +214,8 @@ class _Checks:
             return []
         return [
             obj
-            for finder in failed_tries(source, parents, NextObject)
+            for finder in failed_tries(parents.get(id(source)), source, NextObject)
+            if isinstance(finder, NextObject)
             for area in known.get((id(finder), "area"), ())
             for wanted in known.get((id(finder), "filter"), ())
             for obj in self._in_area(area, parse_filter(wanted.value))
