@@ -11,7 +11,7 @@ from hrc_drake.human.clearance import ArmCorrection, arm_correction
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import CarryArms
 from hrc_drake.human.head_room import head_correction
-from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.keyed_clips import fade
 from hrc_drake.human.messages import Box
 from hrc_drake.human.performer import Performer
 from hrc_drake.human.rotations import wrap_angle
@@ -177,11 +177,6 @@ def _corrected(corrections, q: np.ndarray, t: float) -> np.ndarray:
     for correction in corrections:
         q = correction.over(q, t)
     return q
-
-
-def fade(elapsed: float, duration: float) -> float:
-    """1 at the start of a fade, 0 at its end, minimum-jerk in between."""
-    return 1.0 - minimum_jerk(elapsed / duration)
 
 
 def _join(performer: Performer, before: Segment, after: Segment) -> np.ndarray:

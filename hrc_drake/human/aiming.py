@@ -15,6 +15,7 @@ from pydrake.math import RigidTransform
 from hrc_drake.human.body import FrameTask, HumanBody
 from hrc_drake.human.grasp import arm_indices, hand_tasks
 from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.rotations import compose, decompose
 from hrc_drake.human.skeleton import SIDES
 
 HAND_TOLERANCE = 0.02
@@ -95,22 +96,22 @@ class AimedMotion:
         return q if self.resting is None else self.resting.over(q)
 
 
-CHEST_TURNS = (
-    ("pelvis_tilt", "y", 1.0),
-    ("pelvis_list", "x", 1.0),
-    ("lumbar_flexion", "y", 1.0),
-    ("lumbar_bending", "x", -1.0),
-    ("thorax_flexion", "y", 1.0),
-    ("thorax_rotation", "z", 1.0),
+CHEST = (
+    "pelvis_tilt",
+    "pelvis_list",
+    "lumbar_flexion",
+    "lumbar_bending",
+    "thorax_flexion",
+    "thorax_rotation",
 )
-"""The joints from the pelvis's heading to the chest, in order, with their axes (the
-body's joint frames are not turned)."""
+"""The joints from the pelvis's heading to the chest, in order (the body's joint frames
+are not turned: each turns about its own axis in the frame of the one before)."""
 SHOULDER = ("shoulder_flexion", "shoulder_abduction", "shoulder_rotation")
+"""A shoulder's joints, in order."""
 DEEP_BEND, ELBOW_PER_BEND = 0.8, 1.2
 """Beyond DEEP_BEND (rad) of the trunk from upright, the hanging arm's elbow bends by
 ELBOW_PER_BEND times as much: stooping to the floor, the hand hung to the floor (0.96 cm
 into it, cooperation) and into the wall of a floor bin (a user's packing cell)."""
-"""A shoulder's joints: about the chest's -y, then x, then -z."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -122,51 +123,46 @@ class HangingArm:
 
     arm: np.ndarray
     standing: np.ndarray
-    shoulder: tuple[int, int, int]
-    chest: tuple[int, ...]
+    chest: tuple[np.ndarray, list]
+    """CHEST's joint indices and axes."""
+    shoulder: tuple[np.ndarray, list]
+    """The shoulder's joint indices and axes."""
     upper_arm: np.ndarray
     """The upper arm's orientation standing, in the frame of the pelvis's heading."""
     elbow: int
 
     @classmethod
     def of(cls, body: HumanBody, side: str, standing: np.ndarray) -> "HangingArm":
+        chest, shoulder = (
+            _joints(body, names) for names in (CHEST, [f"{side}_{n}" for n in SHOULDER])
+        )
+        upper_arm = _turned(chest, standing) @ _turned(shoulder, standing)
         arm = arm_indices(body, (side,))
-        shoulder = tuple(body.index(f"{side}_{name}") for name in SHOULDER)
-        chest = tuple(body.index(name) for name, _, _ in CHEST_TURNS)
-        f, a, r = (standing[i] for i in shoulder)
-        upper_arm = _chest(standing, chest) @ _turn("y", -f) @ _turn("x", a) @ _turn("z", -r)
-        elbow = body.index(f"{side}_elbow_flexion")
-        return cls(arm, standing[arm], shoulder, chest, upper_arm, elbow)
+        return cls(
+            arm, standing[arm], chest, shoulder, upper_arm, body.index(f"{side}_elbow_flexion")
+        )
 
     def over(self, q: np.ndarray) -> np.ndarray:
         """q with this arm hanging."""
         q[self.arm] = self.standing
-        chest = _chest(q, self.chest)
-        S = chest.T @ self.upper_arm  # = Ry(-f) Rx(a) Rz(-r)
-        flexion, abduction, rotation = self.shoulder
-        q[abduction] = np.arcsin(np.clip(-S[1, 2], -1.0, 1.0))
-        q[flexion] = -np.arctan2(S[0, 2], S[2, 2])
-        q[rotation] = -np.arctan2(S[1, 0], S[1, 1])
+        chest = _turned(self.chest, q)
+        indices, axes = self.shoulder
+        q[indices] = decompose(chest.T @ self.upper_arm, axes)[0]
         bend = np.arccos(np.clip(chest[2, 2], -1.0, 1.0))
         q[self.elbow] += ELBOW_PER_BEND * max(bend - DEEP_BEND, 0.0)
         return q
 
 
-def _chest(q: np.ndarray, chest: tuple[int, ...]) -> np.ndarray:
-    """The chest's orientation in the frame of the pelvis's heading."""
-    R = np.eye(3)
-    for index, (_, axis, sign) in zip(chest, CHEST_TURNS, strict=True):
-        R = R @ _turn(axis, sign * q[index])
-    return R
+def _joints(body: HumanBody, names) -> tuple[np.ndarray, list]:
+    """The joints' indices and axes."""
+    indices = np.array([body.index(n) for n in names])
+    return indices, [body.plant.GetJointByName(n).revolute_axis() for n in names]
 
 
-def _turn(axis: str, angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    if axis == "x":
-        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
-    if axis == "y":
-        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+def _turned(joints: tuple[np.ndarray, list], q: np.ndarray) -> np.ndarray:
+    """The rotation of a chain of `joints` (indices, axes) at q."""
+    indices, axes = joints
+    return compose(axes, q[indices])
 
 
 def _free_joints(body: HumanBody, sides, squat: bool) -> np.ndarray:

@@ -126,6 +126,11 @@ def minimum_jerk(s):
     return s**3 * (10 - 15 * s + 6 * s**2)
 
 
+def fade(elapsed: float, duration: float) -> float:
+    """1 at the start of a fade, 0 at its end, minimum-jerk in between."""
+    return 1.0 - minimum_jerk(elapsed / duration)
+
+
 def _interpolate_keys(times: np.ndarray, key_times, key_values) -> np.ndarray:
     """Minimum-jerk segments between consecutive keys (values: one row per key)."""
     key_times = np.asarray(key_times)

@@ -16,7 +16,7 @@ from math import cos, radians, sin
 import numpy as np
 
 from hrc_drake.human.grasp import CarryArms
-from hrc_drake.human.keyed_clips import minimum_jerk
+from hrc_drake.human.keyed_clips import fade, minimum_jerk
 from hrc_drake.human.performer import Performer, carried, place
 from hrc_drake.human.rotations import wrap_angle
 from hrc_drake.human.stepping import (
@@ -332,7 +332,7 @@ def _carried_over(target, offset, t: float):
     since, until, position, forward = offset
     if t >= until:
         return target
-    w = 1.0 - minimum_jerk((t - since) / max(until - since, 1e-9))
+    w = fade(t - since, max(until - since, 1e-9))
     moved_forward = np.add(target[1], w * forward)
     moved_forward /= np.linalg.norm(moved_forward)
     return tuple(np.add(target[0], w * position)), tuple(moved_forward), target[2]

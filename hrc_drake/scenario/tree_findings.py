@@ -216,9 +216,7 @@ class _Checks:
             obj
             for finder in failed_tries(parents.get(id(source)), source, NextObject)
             if isinstance(finder, NextObject)
-            for area in known.get((id(finder), "area"), ())
-            for wanted in known.get((id(finder), "filter"), ())
-            for obj in self._in_area(area, parse_filter(wanted.value))
+            for _, obj in self._found_by(finder, known)
         ]
 
     def _placing(self, parents, way, known, pick, target, agent, at_pick, picks=()):
@@ -316,9 +314,17 @@ class _Checks:
         if isinstance(source, SpawnObject):
             return self._made(known, source, agent, where)
         return [
-            (f"{obj.label} in area '{area.value.name}' ({where})", obj)
-            for area in known.get((id(source), "area"), ())
-            for wanted in known.get((id(source), "filter"), ())
+            (f"{obj.label} in area '{area}' ({where})", obj)
+            for area, obj in self._found_by(source, known)
+        ]
+
+    def _found_by(self, finder, known) -> list[tuple[str, object]]:
+        """The objects at the start that the NextObject `finder` may find, with the name of
+        the area each lies in (`_in_area`)."""
+        return [
+            (area.value.name, obj)
+            for area in known.get((id(finder), "area"), ())
+            for wanted in known.get((id(finder), "filter"), ())
             for obj in self._in_area(area, parse_filter(wanted.value))
         ]
 
