@@ -57,7 +57,7 @@ class PersonCommandNode(CommandNode):
         status = self.agent.workpieces
         objects = status.objects if status is not None else ()
         boxes = [
-            human.Box(*box_of(obj), name=_named(obj))
+            human.Box(*_way_of(obj), name=_named(obj))
             for obj in objects
             if _in_the_way(obj) and obj.id != taken
         ]
@@ -95,6 +95,20 @@ def grasp_of(obj: wp.ObjectStatus, hands: str) -> human.Grasp:
 def box_of(obj: wp.ObjectStatus):
     """An object's centre, heading and box extents (a cylinder: the box around it)."""
     return box_at(obj.pose, obj.shape, obj.size)
+
+
+def _way_of(obj: wp.ObjectStatus):
+    """`box_of` the object, stretched on to where a belt brings it to rest: the arms keep
+    out of where it will be (a hand went 1.0 cm into a carton that came to rest behind the
+    one taken off a queueing belt's end after the pick had been planned, a user's
+    palletizing cell)."""
+    center, yaw, size = box_of(obj)
+    if obj.rests_at is None:
+        return center, yaw, size
+    shift = obj.rests_at.translation() - obj.pose.translation()
+    axes = obj.pose.rotation().matrix()[:, :2].T
+    grown = (size[0] + abs(shift @ axes[0]), size[1] + abs(shift @ axes[1]), size[2])
+    return tuple(np.add(center, shift / 2)), yaw, grown
 
 
 def box_at(pose, shape: str, size):

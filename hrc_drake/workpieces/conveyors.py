@@ -16,6 +16,9 @@ from hrc_drake.workpieces.config import QUEUE, ConveyorConfig
 from hrc_drake.workpieces.geometry import OVERLAP_MARGIN
 from hrc_drake.workpieces.surfaces import Surface
 
+HELD_OVER_THE_BELT = 0.1
+"""m: what is held with its bottom this little above a belt stands in its riders' way."""
+
 
 @dataclass(frozen=True)
 class Extent:
@@ -81,6 +84,20 @@ class Belt:
         e, half = self.extent(outline), self.width / 2
         return e.front > 0.0 and e.back < self.length and e.left > -half and e.right < half
 
+    def riders(self, pieces) -> dict[int, np.ndarray]:
+        """The outlines of the free pieces resting on the belt, by id."""
+        return {p.id: p.footprint for p in pieces if p.holder is None and p.support == self.name}
+
+    def held_over(self, pieces) -> list[np.ndarray]:
+        """The outlines of what is held just over the belt (HELD_OVER_THE_BELT)."""
+        return [
+            p.footprint
+            for p in pieces
+            if p.holder is not None
+            and p.bottom < self.height + HELD_OVER_THE_BELT
+            and self.under(p.footprint)
+        ]
+
     def past_end(self, p_W: np.ndarray) -> bool:
         return float((p_W[:2] - self.start) @ self.axis) > self.length
 
@@ -92,8 +109,20 @@ class Belt:
         (outlines) stop the riders behind them as a rider ahead does: what is held just over
         the belt (a carton taken off a queueing belt's end: the next one moved into its
         place, 4.1 cm into it, in a user's palletizing cell)."""
+        advances = self._advances(riders, self.speed * dt, blockers)
+        return {i: advance / dt for i, advance in advances.items()}
+
+    def rest_places(self, riders: dict[int, np.ndarray], blockers=()) -> dict[int, float]:
+        """How far along the belt each rider of a queueing belt goes before it comes to rest
+        in the queue as it stands (nothing taken off): where the person's hands keep out of
+        a carton still on its way (a hand went 1.0 cm into the next carton, which came to
+        rest after the pick had been planned, a user's palletizing cell)."""
+        return self._advances(riders, math.inf, blockers) if self.queues else {}
+
+    def _advances(self, riders: dict[int, np.ndarray], reach: float, blockers) -> dict[int, float]:
+        """How far each rider may advance, at most `reach`, front ones first."""
         extents = {i: self.extent(outline) for i, outline in riders.items()}
-        speeds: dict[int, float] = {}
+        advances: dict[int, float] = {}
         moved_ahead: list[Extent] = [self.extent(outline) for outline in blockers]
         for i in sorted(extents, key=lambda i: (-extents[i].front, i)):
             extent = extents[i]
@@ -101,9 +130,9 @@ class Belt:
             for ahead in moved_ahead:
                 if ahead.front >= extent.front and not extent.beside(ahead):
                     limit = min(limit, ahead.back - self.queue_gap)
-            advance = min(self.speed * dt, max(limit - extent.front, 0.0))
-            speeds[i] = advance / dt
+            advance = min(reach, max(limit - extent.front, 0.0))
+            advances[i] = advance
             moved_ahead.append(
                 Extent(extent.back + advance, extent.front + advance, extent.right, extent.left)
             )
-        return speeds
+        return advances

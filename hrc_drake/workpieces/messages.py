@@ -150,6 +150,9 @@ class ObjectStatus:
     size: tuple[float, ...] = ()
     """Box extents (x, y, z) or cylinder (radius, length), as the object type gives them."""
     shape: str = "box"
+    rests_at: RigidTransform | None = None
+    """Where a queueing belt brings the object to rest, while it moves on it (None: at rest,
+    held, falling, or on a belt that carries it off)."""
 
     @property
     def supporting_object(self) -> int | None:

@@ -7,7 +7,6 @@ lifted onto it (never sinks); pieces past the end of a removing belt leave."""
 import numpy as np
 from pydrake.multibody.math import SpatialVelocity
 
-from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import with_height
 from hrc_drake.workpieces.messages import object_id_of_support
 from hrc_drake.workpieces.step import Step
@@ -81,41 +80,20 @@ def _support(step: Step, piece: Piece, others: list[Surface], instantly: bool) -
     return support
 
 
-HELD_OVER_THE_BELT = 0.1
-"""m: what is held with its bottom this little above a belt stands in its riders' way."""
-
-
-def _held_over(belt: Belt, pieces) -> list[np.ndarray]:
-    """The outlines of what is held just over the belt."""
-    return [
-        p.footprint
-        for p in pieces
-        if p.holder is not None
-        and p.bottom < belt.height + HELD_OVER_THE_BELT
-        and belt.under(p.footprint)
-    ]
-
-
 def _belts_held_back(step: Step) -> set[str]:
     """The belts with something held just over them now or at the last update."""
     now, before = step.pieces.values(), step.before.pieces.values()
     return {
         name
         for name, belt in step.cell.belts.items()
-        if _held_over(belt, now) or _held_over(belt, before)
+        if belt.held_over(now) or belt.held_over(before)
     }
 
 
 def _belt_speeds(step: Step) -> dict[int, float]:
-    speeds = {}
-    for name, belt in step.cell.belts.items():
-        riders = {
-            p.id: p.footprint
-            for p in step.pieces.values()
-            if p.holder is None and p.support == name
-        }
-        held = _held_over(belt, step.pieces.values())
-        speeds |= belt.plan(riders, step.config.period, held)
+    speeds, pieces = {}, step.pieces.values()
+    for belt in step.cell.belts.values():
+        speeds |= belt.plan(belt.riders(pieces), step.config.period, belt.held_over(pieces))
     return speeds
 
 

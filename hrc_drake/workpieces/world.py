@@ -197,7 +197,20 @@ class Workcell:
         """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
         return StatusOfWorld(self, world, geometry_ids).at(time)
 
-    def object_status(self, piece: Piece, world: World, time: float, geometry_ids) -> ObjectStatus:
+    def rest_places(self, world: World) -> dict[int, RigidTransform]:
+        """Where each moving rider of a queueing belt comes to rest (`ObjectStatus.rests_at`)."""
+        places, pieces = {}, world.pieces.values()
+        for belt in self.belts.values():
+            advances = belt.rest_places(belt.riders(pieces), belt.held_over(pieces))
+            for i, advance in advances.items():
+                pose = world.pieces[i].pose
+                shift = np.array([*(advance * belt.axis), 0.0])
+                places[i] = RigidTransform(pose.rotation(), pose.translation() + shift)
+        return places
+
+    def object_status(
+        self, piece: Piece, world: World, time: float, geometry_ids, rests_at=None
+    ) -> ObjectStatus:
         return ObjectStatus(
             id=piece.id,
             type=piece.type,
@@ -210,6 +223,7 @@ class Workcell:
             geometry_id=geometry_ids[piece.slot] if geometry_ids else None,
             size=piece.solid.size,
             shape=piece.solid.shape,
+            rests_at=rests_at,
         )
 
 
@@ -236,6 +250,7 @@ class StatusOfWorld:
                 status = cell.object_status(piece, world, world.time, geometry_ids)
             self._resting[piece.id] = (piece, status)
             self._objects.append(status)
+        self._rest_places = cell.rest_places(world) if self._moving else {}
         self._results = dict(world.results)
         used = [p.type for p in world.pieces.values()]
         self._free = {name: len(kind.slots) - used.count(name) for name, kind in cell.kinds.items()}
@@ -245,7 +260,9 @@ class StatusOfWorld:
         if self._moving:
             objects = list(objects)
             for k, piece in self._moving:
-                objects[k] = self._cell.object_status(piece, self.world, time, self._geometry_ids)
+                objects[k] = self._cell.object_status(
+                    piece, self.world, time, self._geometry_ids, self._rest_places.get(piece.id)
+                )
         return WorkpiecesStatus(time, tuple(objects), self._results, self._free)
 
 

@@ -587,6 +587,21 @@ def test_a_part_turned_to_the_person_is_taken_with_the_palm_on_its_face():
     assert report.metrics["realism"]["hand_object_gap"]["max"] <= 0.015
 
 
+QUEUE_END = Path(__file__).resolve().parent / "cells" / "queue_end" / "cell.yaml"
+
+
+def test_a_carton_taken_off_a_queue_end_leaves_room_for_the_next_one_riding_up():
+    """A user's palletizing cell, cut down: the front carton taken off a queueing belt's end
+    by its faces along the belt while the next one rides up to rest 5 cm behind it. Planned
+    where that one was, a palm went into the gap it closed: 1.5 cm into it (1.0 cm in the
+    user's cell). The arms keep out of where the belt brings it."""
+    report = run(load_scenario(QUEUE_END), duration=3.0)
+    pick = report.metrics["bt"]["human"]["ActorPick::2"]
+    assert (pick["successes"], pick["failures"]) == (1, 0), pick
+    into = report.metrics["realism"]["penetration_objects"]
+    assert into["max"] <= 0.003, into
+
+
 def _between_the_hands(body, q) -> RigidTransform:
     """The frame midway between the hands' grasp frames, x from the right hand to the left:
     what two palms on its sides hold moves with it."""

@@ -74,6 +74,16 @@ def test_objects_queue_at_a_stopped_end_without_overlapping(run):
     assert heights == pytest.approx([BELT_TOP + PART_HEIGHT / 2] * 3, abs=1e-9)
 
 
+def test_a_moving_object_says_where_the_queue_brings_it_to_rest(run):
+    """What the person's arms keep out of: where each part still riding up will stand."""
+    riding = run[1.0]
+    assert [riding.object(i).rests_at.translation()[0] + PART_LENGTH / 2 for i in (3, 2, 1)] == (
+        pytest.approx([1.0, 1.0 - PART_LENGTH, 1.0 - 2 * PART_LENGTH])
+    )
+    assert riding.object(4).rests_at is None  # a removing belt carries it off
+    assert all(run[6.0].object(i).rests_at is None for i in QUEUED)
+
+
 def test_objects_leave_at_a_removing_end(run):
     # Centres start 0.3 m and 0.5 m before the end: they pass it after 1.5 s and 2.5 s.
     assert run[1.45].object(5) is not None
