@@ -28,6 +28,7 @@ from hrc_drake.bt import BTError, BtlogWriter, JsonLinesWriter
 from hrc_drake.builder import Station, build_diagram
 from hrc_drake.evaluation.record import Fault, Footprint, PersonRecord, RunRecord, RunSetup
 from hrc_drake.evaluation.report import Report, evaluate, write_run_directory
+from hrc_drake.nodes.general import Emit
 from hrc_drake.scenario import Scenario, overridden
 from hrc_drake.systems.behavior_tree import BehaviorTreeSystem
 from hrc_drake.systems.state_changes import StateChanges, add_state_changes
@@ -225,6 +226,7 @@ class _Probes:
             safety_status=_final(station.safety, status_port(SAFETY), context),
             realism=_final(station.realism_audit, "realism", context),
             events=_events(trees, context),
+            event_names=_event_names(trees),
             states=self.states.changes(),
             node_statistics={agent: _node_statistics(tree) for agent, tree in trees.items()},
             recording=station.recorder.recording if station.recorder is not None else None,
@@ -278,6 +280,19 @@ def _events(trees: dict[str, BehaviorTreeSystem], context) -> list:
     """Every tree's task events, by time (then agent)."""
     events = [event for tree in trees.values() for event in _final(tree, "task_events", context)]
     return sorted(events, key=lambda e: (e.time, e.agent))
+
+
+def _event_names(trees: dict[str, BehaviorTreeSystem]) -> tuple[str, ...]:
+    """The task events the trees' Emit nodes name as constants: a report counts them even
+    where none happened (a user's robot never finished a kit in a run, and the summary
+    said nothing of kits)."""
+    named = {
+        node.constant_input("event")
+        for tree in trees.values()
+        for _, _, node in tree.tree.nodes()
+        if isinstance(node, Emit)
+    }
+    return tuple(sorted(named - {None}))
 
 
 def _node_statistics(system: BehaviorTreeSystem) -> dict:

@@ -156,6 +156,12 @@ class TreeNode(ABC):
         return []
 
     # ports -------------------------------------------------------------------------
+    def constant_input(self, name: str) -> Any:
+        """The value the XML gives port ``name`` as a constant (None: it names a blackboard
+        entry or is unset): what is known of the node before it runs."""
+        binding = self._inputs.get(name)
+        return binding.value if isinstance(binding, Literal) else None
+
     def get_input(self, name: str, default: Any = UNSET) -> Any:
         """Value of input port ``name``; ``default`` if its entry is unset (else error)."""
         binding = self._inputs.get(name)

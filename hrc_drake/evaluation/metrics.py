@@ -163,9 +163,10 @@ def sensing_metrics(
     }
 
 
-def task_metrics(events: list[TaskEvent], duration: float) -> dict:
-    """Counts of each task event and their rate per hour of simulated time."""
-    counts: dict[str, int] = {}
+def task_metrics(events: list[TaskEvent], duration: float, names=()) -> dict:
+    """Counts of each task event and their rate per hour of simulated time; those `names`
+    that never happened count 0."""
+    counts: dict[str, int] = dict.fromkeys(names, 0)
     for event in events:
         counts[event.name] = counts.get(event.name, 0) + 1
     hours = duration / SECONDS_PER_HOUR

@@ -93,6 +93,8 @@ class RunRecord:
     """the person's realism audit at the end of the run"""
     events: list[TaskEvent]
     """every tree's task events, by time"""
+    event_names: tuple[str, ...]
+    """the task events the trees' Emit nodes name, counted even where none happened"""
     states: dict[str, list[tuple[float, str]]]
     """per actor (and tree), the (time, state) at which its state changed"""
     node_statistics: dict[str, dict]

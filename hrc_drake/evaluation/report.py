@@ -63,7 +63,7 @@ def evaluate(record: RunRecord) -> dict:
         "versions": record.versions,
         "robot": robot_metrics(setup.robot_variant, setup.initial_positions, record.robot_states),
         "safety": safety_metrics(record.safety_status, setup.safety.moving_speed),
-        "tasks": task_metrics(record.events, setup.duration),
+        "tasks": task_metrics(record.events, setup.duration, record.event_names),
         "bt": bt_metrics(record.node_statistics),
         "realism": realism_metrics(record.realism),
         "ergonomics": ergonomics_metrics(record),

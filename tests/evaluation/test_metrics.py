@@ -73,6 +73,14 @@ def test_throughput_per_hour():
     assert metrics["throughput_per_hour"] == {"part_finished": 120.0, "part_rejected": 60.0}
 
 
+def test_an_event_the_trees_name_that_never_happened_counts_zero():
+    """A user's robot never finished a kit in a run, and the summary said nothing of kits."""
+    events = [TaskEvent(10.0, "part_finished")]
+    metrics = task_metrics(events, duration=60.0, names=("kit_done", "part_finished"))
+    assert metrics["events"] == {"kit_done": 0, "part_finished": 1}
+    assert metrics["throughput_per_hour"] == {"kit_done": 0.0, "part_finished": 60.0}
+
+
 def test_absent_sources_give_empty_sections():
     assert safety_metrics(None, 0.01) == {}
     assert task_metrics([], 10.0) == {"events": {}, "throughput_per_hour": {}}

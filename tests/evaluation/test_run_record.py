@@ -66,6 +66,8 @@ def test_the_record_holds_what_the_run_did(scenario, split):
     times = [event.time for event in record.events]
     assert times == sorted(times)
     assert sum(metrics["tasks"]["events"].values()) == len(record.events)
+    assert record.event_names == ("part_moved",)  # the robot's tree Emits it
+    assert "part_moved" in metrics["tasks"]["events"]  # counted, happened or not
     assert record.recording is None and record.meshcat is None
 
 
