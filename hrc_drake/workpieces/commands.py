@@ -192,9 +192,24 @@ def _attach_problem(step: Step, piece: Piece | None, object_id: int, holder: str
     tolerance = (
         step.config.vacuum_tolerance if holder == ROBOT_HOLDER else step.config.hand_tolerance
     )
-    if _grasp_distance(step, piece, holder) is None:
+    if _grasp_distance(step, piece, holder) is not None:
+        return ""
+    if holder == ROBOT_HOLDER:
         return f"object {piece.id} is not within {tolerance} m of the {holder}'s grasp frame"
-    return ""
+    distance = _distance(step, piece, holder)
+    return (
+        f"object {piece.id} is {distance:.2f} m from {GRASP_POINTS[holder]} as they close "
+        f"({tolerance} m at most)"
+    )
+
+
+GRASP_POINTS = {
+    RIGHT_HAND: "the right palm",
+    LEFT_HAND: "the left palm",
+    BOTH_HANDS: "the point between the palms",
+}
+"""How a refused grasp names where the hands closed (a user read "the both_hands's grasp
+frame" and could not tell how far off they were)."""
 
 
 def _handover_problem(step: Step, piece: Piece | None, object_id: int, to: str) -> str:
