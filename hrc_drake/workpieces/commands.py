@@ -182,6 +182,15 @@ def _held_by(step: Step, holder: str) -> Piece | None:
     return next((p for p in step.pieces.values() if p.holder == holder), None)
 
 
+GRASP_POINTS = {
+    RIGHT_HAND: "the right palm",
+    LEFT_HAND: "the left palm",
+    BOTH_HANDS: "the point between the palms",
+}
+"""How a refused grasp names where the hands closed (a user read "the both_hands's grasp
+frame" and could not tell how far off they were)."""
+
+
 def _attach_problem(step: Step, piece: Piece | None, object_id: int, holder: str) -> str:
     if piece is None:
         return f"no object {object_id}"
@@ -201,15 +210,6 @@ def _attach_problem(step: Step, piece: Piece | None, object_id: int, holder: str
         f"object {piece.id} is {distance:.2f} m from {GRASP_POINTS[holder]} as they close "
         f"({tolerance} m at most)"
     )
-
-
-GRASP_POINTS = {
-    RIGHT_HAND: "the right palm",
-    LEFT_HAND: "the left palm",
-    BOTH_HANDS: "the point between the palms",
-}
-"""How a refused grasp names where the hands closed (a user read "the both_hands's grasp
-frame" and could not tell how far off they were)."""
 
 
 def _handover_problem(step: Step, piece: Piece | None, object_id: int, to: str) -> str:

@@ -197,15 +197,19 @@ class Workcell:
         """What the world looks like at `time`; `geometry_ids` are the slots' geometries."""
         return StatusOfWorld(self, world, geometry_ids).at(time)
 
-    def rest_places(self, world: World) -> dict[int, RigidTransform]:
-        """Where each moving rider of a queueing belt comes to rest (`ObjectStatus.rests_at`)."""
+    def rest_places(self, world: World, moving: list[Piece]) -> dict[int, RigidTransform]:
+        """Where each of the `moving` pieces that rides a queueing belt comes to rest
+        (`ObjectStatus.rests_at`): only those belts are planned (the world changes at every
+        update while anything is carried)."""
         places, pieces = {}, world.pieces.values()
-        for belt in self.belts.values():
+        for name in {p.support for p in moving} & self.belts.keys():
+            belt = self.belts[name]
             advances = belt.rest_places(belt.riders(pieces), belt.held_over(pieces))
-            for i, advance in advances.items():
-                pose = world.pieces[i].pose
-                shift = np.array([*(advance * belt.axis), 0.0])
-                places[i] = RigidTransform(pose.rotation(), pose.translation() + shift)
+            for piece in moving:
+                if piece.id in advances and piece.support == name:
+                    shift = np.array([*(advances[piece.id] * belt.axis), 0.0])
+                    pose = piece.pose
+                    places[piece.id] = RigidTransform(pose.rotation(), pose.translation() + shift)
         return places
 
     def object_status(
@@ -250,7 +254,7 @@ class StatusOfWorld:
                 status = cell.object_status(piece, world, world.time, geometry_ids)
             self._resting[piece.id] = (piece, status)
             self._objects.append(status)
-        self._rest_places = cell.rest_places(world) if self._moving else {}
+        self._rest_places = cell.rest_places(world, [p for _, p in self._moving])
         self._results = dict(world.results)
         used = [p.type for p in world.pieces.values()]
         self._free = {name: len(kind.slots) - used.count(name) for name, kind in cell.kinds.items()}
