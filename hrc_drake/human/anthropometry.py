@@ -293,6 +293,7 @@ def _arm_bodies(side: str, d: _Dimensions, s: dict, mass: float) -> list[Body]:
         _sided_dofs(
             side,
             (
+                _rev("wrist_pronation", (0, 0, -1), -80, 80),
                 _rev("wrist_flexion", (-1, 0, 0), -70, 80),
                 _rev("wrist_deviation", (0, 1, 0), -25, 25),
             ),
