@@ -61,14 +61,18 @@ def poses_of(body: HumanBody, positions: np.ndarray) -> Pose:
 class ArmAngles:
     """Degrees. `flexion` is the upper arm's elevation from the trunk (negative when it
     points backwards: extension); `abduction` its angle out of the trunk's sagittal plane,
-    outwards; `hand_lateral` how far (m) the hand is outside its shoulder (negative:
-    inside), `hand_across` whether it reaches past the body's midline."""
+    outwards; `wrist_twist` the forearm's turn from its mid-position (thumb forward, palm
+    to the thigh with the arm hanging), positive in pronation (the palm turned down or
+    back), negative in supination; `hand_lateral` how far (m) the hand is outside its
+    shoulder (negative: inside), `hand_across` whether it reaches past the body's
+    midline."""
 
     flexion: np.ndarray
     abduction: np.ndarray
     elbow_flexion: np.ndarray
     wrist_flexion: np.ndarray
     wrist_deviation: np.ndarray
+    wrist_twist: np.ndarray
     hand_lateral: np.ndarray
     hand_across: np.ndarray
 
@@ -183,13 +187,29 @@ def _arm(R: dict, p: dict, side: str) -> ArmAngles:
     elevation = _angle(upper, np.array([0.0, 0.0, -1.0]))
     sideways = out * upper[..., 1]
     backwards = (upper[..., 0] < 0) & (-upper[..., 0] > np.maximum(sideways, 0.0))
-    hand = _in(R[f"{side}_forearm"], -R[f"{side}_hand"][..., :, 2])  # the hand's axis
+    forearm, hand_frame = R[f"{side}_forearm"], R[f"{side}_hand"]
+    # The forearm's pronation: the hand's y axis (the palm's normal, about which the wrist
+    # deviates, square to the axis it flexes about) turned about the forearm's long axis.
+    # Flexion tilts that axis along the forearm and deviation turns about it, so neither
+    # changes its bearing about the forearm (short of flexion by 90 deg, past the joint's
+    # range): the bearing is the pronation alone.
+    palm = _in(forearm, hand_frame[..., :, 1])
+    twist = np.arctan2(-palm[..., 0], palm[..., 1])
+    # Flexion and deviation are taken in the forearm turned with it (the radius carries
+    # the wrist as the forearm pronates): the hand's axis with that turn undone.
+    axis = _in(forearm, -hand_frame[..., :, 2])
+    c, s = np.cos(twist), np.sin(twist)
+    hand = np.stack(
+        [c * axis[..., 0] + s * axis[..., 1], c * axis[..., 1] - s * axis[..., 0], axis[..., 2]],
+        axis=-1,
+    )
     return ArmAngles(
         flexion=np.where(backwards, -elevation, elevation),
         abduction=np.degrees(np.arcsin(np.clip(sideways, -1.0, 1.0))),
         elbow_flexion=_angle(upper, wrist - elbow),
         wrist_flexion=np.abs(_atan2(hand[..., 1], -hand[..., 2])),
         wrist_deviation=np.abs(_atan2(hand[..., 0], -hand[..., 2])),
+        wrist_twist=-out * np.degrees(twist),  # the left forearm pronates about -z
         hand_lateral=out * (grasp[..., 1] - shoulder[..., 1]),
         hand_across=out * grasp[..., 1] < 0,
     )

@@ -16,6 +16,15 @@ TWISTED = 10.0
 side-bent (ISO 11226's limit for trunk axial rotation and lateral bending)"""
 DEVIATED = 10.0
 """degrees of radial or ulnar deviation from which a wrist counts as deviated"""
+WRIST_TWISTED = 10.0
+"""degrees of pronation or supination from the forearm's mid-position from which a wrist
+counts as twisted (REBA): "twisted" has no band in REBA, so, like a wrist's deviation and
+a trunk's or a neck's twist, a turn of 10 degrees counts"""
+END_OF_TWIST = 60.0
+"""degrees of pronation or supination from which a wrist twist is "at or near the end of
+the twisting range" (RULA 2): the outer quarter of the forearm's 80 degrees either way
+(docs/human-body.md [ROM], the skeleton's joint limit); short of it the twist is "mainly
+in mid-range" (RULA 1)"""
 
 
 @dataclass(frozen=True)
@@ -61,7 +70,7 @@ def rula_parts(angles: PostureAngles, side: str, load: Load, activity: Activity)
             arm.elbow_flexion, arm.hand_across or arm.hand_lateral > OUT_TO_THE_SIDE
         ),
         wrist=rula.wrist_score(arm.wrist_flexion, arm.wrist_deviation > DEVIATED),
-        wrist_twist=rula.wrist_twist_score(),
+        wrist_twist=rula.wrist_twist_score(abs(arm.wrist_twist) > END_OF_TWIST),
         neck=rula.neck_score(
             angles.neck_flexion, angles.neck_twist > TWISTED, angles.neck_side_bend > TWISTED
         ),
@@ -87,7 +96,10 @@ def reba_parts(angles: PostureAngles, side: str, load: Load, activity: Activity)
         legs=reba.legs_score(bilateral, max(angles.knee_flexion.values())),
         upper_arm=reba.upper_arm_score(arm.flexion, arm.abduction > ABDUCTED),
         lower_arm=reba.lower_arm_score(arm.elbow_flexion),
-        wrist=reba.wrist_score(arm.wrist_flexion, arm.wrist_deviation > DEVIATED),
+        wrist=reba.wrist_score(
+            arm.wrist_flexion,
+            arm.wrist_deviation > DEVIATED or abs(arm.wrist_twist) > WRIST_TWISTED,
+        ),
         load=reba.load_score(load.left + load.right),
         coupling=reba.coupling_score(load.coupling),
         activity=reba.activity_score(

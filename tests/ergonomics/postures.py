@@ -28,6 +28,15 @@ wrist over 15 -> 2: Table B 5, coupling 0 (nothing held). Table C (5, 5) -> 6, a
 """
 REACHING_RULA, REACHING_REBA = 5, 6
 
+REACHING_PRONATED = {**REACHING_TWISTED, "right_wrist_pronation": 75.0}
+"""REACHING_TWISTED with the right forearm pronated 75 deg (palm turned down).
+
+RULA, right side: twist at the end of its range -> 2: Table A (4, 1, 3, 2) 5; Table C
+(5, 5) -> 6. REBA, right side: wrist over 15 -> 2, twisted +1 -> 3: Table B (4, 1, 3) 5, as
+with the wrist 2: Table C (5, 5) -> 6.
+"""
+PRONATED_RULA, PRONATED_REBA = 6, 6
+
 
 def posture(body: HumanBody, degrees: dict[str, float]) -> np.ndarray:
     """The standing pose with `degrees` set on the named joints."""

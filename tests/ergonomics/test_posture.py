@@ -10,7 +10,15 @@ from hrc_drake.ergonomics.rula import grand_score
 from hrc_drake.ergonomics.scoring import Activity, Load, reba_parts, rula_parts
 from hrc_drake.human.body import human_body
 from hrc_drake.human.survey import survey_size
-from tests.ergonomics.postures import REACHING_REBA, REACHING_RULA, REACHING_TWISTED, posture
+from tests.ergonomics.postures import (
+    PRONATED_REBA,
+    PRONATED_RULA,
+    REACHING_PRONATED,
+    REACHING_REBA,
+    REACHING_RULA,
+    REACHING_TWISTED,
+    posture,
+)
 
 
 def angles_of(body, degrees):
@@ -60,6 +68,50 @@ def test_a_known_posture_scores_what_the_rules_give_by_hand():
     reba = {side: reba_score(reba_parts(a, side, load, activity)) for side in a.arms}
     assert rula == {"left": 4, "right": REACHING_RULA}
     assert reba == {"left": 4, "right": REACHING_REBA}
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+@pytest.mark.parametrize(
+    "pronation, flexion, deviation",
+    [(-80, 0, 0), (-30, 0, 0), (45, 0, 0), (75, 0, 0), (75, 30, 0), (45, 40, 20), (-60, -50, 25)],
+)
+def test_wrist_twist_is_the_forearm_pronation(side, pronation, flexion, deviation):
+    """The twist reads the pronation joint (positive: pronation, on both sides), also with
+    the wrist flexed and deviated; flexion is taken in the forearm turned with it, so a
+    pronated wrist flexed 30 deg measures 30 (not part of it as deviation)."""
+    a = angles_of(
+        human_body(),
+        {
+            f"{side}_wrist_pronation": pronation,
+            f"{side}_wrist_flexion": flexion,
+            f"{side}_wrist_deviation": deviation,
+        },
+    ).arms[side]
+    assert a.wrist_twist == pytest.approx(pronation, abs=1e-6)
+    assert a.wrist_flexion == pytest.approx(abs(flexion), abs=1e-6)
+    unpronated = angles_of(
+        human_body(), {f"{side}_wrist_flexion": flexion, f"{side}_wrist_deviation": deviation}
+    ).arms[side]
+    assert a.wrist_deviation == pytest.approx(unpronated.wrist_deviation, abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    "pronation, rula_twist, reba_wrist", [(0, 1, 1), (30, 1, 2), (-75, 2, 2), (75, 2, 2)]
+)
+def test_a_pronated_forearm_scores_the_wrist_twist(pronation, rula_twist, reba_wrist):
+    """Standing, wrist straight: RULA's twist is 2 at or near the end of the forearm's
+    range (beyond 60 deg), REBA's wrist +1 once it is twisted (beyond 10 deg)."""
+    a = angles_of(human_body(), {"right_wrist_pronation": pronation})
+    rula = rula_parts(a, "right", Load(), Activity())
+    reba = reba_parts(a, "right", Load(), Activity())
+    assert (rula.wrist_twist, reba.wrist) == (rula_twist, reba_wrist)
+
+
+def test_a_known_pronated_posture_scores_what_the_rules_give_by_hand():
+    a = angles_of(human_body(), REACHING_PRONATED)
+    rula = grand_score(rula_parts(a, "right", Load(), Activity()))
+    reba = reba_score(reba_parts(a, "right", Load(), Activity()))
+    assert (rula, reba) == (PRONATED_RULA, PRONATED_REBA)
 
 
 def test_survey_sizes_of_a_5th_percentile_woman_and_a_95th_percentile_man():
