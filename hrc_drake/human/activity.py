@@ -86,6 +86,12 @@ class Activity:
         blended = replace(self, blend_offset=offset, blend_start=t, blend_time=duration)
         return replace(blended, clear=blended._arms_clear(performer, t))
 
+    def kept_clear(self, performer: Performer, t: float) -> "Activity":
+        """This activity from t with the head and arms kept out of the furniture, as it is
+        played when it takes over from its own pose (what a plan goes into before then is
+        not what the person does: `blended_from`)."""
+        return replace(self, clear=self._arms_clear(performer, t))
+
     def _arms_clear(self, performer: Performer, t: float) -> tuple[ArmCorrection, ...]:
         """The corrections that keep the head, then the arms, out of the furniture from t to
         the end (of one loop of a clip that loops for ever)."""

@@ -28,9 +28,8 @@ HEIGHT_RANGE = (1.45, 1.95)
 """m: from below a 1st-percentile woman to a 99th-percentile man of ANSUR II"""
 WRIST_RADIUS = 0.028
 """m: the forearm's slim end, round the wrist's girth (about 17.5 cm for men, 15.3 cm for
-women in ANSUR II; docs/human-body.md). The forearm as thick as below the elbow (0.036) to
-the wrist put the wrist of a palm flat on a box's side 1 cm into the box (a kit taken off
-another in a squat)."""
+women in ANSUR II; docs/human-body.md): as thick as below the elbow (0.036) to the wrist, the
+wrist of a palm flat on a box's side went 1 cm into it (a kit taken off another, squatting)."""
 TAPER = 0.6
 """Where along the forearm, from the elbow, it has thinned to the wrist's girth."""
 

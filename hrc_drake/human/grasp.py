@@ -1,8 +1,9 @@
 """Grasps from an object's geometry: which hands, where the palms go, how it is carried.
 
 A part that fits in one hand and is light is taken with the right hand, the palm on its
-right-hand face and the fingers round it; anything else with both hands, the palms on the
-two faces that face the person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
+right-hand face and the fingers round it (a thin one: the palm on its top, the forearm
+turned in); anything else with both hands, the palms on the two faces that face the
+person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
 overrides the choice; a `fragile` object always gets both hands. While held, the arms keep
 a carry posture solved for the object's size: as people carry a box, close to the body at
 the waist, the upper arms hanging and the elbows bent (docs/realism.md).
@@ -77,9 +78,18 @@ def hold_of(grasp: Grasp, heading: float) -> Hold:
 HAND_AXES = {
     "sides_fingers_down": np.eye(3),
     "sides_fingers_forward": np.array([[0, 0, -1], [0, 1, 0], [1, 0, 0]], dtype=float),
+    "top_fingers_in": RotationMatrix.MakeZRotation(math.radians(60.0)).matrix()
+    @ np.array([[0, 0, -1], [1, 0, 0], [0, -1, 0]], dtype=float),
 }
 """Hand orientations in the person's heading frame (columns: the hand frame's x, y, z):
-palms on an object's sides, reaching down to it or holding it in front."""
+palms on an object's sides, reaching down to it or holding it in front; the right palm down
+on a thin part's top, the forearm turned in (pronated) and the fingers 60 degrees in from
+straight ahead, as a hand lies flat on a table in front of the body. With the fingers
+straight ahead the forearm turned in to its limit and the trunk bent aside to roll the hand
+the rest: a right hand putting a board into a bin ahead bent the trunk 25 degrees to the
+left, and the free arm went 6 cm into the table beside the person (a user's cell); turned
+in 60 degrees, 16 and clear of it. Further in, the shoulder's rotation reaches its limit
+carrying the part at the waist."""
 
 
 def facing(heading: float, hand: str) -> RotationMatrix:
@@ -96,8 +106,18 @@ bottom, so the hand's lower edge (half its breadth, 4.5 cm for the default adult
 the frame) stays clear of what the object stands on."""
 
 
-def grip_style(height: float) -> str:
+PINCHED_BELOW = 0.03
+"""m: a part taken in one hand that is lower than this is taken from above, the palm down on
+its top and the fingers round its edges. Held from the side, the hand's breadth upright, the
+palm stays GRIP_ABOVE_SUPPORT above what the part stands on: more than 2 cm (the realism
+audit's limit) above a lower part's top (a 1.5 cm circuit board was held 3.5 cm under the
+palm and pushed along beside the hand, a user's cell)."""
+
+
+def grip_style(hands: str, height: float) -> str:
     """How the hands take an object this tall (a HAND_AXES key)."""
+    if hands == ONE_HAND and height < PINCHED_BELOW:
+        return "top_fingers_in"
     return "sides_fingers_down" if height / 2 >= FINGERS_DOWN else "sides_fingers_forward"
 
 
@@ -111,11 +131,14 @@ seed 15); gripped higher still (6.5 cm below the top or less), IK left the hands
 of a carton on a crate on a pallet."""
 
 
-def grip_lift(height: float) -> float:
+def grip_lift(hands: str, height: float) -> float:
     """How far above an object's centre its grasp frame is: a tall object is gripped high
     enough that the forearms clear its top, a low one near its top with the hand's edge
-    clear of the surface below."""
-    if grip_style(height) == "sides_fingers_down":
+    clear of the surface below, a thin one on its top."""
+    style = grip_style(hands, height)
+    if style == "top_fingers_in":
+        return height / 2 + PALM_GAP
+    if style == "sides_fingers_down":
         return height / 2 - GRIP_BELOW_TOP
     return max(GRIP_ABOVE_SUPPORT - height / 2, 0.0)
 
@@ -157,17 +180,21 @@ def release_targets(hold: Hold, center, heading: float) -> dict:
 def _holding(hands: str, center, heading: float, left, size) -> dict:
     """The palms on the side faces of an object of `size` (its extents along the faces,
     across them, up) whose centre is at `center`, `left` the faces' normal towards the
-    person's left: the palms back along the faces, towards the person, as far as
-    `palm_back`, and turned with the faces (held to the person's heading, a palm 45° to the
-    face of a part turned 135° went 1.02 cm into it with its edge, a user's cell)."""
+    person's left (a thin part in one hand: the palm on its top): the palms back along the
+    faces, towards the person, as far as `palm_back`, and turned with the faces (held to the
+    person's heading, a palm 45° to the face of a part turned 135° went 1.02 cm into it with
+    its edge, a user's cell)."""
     depth, width, height = size
     toward = np.array([left[1], -left[0], 0.0])  # along the faces, ahead for `left` ahead
     if toward @ [math.cos(heading), math.sin(heading), 0.0] < 0:
         toward = -toward
     held = np.asarray(center, dtype=float) - palm_back(hands, depth) * toward
-    held = held + [0.0, 0.0, grip_lift(height)]
-    along = math.atan2(toward[1], toward[0])
-    return _on_sides(hands, held, left, width, facing(along, grip_style(height)))
+    held = held + [0.0, 0.0, grip_lift(hands, height)]
+    style = grip_style(hands, height)
+    R = facing(math.atan2(toward[1], toward[0]), style)
+    if style == "top_fingers_in":
+        return {"right": (held, R)}
+    return _on_sides(hands, held, left, width, R)
 
 
 def reach_target(body: HumanBody, point, heading: float) -> dict:
@@ -229,9 +256,10 @@ def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
     palms' midpoint for both hands, a level frame at the palm for one): beside the palm,
     below it when the object is gripped near its top, ahead of the palms when they hold a
     deep object towards its near face."""
-    below = -grip_lift(hold.size[2])
+    below = -grip_lift(hold.hands, hold.size[2])
     if hold.hands == ONE_HAND:
-        return (0.0, hold.size[1] / 2, below)
+        on_top = grip_style(hold.hands, hold.size[2]) == "top_fingers_in"
+        return (0.0, 0.0 if on_top else hold.size[1] / 2, below)
     return (palm_back(hold.hands, hold.size[0]), 0.0, below)
 
 
@@ -314,11 +342,11 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     the belly."""
     depth, width, height = size
     if hands == ONE_HAND:
-        targets = {"right": (np.array(ONE_HAND_CARRY), facing(0.0, "sides_fingers_forward"))}
+        targets = {"right": (np.array(ONE_HAND_CARRY), facing(0.0, grip_style(hands, height)))}
     else:
         forward = TRUNK_CLEARANCE + depth / 2 - palm_back(hands, depth)
         elbows = body.sizes["shoulder_height"] - body.sizes["upper_arm"]
-        z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2 + grip_lift(height))
+        z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2 + grip_lift(hands, height))
         R = facing(0.0, "sides_fingers_forward")
         half = width / 2 + PALM_GAP
         targets = {
@@ -329,6 +357,11 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
     free = arm_indices(body, tuple(targets))
     solved = body.solve(q, hand_tasks(targets), free, iterations=100, posture_weight=1e-4)
     return CarryArms(free, solved[free], tuple(targets), size)
+
+
+def _palm_down(R: RotationMatrix | None) -> bool:
+    """Whether a hand frame at R has its palm (its y axis) facing down or up, as on a top."""
+    return R is not None and abs(R.matrix()[2, 1]) > 0.5
 
 
 def hand_tasks(
@@ -345,6 +378,23 @@ def hand_tasks(
             rotation,
             rotation_weights=weights or (orientation_weight,) * 3,
             rotation_axes=rotation if turn_in_palm else None,
+            turns_forearm=side if _palm_down(rotation) else "",
         )
         for side, (position, rotation) in targets.items()
     ]
+
+
+LEVEL_BELOW = 0.07
+"""m: two palms taking an object lower than this are held level on its faces, the fingers
+forward, where that keeps out of the cell. Free to turn about their normals, the arms point
+the fingers down at what it stands on and the palms rise about 3.7 cm to clear it (a tray on
+a 0.9 m table 0.45-0.6 m ahead): 4.8 cm above a 4 cm tray, and a user's pick failed; level,
+1.4-1.7 cm off it. Put-downs still turn them (level, a 4 cm tray put on a trolley from the
+carry posture put the left arm 3.7 cm into it, as `hrc-drake validate` plans it)."""
+
+
+def palms_level_first(hands: dict, carry: CarryArms | None, takes: bool) -> tuple[bool, ...]:
+    """Whether the palms aimed at `hands` (side: target) to take (`takes`) what `carry` holds
+    are held level, in the order they are tried (LEVEL_BELOW)."""
+    low = takes and carry is not None and carry.size[2] < LEVEL_BELOW
+    return (True, False) if len(hands) == 2 and low else (False,)

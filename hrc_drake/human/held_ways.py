@@ -26,6 +26,7 @@ from hrc_drake.human.grasp import (
     CarryArms,
     arm_indices,
     facing,
+    grip_style,
     hand_below,
     hand_extent,
     hand_tasks,
@@ -433,7 +434,7 @@ def _held_outline(body, carry: CarryArms, heading: float):
     of its outline on the floor (offsets), and how far it reaches below and above."""
     depth, width, height = carry.size
     ahead, aside, below = object_center_in_holder(carry.hold)
-    R = facing(heading, "sides_fingers_forward")
+    R = facing(heading, grip_style(carry.hold.hands, height))
     hand = max(hand_extent(body, R, outward(side, R), side) for side in carry.hands)
     lowest = max(-below + height / 2, *(hand_below(body, R, side) for side in carry.hands))
     up = (0.0, 0.0, 1.0)

@@ -4,6 +4,7 @@ to the target orientation), of an animation (a clip, aimed at a target or grasp 
 inverse kinematics), of standing idle, and of coming to a stop after a cancel."""
 
 from dataclasses import replace
+from functools import partial
 from math import atan2, cos, hypot, radians, sin
 
 import numpy as np
@@ -13,12 +14,13 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.going_in import arrived_going_in, placed_going_in
+from hrc_drake.human.going_in import arrived_going_in, going_in, placed_going_in
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
     hold_of,
     palm_targets,
+    palms_level_first,
     reach_target,
     release_targets,
 )
@@ -39,7 +41,8 @@ from hrc_drake.human.segments import (
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.step_back import stepped_back
 from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
-from hrc_drake.human.walking import CORNER_RADIUS, WalkSegment, walkable_turn
+from hrc_drake.human.walk_paths import cut_at_sharp_corners, without_short_legs
+from hrc_drake.human.walking import WalkSegment
 
 STOP_SHORT = 0.3
 """m: a carry ends at most this far short of its place, where what the hands hold would
@@ -57,8 +60,6 @@ they hold at the point reached, it said where that would go instead (collaborati
 5th-percentile woman, still holding the carton handed over when its carry was refused, was
 told 142 times "what the hands hold would be 10.0 cm into 'crate 1' where it is put": the
 carton's centre at the point reached, half its 0.2 m height in the crate under it)."""
-MIN_LEG = 0.3
-"""m: shorter legs between waypoints are dropped."""
 FINAL_TURN_WALKING = radians(45.0)
 """A walk turns to face its place over its last steps by at most this; further, the person
 turns on the spot there: the closing steps of a walk at full pace that turns further slide
@@ -130,7 +131,7 @@ def _walk(performer: Performer, command: MoveCommand, pose, t: float, carry, fur
             path = _path(navigation, command, back.end_position)
     distance = command.animation_distance or clip.animation_distance
     speed = distance / clip.duration
-    stretches = _stretches(path)
+    stretches = cut_at_sharp_corners(path)
     for k, stretch in enumerate(stretches):
         first = atan2(stretch[1][1] - stretch[0][1], stretch[1][0] - stretch[0][0])
         facing = heading + wrap_angle(first - heading)
@@ -169,7 +170,7 @@ def _path(navigation: NavigationMap | None, command: MoveCommand, start) -> list
         yaw = _yaw_of(command.target_quaternion) if oriented else None
         goal, waypoints = _walk_round(navigation, start, goal, yaw, waypoints)
     walkable = navigation.walkable if navigation is not None else None
-    return _without_short_legs([start, *[tuple(p) for p in waypoints], goal], walkable)
+    return without_short_legs([start, *[tuple(p) for p in waypoints], goal], walkable)
 
 
 def _walk_round(navigation: NavigationMap, start, goal, yaw: float | None, waypoints):
@@ -190,29 +191,33 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
         raise Unreachable(no_animation(command.animation_name, performer.clips))
     if command.animation_speed <= 0:
         raise Unreachable("animation_speed must be positive")
-    aim, carry = None, _carry(performer, command.hold)
+    carry = _carry(performer, command.hold)
     furniture = performer.furniture.with_boxes(command.nearby)
-    if command.target is not None or command.grasp is not None:
-        if clip.name not in TARGETED:
-            raise Unreachable(f"'{clip.name}' takes no target")
-        hands, takes = _aimed_hands(performer, clip, command, pose, furniture)
-        lowest = None
-        if takes:
-            carry = _carry(performer, hold_of(command.grasp, pose[2]))
-            top = command.grasp.center[2] + command.grasp.size[2] / 2
-            lowest = dict.fromkeys(hands, top)
-        placed = lambda q: place(performer, q, *pose)  # noqa: E731
-        aim = aim_clip(
-            performer.body,
-            clip,
-            placed,
-            hands,
-            pose[2],
-            carry,
-            takes,
-            furniture,
-            lowest,
-        )
+    played = partial(_played, performer, clip, command, pose, t, furniture=furniture)
+    if command.target is None and command.grasp is None:
+        return played(None, carry)
+    if clip.name not in TARGETED:
+        raise Unreachable(f"'{clip.name}' takes no target")
+    hands, takes = _aimed_hands(performer, clip, command, pose, furniture)
+    lowest = None
+    if takes:
+        carry = _carry(performer, hold_of(command.grasp, pose[2]))
+        lowest = dict.fromkeys(hands, command.grasp.center[2] + command.grasp.size[2] / 2)
+    placed = lambda q: place(performer, q, *pose)  # noqa: E731
+    aimed = (performer.body, clip, placed, hands, pose[2], carry, takes, furniture, lowest)
+    *levels, last = palms_level_first(hands, carry, takes)
+    for level in levels:  # held level where that does not go into the cell, else turned
+        try:
+            activity = played(aim_clip(*aimed, level), carry)
+        except Unreachable:
+            continue
+        if not going_in(performer, activity.kept_clear(performer, t), t):
+            return activity
+    return played(aim_clip(*aimed, last), carry)
+
+
+def _played(performer, clip, command, pose, t, aim, carry, furniture) -> Activity:
+    """`clip` played where the person stands, aimed by `aim` (None: as it is)."""
     if aim is not None and len(aim.hands) == 1:
         aim = aim.with_the_other_arm_at_ease(performer.body, performer.clips[IDLE_CLIP])
     segment = ClipSegment(clip.name, t, pose, command.animation_speed, aim=aim, carry=carry)
@@ -361,40 +366,3 @@ def _carry(performer: Performer, hold: Hold | None) -> CarryArms | None:
 def _yaw_of(quaternion) -> float:
     w, x, y, z = quaternion
     return atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-
-
-def _without_short_legs(path: list, walkable=None) -> list:
-    """The path without waypoints closer than MIN_LEG to the point before them (the goal
-    stays): a short leg would make the person swing round on the spot while walking. A
-    waypoint stays where the leg past it would not be `walkable` (a, b)."""
-    kept = [path[0]]
-    for point, after in zip(path[1:-1], path[2:], strict=True):
-        short = hypot(point[0] - kept[-1][0], point[1] - kept[-1][1]) < MIN_LEG
-        if not short or (walkable is not None and not walkable(kept[-1], after)):
-            kept.append(point)
-    goal = path[-1]
-    if hypot(goal[0] - kept[-1][0], goal[1] - kept[-1][1]) > 1e-3:
-        kept.append(goal)
-    return kept
-
-
-def _stretches(path: list) -> list[list]:
-    """The path cut at its sharp corners: walked through round a corner, the stance foot
-    would have to twist further than a hip turns, so the person stops there and turns on
-    the spot. A corner is sharp beyond SHARP_CORNER where the heading can turn over
-    2 * CORNER_RADIUS, and in proportion beyond less where a short leg leaves less room
-    (the heading turns over half the shorter leg on either side)."""
-    stretches, current = [], [path[0]]
-    for before, corner, after in zip(path, path[1:], path[2:], strict=False):
-        current.append(corner)
-        turn = wrap_angle(
-            atan2(after[1] - corner[1], after[0] - corner[0])
-            - atan2(corner[1] - before[1], corner[0] - before[0])
-        )
-        room = min(CORNER_RADIUS, hypot(*np.subtract(corner, before)) / 2)
-        room = min(room, hypot(*np.subtract(after, corner)) / 2)
-        if not walkable_turn(turn, room):
-            stretches.append(current)
-            current = [corner]
-    current.append(path[-1])
-    return [*stretches, current] if len(path) > 1 else []

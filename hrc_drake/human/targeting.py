@@ -89,14 +89,17 @@ def _floors(body: HumanBody, furniture: Furniture, hands: dict, reaching: bool) 
     return floors
 
 
-def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> tuple[np.ndarray, dict]:
-    """`_reach`, each hand with a floor moved up until its lowest point is REST_GAP above
-    it, or, resting there, up or down (IK leaves a hand tilted a little: on a surface a
-    corner would dip into it, or the hand would hover); and the hands' targets so moved,
-    which the ways in and out end at (lowered straight onto the targets as given, a tote
-    put down on the floor went 3 cm below its place, the hands 3 cm into the floor, and
-    came back up to it)."""
-    solved = hands_on(body, q, hands)
+def _resting(
+    body: HumanBody, q: np.ndarray, hands: dict, floors: dict, level: bool
+) -> tuple[np.ndarray, dict]:
+    """`hands_on` (`level`: two palms held level, not free to turn about their normals),
+    each hand with a floor moved up until its lowest point is REST_GAP above it, or, resting
+    there, up or down (IK leaves a hand tilted a little: on a surface a corner would dip into
+    it, or the hand would hover); and the hands' targets so moved, which the ways in and out
+    end at (lowered straight onto the targets as given, a tote put down on the floor went 3 cm
+    below its place, the hands 3 cm into the floor, and came back up to it)."""
+    turning = False if level else None
+    solved = hands_on(body, q, hands, turning)
     for _ in range(RESTING_PASSES):
         off = {}
         for side, (floor, rests) in floors.items():
@@ -108,7 +111,7 @@ def _resting(body: HumanBody, q: np.ndarray, hands: dict, floors: dict) -> tuple
             side: (np.asarray(p) + [0.0, 0.0, off.get(side, 0.0)], R)
             for side, (p, R) in hands.items()
         }
-        solved = hands_on(body, solved, hands)
+        solved = hands_on(body, solved, hands, turning)
     return solved, hands
 
 
@@ -128,13 +131,14 @@ def aim_clip(
     takes: bool = False,
     furniture: Furniture = NO_FURNITURE,
     lowest: dict | None = None,
+    level: bool = False,
 ) -> AimedMotion:
     """The joint offsets that make `clip` (placed in the world by `placed_pose`) put each
     hand's grasp frame at its target: `hands` maps a side to (position, orientation or
     None). `carry`: the carry posture of what the hands take (`takes`) or put down.
     `furniture`: the cell's surfaces, approached from above and over their edge; `lowest`
     (side: height): what a hand's lowest edge passes over on its way (the top of what it
-    takes).
+    takes). `level`: two palms held level at their targets (grasp.LEVEL_BELOW).
 
     `placed_pose(q)` maps a clip pose to the world. Raises Unreachable with a reason.
     """
@@ -148,7 +152,8 @@ def aim_clip(
     if distance > MAX_HORIZONTAL_REACH:
         raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
     reaching = clip.name == "reach"
-    on_target, hands = _resting(body, at_event, hands, _floors(body, furniture, hands, reaching))
+    floors = _floors(body, furniture, hands, reaching)
+    on_target, hands = _resting(body, at_event, hands, floors, level)
     on_target = on_target - at_event
     approach_time = APPROACH_AT * event
     putting_down = carry is not None and not takes

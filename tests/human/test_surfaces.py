@@ -20,6 +20,7 @@ from hrc_drake.scenario import load_scenario
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.cell_walks import Cell, Furniture
 from tests.human.scene import FLOOR, SAMPLE, Posed, Run, furniture
+from tests.scenarios.realism_checks import assert_within_the_audit_limits
 
 INTO_FURNITURE = 0.01
 """m: how far a body segment may go into the cell's geometry (the audit's limit)."""
@@ -240,6 +241,19 @@ def test_material_is_taken_off_a_shelf_board_at_chest_height():
     of the board taking the material off it too."""
     grasp = Grasp("both", (-0.15, 0.55, ON_THE_THIRD_BOARD), np.pi / 2, MATERIAL)
     run = _taken([(0.1, AnimateCommand(1, "pick_table", grasp=grasp))], SHELF, grasp)
+    run.record(_duration("pick_table") + 0.3)
+    assert run.status().results.outcome_of(1) == "succeeded"
+    assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+@pytest.mark.parametrize("ahead", [0.45, 0.6])
+def test_a_low_tray_on_a_table_is_taken_with_the_palms_level_on_its_sides(ahead):
+    """A user's electronics cell: a 4 cm tray taken off a table in both hands. Free to turn
+    about their normals, the arms pointed the fingers down at the table and the palms
+    stopped 3.7 cm above their aim, 4.7 cm off the tray (the user's pick failed: "0.06 m
+    from the point between the palms as they close"). Held level, they close on its sides."""
+    grasp = Grasp("both", (0.0, ahead, TOP + 0.02), 0.0, (0.32, 0.24, 0.04))
+    run = _taken([(0.1, AnimateCommand(1, "pick_table", grasp=grasp))], TABLE, grasp)
     run.record(_duration("pick_table") + 0.3)
     assert run.status().results.outcome_of(1) == "succeeded"
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
@@ -600,6 +614,25 @@ def test_a_carton_taken_off_a_queue_end_leaves_room_for_the_next_one_riding_up()
     assert (pick["successes"], pick["failures"]) == (1, 0), pick
     into = report.metrics["realism"]["penetration_objects"]
     assert into["max"] <= 0.003, into
+
+
+THIN_BOARD = Path(__file__).resolve().parent / "cells" / "thin_board" / "cell.yaml"
+
+
+def test_a_thin_part_in_one_hand_is_held_with_the_palm_on_its_top():
+    """A user's electronics test cell, cut down: a 1.5 cm circuit board taken off a bench in
+    the right hand, and put into a bin on the floor behind, another bench beside. Held from
+    the side, the hand's breadth upright, the palm stayed 5 cm above the bench and 3.5 cm
+    above the board, which was pushed along beside the hand. The forearm turns in and the
+    palm goes on its top; with the fingers straight ahead, not turned in, the put-down into
+    the bin bent the trunk aside and was refused (the free arm 6.1 cm into the bench)."""
+    report = run(load_scenario(THIN_BOARD))
+    for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
+        done = report.metrics["bt"]["human"][node]
+        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    realism = report.metrics["realism"]
+    assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
+    assert_within_the_audit_limits(realism)
 
 
 def _between_the_hands(body, q) -> RigidTransform:
