@@ -204,16 +204,18 @@ def plan_animation(performer: Performer, command: AnimateCommand, pose, t: float
         carry = _carry(performer, hold_of(command.grasp, pose[2]))
         lowest = dict.fromkeys(hands, command.grasp.center[2] + command.grasp.size[2] / 2)
     placed = lambda q: place(performer, q, *pose)  # noqa: E731
-    aimed = (performer.body, clip, placed, hands, pose[2], carry, takes, furniture, lowest)
+    aim = partial(
+        aim_clip, performer.body, clip, placed, hands, pose[2], carry, takes, furniture, lowest
+    )
     *levels, last = palms_level_first(hands, carry, takes)
     for level in levels:  # held level where that does not go into the cell, else turned
         try:
-            activity = played(aim_clip(*aimed, level), carry)
+            activity = played(aim(level=level), carry)
         except Unreachable:
             continue
         if not going_in(performer, activity.kept_clear(performer, t), t):
             return activity
-    return played(aim_clip(*aimed, last), carry)
+    return played(aim(level=last), carry)
 
 
 def _played(performer, clip, command, pose, t, aim, carry, furniture) -> Activity:
