@@ -9,8 +9,9 @@ holder or area), from the shared vocabulary of `hrc_drake.messages`.
 
 Holders are the robot's vacuum cup (grasp frame: the tool's `tcp`, z out of the cup) and the
 person's hands: one hand holds in a level frame at its grasp point turned with the person,
-both hands in a level frame at their grasp points' midpoint, y from the right hand to the
-left. An object's frame is at its centre; the cup's grasp surface is its top face.
+both hands in a frame at their grasp points' midpoint, y from the right hand to the left
+(rolling with the hands' line), x level. An object's frame is at its centre; the cup's
+grasp surface is its top face.
 """
 
 import math

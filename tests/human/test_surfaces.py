@@ -635,6 +635,23 @@ def test_a_thin_part_in_one_hand_is_held_with_the_palm_on_its_top():
     assert_within_the_audit_limits(realism)
 
 
+TRAY_CARRY = Path(__file__).resolve().parent / "cells" / "tray_carry" / "cell.yaml"
+
+
+def test_a_low_tray_carried_in_both_hands_rolls_with_them():
+    """A user's electronics cell, cut down: a 4 cm tray taken off a side table in both
+    hands, carried 2.5 m and put on another. Kept level while the hands' line rolled 4
+    degrees each stride, the tray stayed put between palms that rose and sank beside its
+    top edge: 2.3 cm off it. Held rigidly between the palms, it rolls with them."""
+    report = run(load_scenario(TRAY_CARRY))
+    for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
+        done = report.metrics["bt"]["human"][node]
+        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    realism = report.metrics["realism"]
+    assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
+    assert_within_the_audit_limits(realism)
+
+
 def _between_the_hands(body, q) -> RigidTransform:
     """The frame midway between the hands' grasp frames, x from the right hand to the left:
     what two palms on its sides hold moves with it."""
