@@ -46,6 +46,14 @@ class Furniture:
             tuple(p for p in self.pieces if p.low < height or not p.outline.covers(middle))
         )
 
+    def not_above(self, area: Polygon, height: float) -> "Furniture":
+        """The furniture but the pieces over any part of a floor area with their undersides
+        at or above `height` (a board over one end of a held object's way: the way cannot
+        cross over it and come down to that end)."""
+        return Furniture(
+            tuple(p for p in self.pieces if p.low < height or not p.outline.intersects(area))
+        )
+
     def support(self, point) -> Obstacle | None:
         """The piece a point (x, y, z) is over, with the highest top at or below it (a hand
         or an object on a table: the table's top); None when only the floor is below."""

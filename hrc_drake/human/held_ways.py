@@ -373,17 +373,26 @@ def crossing_height(body, furniture: Furniture, carry: CarryArms, a, b, heading:
     beside where a box is put down, the edge of a board it is taken off), but not what
     stands over the lower end (the board above a shelf's compartment a box is put into:
     carried in at chest height, a tote's top was above that board's underside, the way rose
-    over the board and came down through it, the arms 10.8 cm in). None: nothing does."""
+    over the board and came down through it, the arms 10.8 cm in), nor what is over either
+    end above the object's centre there (a tray taken off a rack's board and carried off
+    0.35 m from the rack: its far edge under the board above, 1.5 cm inside the rack, the
+    way rose over that board and came down through it, 1.6 cm in). None: nothing does."""
     around, lowest, highest = _held_outline(body, carry, heading)
     corners = [np.asarray(end[:2]) + c for end in (a, b) for c in around]
     bottom = min(a[2], b[2]) - lowest
     area = MultiPoint(corners).convex_hull.buffer(WAY_BEND)
     low_end = a if a[2] <= b[2] else b
-    beside = furniture.not_over(
-        MultiPoint([np.asarray(low_end[:2]) + c for c in around]).convex_hull, low_end[2] + highest
-    )
+    beside = furniture.not_over(_outline_at(low_end, around), low_end[2] + highest)
+    centre_below = object_center_in_holder(carry.hold)[2]
+    for end in (a, b):
+        beside = beside.not_above(_outline_at(end, around), end[2] + centre_below)
     top = beside.highest_between(area, bottom + CLEARANCE / 2, max(a[2], b[2]) + highest)
     return None if top is None else top + CLEARANCE + lowest
+
+
+def _outline_at(middle, around):
+    """The held object's outline with the hands, the palms' midpoint at `middle`."""
+    return MultiPoint([np.asarray(middle[:2]) + c for c in around]).convex_hull
 
 
 def crossing_level(body, furniture: Furniture, carry: CarryArms, a, b, heading: float):
@@ -425,8 +434,7 @@ def headroom(body, furniture: Furniture, carry: CarryArms, middle, heading: floa
 def _over_the_end(body, furniture: Furniture, carry: CarryArms, middle, heading: float):
     """What stands over the held object, the palms' midpoint at `middle`."""
     around, _, highest = _held_outline(body, carry, heading)
-    area = MultiPoint([np.asarray(middle[:2]) + c for c in around]).convex_hull
-    return furniture.above(area, middle[2] + highest)
+    return furniture.above(_outline_at(middle, around), middle[2] + highest)
 
 
 def _held_outline(body, carry: CarryArms, heading: float):

@@ -652,6 +652,21 @@ def test_a_low_tray_carried_in_both_hands_rolls_with_them():
     assert_within_the_audit_limits(realism)
 
 
+RACK_TRAY = Path(__file__).resolve().parent / "cells" / "rack_tray" / "cell.yaml"
+
+
+def test_a_tray_taken_off_a_rack_board_keeps_under_the_board_above():
+    """A user's electronics cell, cut down: an 8 cm tray taken off a rack's 0.6 m board,
+    standing 0.35 m from the rack, and carried to a table. In the carry posture there its
+    far edge is 1.5 cm inside the rack, under the 1.1 m board: the way up rose over that
+    board and came down through it, the tray 1.6 cm in. It stays under it."""
+    report = run(load_scenario(RACK_TRAY))
+    for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
+        done = report.metrics["bt"]["human"][node]
+        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    assert_within_the_audit_limits(report.metrics["realism"])
+
+
 def _between_the_hands(body, q) -> RigidTransform:
     """The frame midway between the hands' grasp frames, x from the right hand to the left:
     what two palms on its sides hold moves with it."""
