@@ -1,6 +1,7 @@
 """What the person refuses: a motion aimed at something (a pick, a put-down, a reach) that
 still goes into the furniture once the head and arms have been kept out of it as far as
-they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a pick or a put-down whose
+they can (hrc_drake.human.head_room, hrc_drake.human.clearance), a pick whose hands, so kept
+out, would close on the air beside what they take, a pick or a put-down whose
 held object goes into it on its planned way or would be in it where it is put, or a carry
 that would end with the held object in it (or else stops short of its place) or start by
 turning it into it however far the person steps back (hrc_drake.human.planning).
@@ -23,6 +24,7 @@ from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import box_corners, held_corners
 from hrc_drake.human.messages import Hold
 from hrc_drake.human.performer import Performer
+from hrc_drake.human.segments import ClipSegment
 from hrc_drake.human.skeleton import SIDES
 
 DEPTH_LIMIT = 0.02
@@ -38,6 +40,9 @@ ARRIVING = 0.6
 """s: the last step of a walk, in which what the hands carry swings furthest ahead (a kit
 carried up to another on a table: 2.3 cm in it 0.35 s before the walk ended, clear where
 it ended)."""
+GRASP_REACH = 0.05
+"""m: how far from what they take the hands may close on it (the point between two palms,
+or one palm), as the objects' world takes it (hrc_drake.workpieces.config, hand_tolerance)."""
 PARTS = (HEAD, *SIDES)
 HELD_RADII, HELD_SHAPE = np.zeros(1), np.arange(8)[None]
 """A held box as one shape of `Prisms.shape_depths`: its 8 corners, no radius."""
@@ -55,13 +60,14 @@ def refuse_going_in(performer: Performer, activity: Activity, start: float) -> N
 def going_in(performer: Performer, activity: Activity, start: float) -> str:
     """What the hands hold to put down puts deeper than DEPTH_LIMIT into what it keeps out
     of, or else what of the head and arms `activity`, played from `start`, does so, or else
-    what the hands take does, and where ("" when nothing). What is put down first: one in
-    the furniture where the put-down begins says what to change (where the person stands
-    with it), whatever the head and arms then do on their way (a tote carried into a
-    shelf's board, its put-down planned with the hands held above the board, also put the
-    head 2.2 cm into the shelf); what is taken last, as the hands reach it before they
-    take it (stooping to a carton on a shelf's bottom board, the head went into
-    the board above before the carton went into it)."""
+    what the hands take does, and where, or else how far the arms so kept out leave the
+    hands from what they take (`_kept_off_the_grasp`) ("" when none). What is put down
+    first: one in the furniture where the put-down begins says what to change (where the
+    person stands with it), whatever the head and arms then do on their way (a tote carried
+    into a shelf's board, its put-down planned with the hands held above the board, also
+    put the head 2.2 cm into the shelf); what is taken last, as the hands reach it before
+    they take it (stooping to a carton on a shelf's bottom board, the head went into the
+    board above before the carton went into it)."""
     furniture = activity.furniture_of(performer)
     if not furniture.pieces:
         return ""
@@ -71,6 +77,7 @@ def going_in(performer: Performer, activity: Activity, start: float) -> str:
         _held_going_in(performer, activity, times, PUTTING_DOWN)
         or _body_going_in(performer, activity, times)
         or _held_going_in(performer, activity, times, TAKING_UP)
+        or _kept_off_the_grasp(performer, activity)
     )
 
 
@@ -95,6 +102,53 @@ def _body_going_in(performer: Performer, activity: Activity, times) -> str:
         f"{times[k] - start:.1f} s in, however the arms and head are moved: no way to do it "
         "from where the person stands"
     )
+
+
+def _kept_off_the_grasp(performer: Performer, activity: Activity) -> str:
+    """How far the head and arms kept out of the furniture leave the hands from what they
+    take as they close on it, where that is further than the objects' world lets them take
+    it from (GRASP_REACH; "" when not). A box on a rack's 1.6 m board: the forearms lifted
+    over the board's edge put the palms 7.7 cm over the box, `validate` said nothing and
+    the run's pick failed, 0.09 m from the point between the palms."""
+    grasped = _grasp_of(performer, activity)
+    if grasped is None:
+        return ""
+    t, sides = grasped
+    box, _ = activity.reached_for
+    q = activity.pose(performer, t)
+    hands = [performer.body.frame_pose(f"{side}_hand_grasp", q).translation() for side in sides]
+    off = _outside(box, np.mean(hands, axis=0))
+    if off <= GRASP_REACH:
+        return ""
+    return (
+        f"the arms kept out of the cell would leave the {_palms(sides)} {100 * off:.0f} cm "
+        "from what they take as they close on it: no way to take it from where the person stands"
+    )
+
+
+def _grasp_of(performer: Performer, activity: Activity):
+    """When `activity` takes what it reaches for, and with which hands (None: it takes
+    nothing)."""
+    if activity.reached_for is None:
+        return None
+    for segment in activity.segments:
+        if isinstance(segment, ClipSegment) and segment.aim is not None:
+            events = performer.clips[segment.clip].events
+            if "grasp" in events:
+                return segment.start + events["grasp"] / segment.speed, segment.aim.hands
+    return None
+
+
+def _outside(box, point) -> float:
+    """How far `point` is outside `box` (0 inside)."""
+    c, s = np.cos(box.yaw), np.sin(box.yaw)
+    d = np.asarray(point) - np.asarray(box.center)
+    local = np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]])
+    return float(np.linalg.norm(np.maximum(np.abs(local) - np.asarray(box.size) / 2, 0.0)))
+
+
+def _palms(sides) -> str:
+    return "point between the palms" if len(sides) == 2 else f"{sides[0]} palm"
 
 
 PUTTING_DOWN, TAKING_UP = "put it down", "take it"

@@ -33,7 +33,7 @@ from hrc_drake.human.navigation import (
 from hrc_drake.known_values import Known
 from hrc_drake.nodes.person import ActorCarry, ActorMovement
 from hrc_drake.scenario.located import Finding, Locator
-from hrc_drake.scenario.reach_from_stand import UNKNOWN, walk_before
+from hrc_drake.scenario.tree_ways import UNKNOWN, walk_before
 
 DETOUR_RATIO = 1.5
 """A walk this many times the straight way may be a detour..."""

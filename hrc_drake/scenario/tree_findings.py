@@ -45,16 +45,9 @@ from hrc_drake.scenario.cell_findings import (
 )
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
-from hrc_drake.scenario.reach_from_stand import (
-    failed_tries,
-    finder_of,
-    held_at,
-    object_source,
-    parents_of,
-    point_text,
-    reach_findings,
-)
+from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
 from hrc_drake.scenario.schema import Scenario
+from hrc_drake.scenario.tree_ways import failed_tries, finder_of, held_at, object_source, parents_of
 from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
 from hrc_drake.tree_types import AreaRef, Pose

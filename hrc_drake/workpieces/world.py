@@ -314,7 +314,8 @@ def _between(p_left: np.ndarray, p_right: np.ndarray, facing: RotationMatrix):
     y /= math.sqrt(y.dot(y))
     y0, y1, _ = y
     x = (y1, -y0, 0.0)  # y × z: level
-    roll = math.atan2(p_left[2] - p_right[2], math.hypot(p_left[0] - p_right[0], p_left[1] - p_right[1]))
+    across = math.hypot(p_left[0] - p_right[0], p_left[1] - p_right[1])
+    roll = math.atan2(p_left[2] - p_right[2], across)
     c, s = math.cos(roll), math.sin(roll)
     y = (c * y0, c * y1, s)
     z = (-s * y0, -s * y1, c)  # x × y

@@ -17,6 +17,7 @@ from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.targeting import APPROACH_AT, hold_end_of
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario.findings import findings
 from hrc_drake.workpieces.geometry import Solid
 from tests.human.cell_walks import Cell, Furniture
 from tests.human.scene import FLOOR, SAMPLE, Posed, Run, furniture
@@ -664,6 +665,26 @@ def test_a_tray_taken_off_a_rack_board_keeps_under_the_board_above():
     for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
         done = report.metrics["bt"]["human"][node]
         assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    assert_within_the_audit_limits(report.metrics["realism"])
+
+
+TOP_BOARD = Path(__file__).resolve().parent / "cells" / "top_board" / "cell.yaml"
+
+
+def test_a_box_the_arms_kept_out_of_a_rack_cannot_close_on_is_refused_before_the_run():
+    """A user's packing cell, cut down: a box of inserts on a rack's 1.6 m board, the pick in
+    a ForceSuccess so that the tree goes on without it. The forearms, kept out of the board
+    they reached over, lifted the palms 8 cm over the box: `validate` said nothing (it did not
+    look into the ForceSuccess, nor at where the kept-out hands close), the run played the
+    pick with a forearm 1.8 cm in the rack and failed it "0.09 m from the point between the
+    palms". Both now refuse it, saying why, before anything moves."""
+    scenario = load_scenario(TOP_BOARD)
+    said = [f.message for f in findings(scenario, TOP_BOARD)]
+    kept_off = "the arms kept out of the cell would leave the point between the palms"
+    assert len(said) == 1 and kept_off in said[0], said
+    report = run(scenario)
+    pick = report.metrics["bt"]["human"]["ActorPick::4"]
+    assert pick["successes"] == 0 and kept_off in pick["first_failure"], pick
     assert_within_the_audit_limits(report.metrics["realism"])
 
 
