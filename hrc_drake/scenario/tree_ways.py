@@ -41,7 +41,7 @@ def all_before(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
     while (parent := parents.get(id(child))) is not None:
         if _is_sequence(parent):
             found += [n for s in _earlier_siblings(parent, child) for n in _all_of(s, kind)]
-        elif not isinstance(parent, SubTreeNode | RUN_ONCE):
+        elif not isinstance(parent, (SubTreeNode, *RUN_ONCE)):
             break
         child = parent
     return found
