@@ -47,7 +47,13 @@ from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
 from hrc_drake.scenario.schema import Scenario
-from hrc_drake.scenario.tree_ways import failed_tries, finder_of, held_at, object_source, parents_of
+from hrc_drake.scenario.tree_ways import (
+    failed_before,
+    finder_of,
+    held_at,
+    object_source,
+    parents_of,
+)
 from hrc_drake.seeding import stream
 from hrc_drake.station import HOME
 from hrc_drake.tree_types import AreaRef, Pose
@@ -55,6 +61,8 @@ from hrc_drake.wiring import ROBOT_MOTION
 from hrc_drake.workpieces.geometry import Solid, footprint, overlaps
 from hrc_drake.yaml_check import unknown
 
+ANY_OBJECT = ("",)
+"""A NextObject filter that lets every object through."""
 ON_IT = 0.01
 """m: an object whose bottom is at most this far above the top of what is taken lies on it
 (`_lies_on`)."""
@@ -202,14 +210,15 @@ class _Checks:
     def _not_found(self, source, parents, known) -> list:
         """The objects at the start that are not there when `source` runs: those the
         NextObjects before it in a Fallback look for (they found none; a user's restocking
-        SpawnObject was judged making a part inside the one on the board at the start)."""
+        SpawnObject was judged making a part inside the one on the board at the start), all
+        those in their areas where their filter is not known (coexistence's restock, its
+        filter made by a Script, was judged taken from between the two boxes it replaces)."""
         if not isinstance(source, SpawnObject):
             return []
         return [
             obj
-            for finder in failed_tries(parents.get(id(source)), source, NextObject)
-            if isinstance(finder, NextObject)
-            for _, obj in self._found_by(finder, known)
+            for finder in failed_before(source, parents, NextObject)
+            for _, obj in self._found_by(finder, known, unknown_filter=ANY_OBJECT)
         ]
 
     def _placing(self, parents, way, known, pick, target, agent, at_pick, picks=()):
@@ -311,14 +320,16 @@ class _Checks:
             for area, obj in self._found_by(source, known)
         ]
 
-    def _found_by(self, finder, known) -> list[tuple[str, object]]:
+    def _found_by(self, finder, known, unknown_filter=()) -> list[tuple[str, object]]:
         """The objects at the start that the NextObject `finder` may find, with the name of
-        the area each lies in (`_in_area`)."""
+        the area each lies in (`_in_area`); where its filter is not known, those that
+        `unknown_filter` (filter texts) lets through."""
+        filters = [wanted.value for wanted in known.get((id(finder), "filter"), ())]
         return [
             (area.value.name, obj)
             for area in known.get((id(finder), "area"), ())
-            for wanted in known.get((id(finder), "filter"), ())
-            for obj in self._in_area(area, parse_filter(wanted.value))
+            for wanted in filters or unknown_filter
+            for obj in self._in_area(area, parse_filter(wanted))
         ]
 
     def _made(self, known, spawn, agent, where: str) -> list[tuple]:

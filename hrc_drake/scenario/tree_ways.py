@@ -184,6 +184,17 @@ def _is_choice(node: TreeNode) -> bool:
     return fallback or isinstance(node, WeightedRandom | Switch)
 
 
+def failed_before(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
+    """The nodes of `kind` in the tries that failed before the branch of each Fallback above
+    `node` that holds it (coexistence's restock SpawnObject, in a Sequence after the
+    NextObject that found nothing, was judged with the objects it looked for still there)."""
+    found, child = [], node
+    while (parent := parents.get(id(child))) is not None:
+        found += [n for try_ in failed_tries(parent, child, kind) for n in _all_of(try_, kind)]
+        child = parent
+    return found
+
+
 def failed_tries(parent: TreeNode, child: TreeNode, kind: Kind) -> list[TreeNode]:
     """The tries of a Fallback `parent` before `child` holding a node of `kind`: they failed
     when `child` runs, having run it or not (a restocking SpawnObject after the NextObject
