@@ -78,6 +78,7 @@ def clip_step_back(clips: dict) -> float:
 
 
 def reach_findings(
+    at: Locator,
     nodes: list[TreeNode],
     known: dict[tuple[int, str], list[Known]],
     resolve: Resolve,
@@ -90,7 +91,7 @@ def reach_findings(
     `taken` object, is farther from every place the person can stand there than a hand
     reaches, or that the hands cannot get to from all of them, each way the tree may go
     to the node (`known`: the known values by (id(node), port); `start`: the person's start
-    on the floor)."""
+    on the floor), located by `at` (a parameter's at its line)."""
     limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
     parents = parents_of(nodes)
     for node in nodes:
@@ -108,10 +109,10 @@ def reach_findings(
             continue
         stands = _stands_before(parents, known, resolve, start, node)
         if stands:
-            yield from _judged(node, port, targets, stands, limit)
+            yield from _judged(at, node, port, targets, stands, limit)
 
 
-def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]:
+def _judged(at: Locator, node, port: str, targets, stands, limit: float) -> Iterator[Finding]:
     """The Findings of `reach_findings` at `node`, whose `targets` (with what keeps the
     person from each, and a note of where its object comes from) are done from wherever of
     `stands` the person stands."""
@@ -120,7 +121,7 @@ def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]
             continue
         distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _, _ in stands)
         if distance > limit:
-            yield Locator.node(node, port, _too_far(what, target, distance, stands, limit), target)
+            yield at.read(node, port, what, _too_far(what, target, distance, stands, limit), target)
         elif hindrance is not None:
             problems = [(hindrance(value), said) for _, said, value in stands]
             if all(problem for problem, _ in problems):
@@ -130,7 +131,7 @@ def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]
                     f"{what} at {point_text(target)}, {done} where the person stands "
                     f"({said}){''.join(note)}: {problem}"
                 )
-                yield Locator.node(node, port, message, target)
+                yield at.read(node, port, what, message, target)
 
 
 def _each_way(node, parents, targets: Callable[[Way], list]) -> list:
@@ -225,18 +226,17 @@ def point_text(point) -> str:
 
 
 def _too_far(value, target, distance: float, stands, limit: float) -> str:
-    where = point_text(target)
     nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
     return (
-        f"{value} at {where} is {distance:.2f} m from where the person stands ({nearest}); "
-        f"a hand reaches at most {limit:.2f} m without walking: walk closer first"
+        f"{value} at {point_text(target)} is {distance:.2f} m from where the person stands "
+        f"({nearest}); a hand reaches at most {limit:.2f} m without walking: walk closer first"
     )
 
 
 def walk_before(node: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None | object:
     """The last walk that has run when `node` starts the `way` the tree went (None: the
     person stands at their start; UNKNOWN: not known statically)."""
-    return _last_before(node, parents, ActorMovement, way)
+    return last_before(node, parents, ActorMovement, way)
 
 
 def ways_before(node: TreeNode, parents: dict) -> list[Way]:
@@ -273,21 +273,21 @@ def parents_of(nodes: list[TreeNode]) -> dict[int, TreeNode]:
 
 
 def held_at(node: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None | object:
-    """The pick whose object the hands hold when `node` starts (as `_last_before`)."""
-    return _last_before(node, parents, ActorPick, way)
+    """The pick whose object the hands hold when `node` starts (as `last_before`)."""
+    return last_before(node, parents, ActorPick, way)
 
 
 def object_source(
     pick: TreeNode, parents: dict, way: Way | None = None
 ) -> TreeNode | None | object:
-    """Where what `pick` takes was last left on the `way` to it (as `_last_before`): the
+    """Where what `pick` takes was last left on the `way` to it (as `last_before`): the
     node that last wrote the entry it reads (a NextObject on another branch of a Fallback or
     WeightedRandom has not run), or a put-down of what an earlier pick of that entry took
     (a carton put on a table is taken from the table, not from where it was found)."""
     entry = _entry(pick, "inputs")
     if entry is None:
         return UNKNOWN
-    return _last_before(pick, parents, partial(_leaves_object, entry, parents, way), way)
+    return last_before(pick, parents, partial(_leaves_object, entry, parents, way), way)
 
 
 def finder_of(pick: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None:
@@ -314,7 +314,7 @@ def _entry(node: TreeNode, ports: str):
     return getattr(getattr(node.config, ports).get("object_id"), "entry", None)
 
 
-def _last_before(
+def last_before(
     node: TreeNode, parents: dict, kind: Kind, way: Way | None = None
 ) -> TreeNode | None | object:
     """The last node of `kind` that has run when `node` starts the `way` the tree went (a
