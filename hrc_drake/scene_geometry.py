@@ -9,6 +9,10 @@ from pydrake.geometry import CollisionFilterDeclaration, GeometrySet, Role, Scen
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import BodyIndex
 
+OBJECT_DEPTH_LIMIT = 0.01
+"""m: the deepest an object may go into the cell's fixed geometry: the realism audit's limit
+for a held object (docs/realism.md), and validate's for what the robot puts down."""
+
 
 def anchored_collision_shapes(plant, inspector) -> Iterator[tuple[str, object, RigidTransform]]:
     """(model instance name, shape, X_WG) of every collision geometry on an anchored body of a

@@ -290,6 +290,15 @@ def _top_within(scene: CellScene, point, direction: float, distance: float, robo
     return None
 
 
+def below_top(scene: CellScene, point, within: float) -> tuple[str, float] | None:
+    """(what, how far) `point` lies below the top of the cell's fixed geometry it is in
+    (the robot where it starts left out), looking up to `within` above it for the top; None
+    when it is in none, or no top is that near."""
+    if scene.inside_cell(point, robot=False) is None:
+        return None
+    return _top_within(scene, point, 1.0, within, robot=False)
+
+
 def _start_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterator[Finding]:
     if scenario.human is None:
         return

@@ -41,6 +41,17 @@ class Locator:
         line = node.start_mark.line + 1 if node is not None else None
         return Finding(str(self.path), line, field_path(names), message, _point(point))
 
+    def read(self, node: TreeNode, port: str, known, message: str, point=None) -> Finding:
+        """At the scenario's field when the value `known` (a Known) is one of its own, read
+        as it is (a parameter: `pallet_spot` below a pallet's deck was named at the tree's
+        node, whose line is not the mistake), with the node said; else at the node."""
+        origin = getattr(known, "origin", None)
+        if origin is not None and origin.section and not known.via:
+            config = node.config
+            reader = f"{config.registration_id} '{node.path}' ({config.file}:{config.line})"
+            return self.field((origin.section, origin.key), f"{message}: {reader}", point)
+        return self.node(node, port, message, point)
+
     @staticmethod
     def node(node: TreeNode, port: str | None, message: str, point=None) -> Finding:
         return Locator.error(node.error(message, port=port), point)

@@ -70,6 +70,7 @@ def clip_step_back(clips: dict) -> float:
 
 
 def reach_findings(
+    at: Locator,
     nodes: list[TreeNode],
     known: dict[tuple[int, str], list[Known]],
     resolve: Resolve,
@@ -82,7 +83,7 @@ def reach_findings(
     `taken` object, is farther from every place the person can stand there than a hand
     reaches, or that the hands cannot get to from all of them, each way the tree may go
     to the node (`known`: the known values by (id(node), port); `start`: the person's start
-    on the floor)."""
+    on the floor), located by `at` (a parameter's at its line)."""
     limit = MAX_HORIZONTAL_REACH + clip_step_back(clips or clip_catalog())
     parents = parents_of(nodes)
     for node in nodes:
@@ -100,10 +101,10 @@ def reach_findings(
             continue
         stands = _stands_before(parents, known, resolve, start, node)
         if stands:
-            yield from _judged(node, port, targets, stands, limit)
+            yield from _judged(at, node, port, targets, stands, limit)
 
 
-def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]:
+def _judged(at: Locator, node, port: str, targets, stands, limit: float) -> Iterator[Finding]:
     """The Findings of `reach_findings` at `node`, whose `targets` (with what keeps the
     person from each, and a note of where its object comes from) are done from wherever of
     `stands` the person stands."""
@@ -112,7 +113,7 @@ def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]
             continue
         distance = min(float(np.hypot(*(target[:2] - s[:2]))) for s, _, _ in stands)
         if distance > limit:
-            yield Locator.node(node, port, _too_far(what, target, distance, stands, limit), target)
+            yield at.read(node, port, what, _too_far(what, target, distance, stands, limit), target)
         elif hindrance is not None:
             problems = [(hindrance(value), said) for _, said, value in stands]
             if all(problem for problem, _ in problems):
@@ -122,7 +123,7 @@ def _judged(node, port: str, targets, stands, limit: float) -> Iterator[Finding]
                     f"{what} at {point_text(target)}, {done} where the person stands "
                     f"({said}){''.join(note)}: {problem}"
                 )
-                yield Locator.node(node, port, message, target)
+                yield at.read(node, port, what, message, target)
 
 
 def _each_way(node, parents, targets: Callable[[Way], list]) -> list:
@@ -197,9 +198,8 @@ def point_text(point) -> str:
 
 
 def _too_far(value, target, distance: float, stands, limit: float) -> str:
-    where = point_text(target)
     nearest = min(stands, key=lambda s: np.hypot(*(target[:2] - s[0][:2])))[1]
     return (
-        f"{value} at {where} is {distance:.2f} m from where the person stands ({nearest}); "
-        f"a hand reaches at most {limit:.2f} m without walking: walk closer first"
+        f"{value} at {point_text(target)} is {distance:.2f} m from where the person stands "
+        f"({nearest}); a hand reaches at most {limit:.2f} m without walking: walk closer first"
     )

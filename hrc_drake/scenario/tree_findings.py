@@ -1,6 +1,7 @@
 """What the scenario's trees will do with the values known before a run
 (hrc_drake.known_values), checked the way the running nodes use them: every robot target
-for reach (the planner's own inverse kinematics, the tool held as the node holds it), every
+for reach (the planner's own inverse kinematics, the tool held as the node holds it) and
+for what the robot lets go of there (hrc_drake.scenario.robot_put_downs), every
 animation against the person's clips, every place the person walks to for room to stand,
 every place the person puts down or reaches to against where they stand then
 (hrc_drake.scenario.reach_from_stand), every named configuration, object type and area
@@ -46,6 +47,7 @@ from hrc_drake.scenario.cell_findings import (
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
+from hrc_drake.scenario.robot_put_downs import finder_type, put_down_findings
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.scenario.tree_ways import (
     failed_before,
@@ -89,6 +91,7 @@ def tree_findings(
         ]
         found += checks.reaches_from_stand(tree, handle, inputs)
         found += checks.detours(tree, handle, inputs)
+        found += checks.robot_put_downs(tree, handle, inputs)
     if robot_placed:
         found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
@@ -169,7 +172,16 @@ class _Checks:
             return self._placing(parents, way, known, pick, target, agent, at_pick, picks)
 
         start = self.scenario.human.start[:2]
-        return reach_findings(tree.node_list, known, point, start, self.clips, taken, placing)
+        nodes = tree.node_list
+        return reach_findings(self.at, nodes, known, point, start, self.clips, taken, placing)
+
+    def robot_put_downs(self, tree, agent, inputs) -> Iterator[Finding]:
+        """Parts the robot lets go of inside the cell's fixed geometry
+        (hrc_drake.scenario.robot_put_downs)."""
+        known = {(id(node), port): values for node, port, values in inputs}
+        solids = {name: Solid.of(kind) for name, kind in self.scenario.workpieces.types.items()}
+        resolve = partial(_resolved, agent)
+        return put_down_findings(tree.node_list, known, resolve, solids, self.scene, self.at.read)
 
     def detours(self, tree, agent, inputs) -> Iterator[Finding]:
         """Walks that go a long way round a gap a little too narrow for the person
@@ -230,14 +242,9 @@ class _Checks:
         lie there at the start: a part the robot's tree makes and puts there, whose drop
         into a floor bin the run refused, a user's cell); what any of `picks` (those that
         have run before the put-down) may have taken is gone from where it lay."""
-        finder = id(finder_of(pick, parents, way))
-        types = {
-            parse_filter(wanted.value).get("type") for wanted in known.get((finder, "filter"), ())
-        }
-        types |= {made.value for made in known.get((finder, "type"), ())}
-        if len(types) != 1 or None in types or types & set(self.scenario.workpieces.types) != types:
+        kind = finder_type(known, finder_of(pick, parents, way))
+        if kind not in self.scenario.workpieces.types:
             return None
-        (kind,) = types
         hands = _hands(known, pick)
         taken = [obj for _, obj in self._lying_in(parents, way, known, pick, agent)]
         holds = {
@@ -460,40 +467,31 @@ class _Checks:
             yield from self._walk_clip(node, known)
         elif isinstance(node, ActorAnimation) and port == "animation_name":
             if value not in self.clips:
-                yield self._at(node, port, known, no_animation(value, self.clips))
+                yield self.at.read(node, port, known, no_animation(value, self.clips))
         elif isinstance(node, RobotMoveJoints) and port == "configuration":
             names = self.scenario.station.configuration_names
             if value not in names:
-                yield self._at(node, port, known, unknown("configuration", value, names))
+                yield self.at.read(node, port, known, unknown("configuration", value, names))
         elif isinstance(node, SpawnObject) and port == "type":
             yield from self._object_type(node, port, known, value)
             kind = self.scenario.workpieces.types.get(value)
             if kind is not None and kind.capacity == 0:
                 message = f"object type '{value}' has capacity 0: none can ever be made"
-                yield self._at(node, port, known, message)
+                yield self.at.read(node, port, known, message)
         elif isinstance(node, SpawnObject | ActorPlace | ActorReach) and isinstance(value, Pose):
             yield from self._inside(agent, node, port, known)
         elif isinstance(node, SpawnObject) and port == "area" and value:
             if value not in self.scenario.areas:
-                yield self._at(node, port, known, unknown("area", value, self.scenario.areas))
+                yield self.at.read(node, port, known, unknown("area", value, self.scenario.areas))
         elif isinstance(node, NextObject | CountObjects) and port == "filter":
             wanted = parse_filter(value).get("type")
             if wanted is not None:
                 yield from self._object_type(node, port, known, wanted)
 
-    def _at(self, node, port: str, known: Known, message: str, point=None) -> Finding:
-        """At the scenario's field when the value is its (a parameter), else at the node."""
-        origin = known.origin
-        if origin.section and not known.via:
-            config = node.config
-            reader = f"{config.registration_id} '{node.path}' ({config.file}:{config.line})"
-            return self.at.field((origin.section, origin.key), f"{message}: {reader}", point)
-        return self.at.node(node, port, message, point)
-
     def _object_type(self, node, port: str, known: Known, name: str) -> Iterator[Finding]:
         types = self.scenario.workpieces.types
         if name not in types:
-            yield self._at(node, port, known, unknown("object type", name, types))
+            yield self.at.read(node, port, known, unknown("object type", name, types))
 
     def _inside(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         """A point an object is made at, or a hand puts one down or reaches to, inside the
@@ -504,16 +502,16 @@ class _Checks:
             what, depth = inside
             where = _xyz(pose.position)
             message = f"{known} at {where} lies {depth:.3f} m inside {what}"
-            yield self.at.node(node, port, message, pose.position)
+            yield self.at.read(node, port, known, message, pose.position)
 
     def _walk_clip(self, node, known: Known) -> Iterator[Finding]:
         name = known.value
         if name not in self.clips:
-            yield self._at(node, "animation_name", known, no_animation(name, self.clips))
+            yield self.at.read(node, "animation_name", known, no_animation(name, self.clips))
         elif not walks(self.clips[name]):
             walking = ", ".join(sorted(n for n, clip in self.clips.items() if walks(clip)))
             message = f"'{name}' is not a walking animation (the person walks with: {walking})"
-            yield self._at(node, "animation_name", known, message)
+            yield self.at.read(node, "animation_name", known, message)
 
     def _reach(self, agent, node, known: Known) -> Iterator[Finding]:
         pose = _resolved(agent, known.value)
@@ -527,7 +525,7 @@ class _Checks:
         problem = self.reach_problems[key]
         if problem:
             message = f"{known} at {_xyz(target.translation())}: {problem}"
-            yield self.at.node(node, "target", message, target.translation())
+            yield self.at.read(node, "target", known, message, target.translation())
 
     def _standing(self, agent, node, known: Known) -> Iterator[Finding]:
         """A place to walk to: room to stand and turn there (floor-level locations are
@@ -542,7 +540,7 @@ class _Checks:
         if not problem:
             problem = self._no_walk(x, y, yaw)
         if problem:
-            yield self.at.node(node, "target", f"{known}: {problem}", (x, y, 0.0))
+            yield self.at.read(node, "target", known, f"{known}: {problem}", (x, y, 0.0))
 
     def _no_walk(self, x: float, y: float, yaw: float | None) -> str:
         """Why no walk from the person's start reaches the place a walk to (x, y) ends at

@@ -56,7 +56,7 @@ def _all_of(node: TreeNode, kind: Kind) -> list[TreeNode]:
 def walk_before(node: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None | object:
     """The last walk that has run when `node` starts the `way` the tree went (None: the
     person stands at their start; UNKNOWN: not known statically)."""
-    return _last_before(node, parents, ActorMovement, way)
+    return last_before(node, parents, ActorMovement, way)
 
 
 def ways_before(node: TreeNode, parents: dict) -> list[Way]:
@@ -93,21 +93,21 @@ def parents_of(nodes: list[TreeNode]) -> dict[int, TreeNode]:
 
 
 def held_at(node: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None | object:
-    """The pick whose object the hands hold when `node` starts (as `_last_before`)."""
-    return _last_before(node, parents, ActorPick, way)
+    """The pick whose object the hands hold when `node` starts (as `last_before`)."""
+    return last_before(node, parents, ActorPick, way)
 
 
 def object_source(
     pick: TreeNode, parents: dict, way: Way | None = None
 ) -> TreeNode | None | object:
-    """Where what `pick` takes was last left on the `way` to it (as `_last_before`): the
+    """Where what `pick` takes was last left on the `way` to it (as `last_before`): the
     node that last wrote the entry it reads (a NextObject on another branch of a Fallback or
     WeightedRandom has not run), or a put-down of what an earlier pick of that entry took
     (a carton put on a table is taken from the table, not from where it was found)."""
     entry = _entry(pick, "inputs")
     if entry is None:
         return UNKNOWN
-    return _last_before(pick, parents, partial(_leaves_object, entry, parents, way), way)
+    return last_before(pick, parents, partial(_leaves_object, entry, parents, way), way)
 
 
 def finder_of(pick: TreeNode, parents: dict, way: Way | None = None) -> TreeNode | None:
@@ -134,7 +134,7 @@ def _entry(node: TreeNode, ports: str):
     return getattr(getattr(node.config, ports).get("object_id"), "entry", None)
 
 
-def _last_before(
+def last_before(
     node: TreeNode, parents: dict, kind: Kind, way: Way | None = None
 ) -> TreeNode | None | object:
     """The last node of `kind` that has run when `node` starts the `way` the tree went (a

@@ -125,3 +125,23 @@ def assert_one_line_error(status: int, err: str, *says: str, exit_status: int = 
     for text in says:
         assert text in lines[0], f"{text!r} not in {lines[0]!r}"
     return lines[0]
+
+
+ROBOT_PUT_DOWN_INTO_THE_TABLE = Case(
+    "robot.xml",
+    '<RobotMove target="{above}"/>',
+    '<RobotMove target="{above}"/><SpawnObject type="part" pose="{at}" object_id="{p}"/>'
+    '<OffsetPose input="{at}" offset="0;0;0.03" output="{grasp}"/>'
+    '<RobotMoveLinear target="{grasp}"/><RobotGrip/><RobotMoveLinear target="{above}"/>'
+    '<RobotMove target="0.2;0.42;1.03"/><RobotMoveLinear target="0.2;0.42;0.93"/>'
+    "<RobotRelease/>",
+    (
+        "port 'target': '0.2;0.42;0.93' at (0.20, 0.42, 0.93): the part the robot lets go of "
+        "there (its top at the tool) would be 3.0 cm into work_table (limit 1 cm; ",
+        "raise the target to z = 0.960",
+    ),
+    'target="0.2;0.42;0.93"',
+)
+"""The robot takes a part it makes on the work table (top 0.9 m) and lets go of it with its
+top at 0.93 m: the target given as the 6 cm part's centre puts it 3 cm into the table (a
+user's `drop_spot`)."""

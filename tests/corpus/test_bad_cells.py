@@ -13,6 +13,7 @@ import pytest
 from tests.corpus.corpus_helpers import (
     GOOD_SCENARIO,
     GOOD_TREE,
+    ROBOT_PUT_DOWN_INTO_THE_TABLE,
     Case,
     assert_one_line_error,
     expected_place,
@@ -665,6 +666,31 @@ CASES = {
             ),
         ],
     ),
+    "a put-down target a parameter gives, at the parameter's line": replace(
+        person(
+            '<ActorAnimation animation_name="wave"/>',
+            '<SpawnObject type="part" pose="0.2;0.85;0.93" object_id="{p}"/>'
+            '<ActorMovement target="table_front"/><ActorPick object_id="{p}"/>'
+            '<ActorPlace target="{put_spot}"/>',
+            (
+                "parameters.put_spot: parameter 'put_spot' at (-0.20, 0.85, 0.90), put down "
+                "where the person stands (location 'table_front', ActorMovement at ",
+                "): what the hands hold would be 3.0 cm into 'work_table' where it is put: "
+                "ActorPlace 'ActorPlace::",
+            ),
+            'put_spot: "',
+            changes=[
+                (
+                    "locations:\n",
+                    "locations:\n  table_front: {translation: [0.0, 1.45, 0.0], "
+                    "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+                ),
+                ('  speed: "0.5"\n', '  speed: "0.5"\n  put_spot: "-0.2;0.85;0.9"\n'),
+            ],
+        ),
+        found_in=None,
+    ),
+    "a part the robot lets go of inside the table": ROBOT_PUT_DOWN_INTO_THE_TABLE,
     "a put-down whose tote would be in the board above where it is put": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
@@ -796,6 +822,15 @@ def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_p
         "ActorPlace",
         changes=[totes, places, left],
     )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert status == 0, err
+
+
+def test_a_part_the_robot_lets_go_of_on_the_table_is_not_judged(tmp_path, hrc_drake):
+    """The robot's put-down of the corpus's case with the part's top 5 mm over where it
+    rests on the table: the part drops 5 mm, as a user's cell lets go of its parts."""
+    case = ROBOT_PUT_DOWN_INTO_THE_TABLE
+    case = replace(case, new=case.new.replace("0.2;0.42;0.93", "0.2;0.42;0.965"))
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err
 

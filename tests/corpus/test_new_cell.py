@@ -56,18 +56,18 @@ EXPECTED = [
         "robot.xml",
         'RobotMove target="{over}"',
         "port 'target': the value OffsetPose (robot.xml:24) made from location 'belt_place' at "
-        "(0.75, 0.00, 0.97): out of reach with the tool pointing down: 0.75 m from its base axis",
+        "(0.75, 0.00, 0.99): out of reach with the tool pointing down: 0.75 m from its base axis",
     ),
     (
         "robot.xml",
         'RobotMoveLinear target="{to}"',
-        "port 'target': location 'belt_place' at (0.75, 0.00, 0.88): out of reach",
+        "port 'target': location 'belt_place' at (0.75, 0.00, 0.90): out of reach",
     ),
     (
         "robot.xml",
         'RobotMoveLinear target="{over}"',
         "port 'target': the value OffsetPose (robot.xml:24) made from location 'belt_place' at "
-        "(0.75, 0.00, 0.97): out of reach",
+        "(0.75, 0.00, 0.99): out of reach",
     ),
     (
         "human.xml",

@@ -75,7 +75,7 @@ def test_a_finding_is_marked_at_the_point_validate_names(mistaken_cell):
         ]
         assert len(marks) == len(panels), f"finding {n} is not marked on every panel"
         np.testing.assert_allclose(marks, [finding.point[:2]] * len(panels))
-    belt = next(f for f in found if "belt_place' at (0.75, 0.00, 0.88)" in f.message)
+    belt = next(f for f in found if "belt_place' at (0.75, 0.00, 0.90)" in f.message)
     assert belt.point[:2] == pytest.approx((0.75, 0.0))
 
 
