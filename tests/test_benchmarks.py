@@ -27,6 +27,7 @@ SMALLEST = {
     "profile_scenarios.py": ["--duration", "0.5", "getting_started"],
     "python_systems.py": ["--duration", "0.5", "--systems", "0", "2"],
     "realism_cost.py": ["--duration", "0.5", "coexistence"],
+    "refused_again.py": ["--duration", "0.2"],
     "replay.py": ["--scenario", "getting_started", "--duration", "0.5", "--repeats", "1"],
     "robot_motion.py": ["--targets", "1", "--duration", "0.5", "--repeats", "1"],
     "robot_update.py": ["--duration", "0.5", "getting_started"],

@@ -6,6 +6,8 @@ and copies cheaply. `pose_at(performer, state, t)` gives the joint positions at 
 from the state alone; `advance(performer, state, t, commands)` is one update: it takes each
 issuer's new commands, plans their activities (hrc_drake.human.planning), finishes the one
 that is done, fires clip events and samples the pose; `status` is what the person reports.
+A command refused is remembered, so that the same one asked again before the person has
+done anything else is refused at once (`_refused_again`).
 """
 
 from dataclasses import replace
@@ -87,6 +89,9 @@ class ActorState(NamedTuple):
     """What the hands hold once the current activity is done (the last command said)."""
     move: MoveCommand | None = None
     """The walk under way (what it goes round when something comes into its way)."""
+    refused: tuple | None = None
+    """The last command refused, as asked (its seq left out), the activity it was refused
+    in and why (`_refused_again`)."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -177,13 +182,17 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
     if state.running >= 0:
         return _record(state, command.seq, REJECTED, f"busy with command {state.running}")
     walking, t0 = still_stepping(performer, state.activity, t)
+    asked = None if walking else (replace(command, seq=0), state.activity)
+    again = _refused_again(state, asked)
+    if again:
+        return _record(state, command.seq, FAILED, again)
     try:
         if isinstance(command, MoveCommand):
             activity, mode = plan_movement(performer, command, state.anchor, t0), "MOVEMENT"
         else:
             activity, mode = plan_animation(performer, command, state.anchor, t0), "ANIMATION"
     except Unreachable as error:
-        return _record(state, command.seq, FAILED, str(error))
+        return _refuse(state, command.seq, str(error), asked)
     activity = _after_stepping(performer, walking, activity)
     switched = _switch(
         performer,
@@ -200,8 +209,31 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
         try:
             refuse_going_in(performer, switched.activity, t)
         except Unreachable as error:
-            return _record(state, command.seq, FAILED, str(error))
+            return _refuse(state, command.seq, str(error), asked)
     return _record(switched, command.seq, RUNNING)
+
+
+def _refused_again(state: ActorState, asked) -> str:
+    """Why `asked` (the command without its seq, and the activity it comes in) was refused
+    the last time it was asked, if it was the last command refused ("": it was not, or
+    `asked` is None, the person still stepping, so its plan would start elsewhere).
+
+    A tree retrying a pick the person cannot make asked it every tick, and each was
+    planned anew, 6.5 s of planning to the same refusal (a run at 0.03 of real time, #26).
+    The same command holds the same object, target and what stands near them, so none of
+    them moved; the same activity (Activity compares by identity) means the person has done
+    nothing since: every walk, pick or put-down, and every activity's end, replaces it.
+    The memory is the person's state, in Drake's Context: a run restarted from a Context
+    remembers only that run's refusals, and no other run sees them."""
+    if asked is None or state.refused is None or state.refused[:2] != asked:
+        return ""
+    return state.refused[2]
+
+
+def _refuse(state: ActorState, seq: int, reason: str, asked) -> ActorState:
+    """Command `seq` failed for `reason`, remembered with `asked` (None: not remembered)."""
+    refused = None if asked is None else (*asked, reason)
+    return _record(state._replace(refused=refused), seq, FAILED, reason)
 
 
 def _go_round(performer: Performer, state: ActorState, boxes: tuple, t: float) -> ActorState:

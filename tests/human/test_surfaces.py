@@ -9,6 +9,7 @@ import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.evaluation.realism import realism_verdict
+from hrc_drake.human import protocol
 from hrc_drake.human.clip import load_clips
 from hrc_drake.human.grasp import PALM_GAP, carry_arms, held_corners, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, CancelCommand, Grasp, Hold, MoveCommand
@@ -866,6 +867,79 @@ def test_a_carton_on_a_shelfs_bottom_board_the_head_cannot_stoop_to_is_refused()
     assert result.outcome == "failed"
     assert result.reason.startswith("the head would go") and "'shelf'" in result.reason
     assert run.overlap[0] <= INTO_FURNITURE, run.overlap
+
+
+def _plans_counted(monkeypatch) -> list:
+    """The person's animations planned from now on, one entry each (the protocol's)."""
+    planned, plan = [], protocol.plan_animation
+
+    def counted(performer, command, *args):
+        planned.append(command.seq)
+        return plan(performer, command, *args)
+
+    monkeypatch.setattr(protocol, "plan_animation", counted)
+    return planned
+
+
+BOTTOM_CARTON = ((0.0, 0.47, 0.101 + 0.1), (0.3, 0.25, 0.2))
+"""The carton on the shelf's bottom board the person cannot stoop to (the test above)."""
+WALKED = 4.0
+"""s: the person has walked 0.4 m aside (asked at 0.3 s)."""
+
+
+def _bottom_board_pick(seq: int) -> AnimateCommand:
+    center, size = BOTTOM_CARTON
+    return AnimateCommand(seq, "pick_floor", grasp=Grasp("both", center, 0.0, size))
+
+
+def _stooping_to_the_bottom_board(*later) -> Run:
+    """The person asked twice for the carton on the shelf's bottom board (seq 1 at 0.1 s,
+    2 at 0.2 s), then `later` (time, command)."""
+    center, size = BOTTOM_CARTON
+    schedule = [(0.1, _bottom_board_pick(1)), (0.2, _bottom_board_pick(2)), *later]
+    return Run(schedule, STANDING, [FLOOR, SHELF], objects=[(size, RigidTransform(center))])
+
+
+def test_a_refused_pick_asked_again_from_where_it_was_refused_is_not_planned_again(
+    monkeypatch,
+):
+    """A tree retrying a pick the person cannot make asks it at every tick (a user's packing
+    cell: a box on a shelf's 1.6 m board, 6.5 s of planning to the same refusal each time,
+    the run at 0.03 of real time). Asked again before the person has done anything else,
+    it is refused at once for the same reason; walked elsewhere, it is planned again."""
+    planned = _plans_counted(monkeypatch)
+    aside = MoveCommand(3, (0.4, 0.0), (np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)))
+    run = _stooping_to_the_bottom_board((0.3, aside), (WALKED, _bottom_board_pick(4)))
+    run.record(WALKED + 0.1)
+    results = run.status().results
+    first, again = results.result_of(1), results.result_of(2)
+    assert (first.outcome, again.outcome) == ("failed", "failed"), results
+    assert again.reason == first.reason, again
+    assert results.outcome_of(3) == "succeeded" and results.result_of(4) is not None, results
+    assert planned == [1, 4], planned
+
+
+TOP_BOARD = Path(__file__).resolve().parent / "cells" / "top_board" / "cell.yaml"
+
+
+def test_a_tree_retrying_a_pick_the_person_cannot_make_has_it_planned_once(monkeypatch):
+    """The user's packing cell, cut down: the box on the shelf's 1.6 m board, which the
+    person cannot take from where they stand, asked for at every tick. The tree's commands
+    are the same each time, so only the first is planned (benchmarks/refused_again.py)."""
+    planned = _plans_counted(monkeypatch)
+    report = run(load_scenario(TOP_BOARD), duration=0.5)
+    pick = report.metrics["bt"]["human"]["ActorPick::3"]
+    assert pick["successes"] == 0 and pick["failures"] >= 3, pick
+    assert len(planned) == 1, planned
+
+
+def test_a_refusal_is_remembered_by_its_own_run_only(monkeypatch):
+    """The refusal is remembered in the person's state, in Drake's Context: a second run in
+    the same process plans its own first ask."""
+    planned = _plans_counted(monkeypatch)
+    for _ in range(2):
+        _stooping_to_the_bottom_board().record(0.3)
+    assert planned == [1, 1], planned
 
 
 HEAD_SPEED = 1.5
