@@ -100,14 +100,17 @@ PAST_THE_GRIPPER = Path(__file__).resolve().parent / "cells" / "past_the_gripper
 
 
 @pytest.mark.parametrize(
-    "wait", ["15000", "12500"], ids=["at rest before the walk", "coming to rest 1.4 m ahead"]
+    "wait", ["16500", "14000"], ids=["at rest before the walk", "coming to rest 1.4 m ahead"]
 )
 def test_a_person_walks_round_a_carton_the_robot_holds_where_they_would_stand(wait):
     """A user's palletizing cell, cut down: the robot takes a carton off the belt's end and
     holds it still where the person walks to stand (no speed and separation monitoring, so
     it stays there). The person walked into it, the abdomen 19.7 cm in it, whether the
     robot was at rest before the walk began or came to rest during it; now the walk goes
-    round it to the nearest place with room, within the audit's limits."""
+    round it to the nearest place with room, within the audit's limits. The robot lifts the
+    carton straight off the belt before it swings it over (swung at once, it dragged the
+    carton 1.4 cm through the belt, which the audit measures since it looks at what the
+    robot holds), and so comes to rest 1.5 s later, at 15.5 s."""
     scenario = overridden(load_scenario(PAST_THE_GRIPPER), [("parameters.wait_msec", wait)])
     report = run(scenario)
     walk = report.metrics["bt"]["human"]["ActorMovement::3"]

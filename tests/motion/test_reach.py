@@ -32,7 +32,7 @@ def moved(path: Path, out: Path) -> tuple[bool, str]:
 def test_validate_and_the_run_agree_on_what_the_robot_reaches(tmp_path):
     far = scenario_with_goal(tmp_path / "far", 0.75)
     (found,) = findings(load_scenario(far), far)
-    assert "node 'to_goal', port 'target'" in found.where
+    assert found.where == "parameters.goal" and "RobotMove 'to_goal'" in found.message
     assert "parameter 'goal' at (0.75, 0.00, 1.00): out of reach" in found.message
     reaches = float(re.search(r"reaches (\d\.\d\d) m \(move it", found.message).group(1))
     arrived, why = moved(far, tmp_path / "far_run")
