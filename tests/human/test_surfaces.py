@@ -631,13 +631,20 @@ def test_a_thin_part_in_one_hand_is_held_with_the_palm_on_its_top():
     above the board, which was pushed along beside the hand. The forearm turns in and the
     palm goes on its top; with the fingers straight ahead, not turned in, the put-down into
     the bin bent the trunk aside and was refused (the free arm 6.1 cm into the bench)."""
-    report = run(load_scenario(THIN_BOARD))
+    realism = _taken_carried_and_put_down(THIN_BOARD)
+    assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
+
+
+def _taken_carried_and_put_down(cell: Path) -> dict:
+    """The realism audit of a run of `cell`, whose tree takes an object, walks and puts it
+    down (ActorPick::3, ActorMovement::4, ActorPlace::5), each once and with success, and
+    which is within every limit of the audit."""
+    report = run(load_scenario(cell))
     for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
         done = report.metrics["bt"]["human"][node]
         assert (done["successes"], done["failures"]) == (1, 0), (node, done)
-    realism = report.metrics["realism"]
-    assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
-    assert_within_the_audit_limits(realism)
+    assert_within_the_audit_limits(report.metrics["realism"])
+    return report.metrics["realism"]
 
 
 TRAY_CARRY = Path(__file__).resolve().parent / "cells" / "tray_carry" / "cell.yaml"
@@ -648,13 +655,8 @@ def test_a_low_tray_carried_in_both_hands_rolls_with_them():
     hands, carried 2.5 m and put on another. Kept level while the hands' line rolled 4
     degrees each stride, the tray stayed put between palms that rose and sank beside its
     top edge: 2.3 cm off it. Held rigidly between the palms, it rolls with them."""
-    report = run(load_scenario(TRAY_CARRY))
-    for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
-        done = report.metrics["bt"]["human"][node]
-        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
-    realism = report.metrics["realism"]
+    realism = _taken_carried_and_put_down(TRAY_CARRY)
     assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
-    assert_within_the_audit_limits(realism)
 
 
 RACK_TRAY = Path(__file__).resolve().parent / "cells" / "rack_tray" / "cell.yaml"
@@ -665,11 +667,7 @@ def test_a_tray_taken_off_a_rack_board_keeps_under_the_board_above():
     standing 0.35 m from the rack, and carried to a table. In the carry posture there its
     far edge is 1.5 cm inside the rack, under the 1.1 m board: the way up rose over that
     board and came down through it, the tray 1.6 cm in. It stays under it."""
-    report = run(load_scenario(RACK_TRAY))
-    for node in ("ActorPick::3", "ActorMovement::4", "ActorPlace::5"):
-        done = report.metrics["bt"]["human"][node]
-        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
-    assert_within_the_audit_limits(report.metrics["realism"])
+    _taken_carried_and_put_down(RACK_TRAY)
 
 
 INSERTS_ON_TOP = Path(__file__).resolve().parent / "cells" / "inserts_on_top" / "cell.yaml"
