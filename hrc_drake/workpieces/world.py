@@ -304,19 +304,16 @@ def person_frames(hands: HandPoses | tuple | None) -> dict[str, Sampled]:
 
 def _between(p_left: np.ndarray, p_right: np.ndarray, facing: RotationMatrix):
     """The both-hands frame's rotation: x level and square to the hands' line, y along it
-    from the right hand to the left, z square to both. Level, a 4 cm tray stayed upright
-    while the hands' line rolled 4 degrees each stride of a walk, and a palm rose 2.3 cm off
-    it (a user's electronics cell). In scalars: this runs at every update that has a new
-    pose of the person."""
-    y = np.array([p_left[0] - p_right[0], p_left[1] - p_right[1], 0.0])
-    if math.sqrt(y.dot(y)) < 1e-9:  # y.dot(y): the same float as np.linalg.norm's
-        y = facing.col(1) * [1.0, 1.0, 0.0]
-    y /= math.sqrt(y.dot(y))
-    y0, y1, _ = y
-    x = (y1, -y0, 0.0)  # y × z: level
-    across = math.hypot(p_left[0] - p_right[0], p_left[1] - p_right[1])
-    roll = math.atan2(p_left[2] - p_right[2], across)
-    c, s = math.cos(roll), math.sin(roll)
-    y = (c * y0, c * y1, s)
-    z = (-s * y0, -s * y1, c)  # x × y
-    return RotationMatrix(np.array([[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]))
+    from the right hand to the left (the facing's y, level, when the hands are one above the
+    other), z square to both. Level, a 4 cm tray stayed upright while the hands' line rolled
+    4 degrees each stride of a walk, and a palm rose 2.3 cm off it (a user's electronics
+    cell). In scalars: this runs at every update that has a new pose of the person."""
+    dx, dy, dz = (float(a - b) for a, b in zip(p_left, p_right, strict=True))
+    across = math.hypot(dx, dy)
+    if across < 1e-9:
+        (h0, h1), c, s = facing.col(1)[:2], 1.0, 0.0
+    else:
+        length = math.hypot(across, dz)
+        (h0, h1), c, s = (dx / across, dy / across), across / length, dz / length
+    x, y, z = (h1, -h0, 0.0), (c * h0, c * h1, s), (-s * h0, -s * h1, c)  # z = x × y
+    return RotationMatrix(np.array([x, y, z]).T)
