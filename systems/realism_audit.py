@@ -192,7 +192,7 @@ class AuditScene:
             time=recorded.time,
             static_depths=static_depths,
             object_depths=object_depths,
-            carried_depths=self._carried_depths(recorded, held),
+            carried_depths=self._carried_depths(recorded),
             hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, recorded)),
             tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
             sole_points=sole_points,
@@ -299,10 +299,11 @@ class AuditScene:
                 depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
         return tuple(depths)
 
-    def _carried_depths(self, recorded: Recorded, held) -> tuple:
-        """How deep each held object goes into the cell's static geometry (the broad phase:
-        the audit's context lets the objects collide with it) and into the objects the
-        person does not hold (pair queries for those whose bounding spheres meet it)."""
+    def _carried_depths(self, recorded: Recorded) -> tuple:
+        """How deep each object the person or the robot holds (a part the robot put 3 cm into
+        a table was missed, a user's cell) goes into the cell's static geometry (broad phase)
+        and into the others the person does not hold (pair queries where bounding spheres meet)."""
+        held = [o for o in recorded.objects if o.holder]
         names = {o.geometry_id: f"{o.type} {o.id}" for o in held if o.geometry_id is not None}
         if not names:
             return ()
@@ -314,16 +315,15 @@ class AuditScene:
             if own in names and other in self._static
         ]
         free = [o for o in recorded.objects if o.holder not in PERSON_HOLDERS and o.geometry_id]
-        for obj, other in ((h, f) for h in held if h.geometry_id in names for f in free):
+        pairs = ((h, f) for h in held if h.geometry_id in names for f in free if f.id != h.id)
+        for obj, other in pairs:
+            ids = (obj.geometry_id, other.geometry_id)
             reach = self._object_radii[obj.type] + self._object_radii[other.type]
             if np.linalg.norm(obj.pose.translation() - other.pose.translation()) <= reach:
-                pair = query.ComputeSignedDistancePairClosestPoints(
-                    obj.geometry_id, other.geometry_id
-                )
+                pair = query.ComputeSignedDistancePairClosestPoints(*ids)
                 if pair.distance < 0:
-                    depths.append(
-                        (-pair.distance, f"{names[obj.geometry_id]} in {other.type} {other.id}")
-                    )
+                    what = f"{names[obj.geometry_id]} in {other.type} {other.id}"
+                    depths.append((-pair.distance, what))
         return tuple(depths)
 
     def _hand_gaps(self, obj, recorded: Recorded) -> list:

@@ -4,8 +4,9 @@ Sampled at the person's update rate during the run, it keeps the worst of each o
 (docs/realism.md gives the published figures behind the limits):
 - how deep any body segment goes into the cell's static geometry, and into objects that
   the person does not hold (a box on the pallet, the carton the robot holds out);
-- how deep an object the person holds goes into the cell's static geometry or another
-  object (a carton carried through the top of a stack);
+- how deep an object the person or the robot holds goes into the cell's static geometry
+  or another object (a carton carried through the top of a stack, a part the robot puts
+  down into a table);
 - how far a held object is from its holding hand(s): the grasp point's distance to the
   object's surface, inside or out;
 - how far a carried object leans from upright;
@@ -198,7 +199,7 @@ def realism_metrics(state: AuditState | None) -> dict:
 MEASURES = {
     "penetration_static": ("body in the cell's geometry", "m"),
     "penetration_objects": ("body in an object", "m"),
-    "penetration_carried": ("carried object in the cell or another object", "m"),
+    "penetration_carried": ("held object in the cell or another object", "m"),
     "hand_object_gap": ("holding hand off its object", "m"),
     "carried_tilt_deg": ("carried object tilted", "deg"),
     "foot_slip": ("standing foot slid", "m"),

@@ -5,10 +5,11 @@ the simulated station: planning never touches the station's context.
 """
 
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.common import Parallelism
-from pydrake.geometry import Capsule
+from pydrake.geometry import Capsule, Shape
 from pydrake.math import RigidTransform
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
@@ -23,8 +24,18 @@ APART_INFLUENCE = 0.01
 """m: `apart` measures the pairs of bodies whose padded distance is below this (any positive
 value gives the same answers; a small one leaves most pairs to the broad phase)."""
 PERSON_GROUP = "person"
+HELD_GROUP = "held"
 PERSON_HEIGHT = 1.9
 """m: a standing person with some margin overhead."""
+
+
+@dataclass(frozen=True)
+class HeldPart:
+    """What the tool holds, as a plan keeps it clear of the cell: its collision shape and
+    its pose in the tool's frame (`X_TP`)."""
+
+    shape: Shape
+    X_TP: RigidTransform
 
 
 class PlanningModel:
@@ -101,7 +112,11 @@ class PlanningModel:
 
     @contextmanager
     def person_obstacle(self, xy, radius: float):
-        """The person as a standing capsule in the collision checks, for one plan."""
+        """The person standing at `xy` as a capsule in the collision checks, for one plan
+        (no person: None)."""
+        if xy is None:
+            yield
+            return
         X_WP = RigidTransform([xy[0], xy[1], PERSON_HEIGHT / 2])
         shape = Capsule(radius, PERSON_HEIGHT - 2 * radius)
         self.checker.AddCollisionShapeToBody(PERSON_GROUP, self.plant.world_body(), shape, X_WP)
@@ -109,6 +124,22 @@ class PlanningModel:
             yield
         finally:
             self.checker.RemoveAllAddedCollisionShapes(PERSON_GROUP)
+
+    @contextmanager
+    def holding(self, part: HeldPart | None):
+        """The part the tool holds as part of the tool in the collision checks, for one plan:
+        the cell's clearance applies to it as to the tool (and it may not touch the arm)."""
+        if part is None:
+            yield
+            return
+        X_BT = self.tcp.GetFixedPoseInBodyFrame()
+        self.checker.AddCollisionShapeToBody(
+            HELD_GROUP, self.tcp.body(), part.shape, X_BT @ part.X_TP
+        )
+        try:
+            yield
+        finally:
+            self.checker.RemoveAllAddedCollisionShapes(HELD_GROUP)
 
     def collision_free(self, q) -> bool:
         return self.checker.CheckConfigCollisionFree(q)

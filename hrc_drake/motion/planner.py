@@ -14,12 +14,14 @@ from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.ik import ToolTargetSolver
 from hrc_drake.motion.linear import linear_waypoints
 from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
-from hrc_drake.motion.model import PlanningModel
+from hrc_drake.motion.model import HeldPart, PlanningModel
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.roadmap import collision_free_waypoints
 from hrc_drake.motion.timing import TimedPath, polyline_path, spline_path, time_path
 from hrc_drake.station import StationSpec
 
+HOLDING = "(with the part the robot holds, kept as clear of the cell as the tool)"
+"""Said of a free-space move that failed with a part held: the tool alone may have made it."""
 ARRIVED = 1e-6
 """Joint distance (rad) below which a target counts as the start: nothing to move."""
 
@@ -34,14 +36,40 @@ class MotionPlanner:
         self.model = PlanningModel(station, options.clearance)
         self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
 
-    def plan(self, command, q_start, person_xy=None) -> TimedPath | None:
+    def plan(self, command, q_start, person_xy=None, held: HeldPart | None = None):
         """The timed path for `command` from `q_start`; None when already there. With
-        `person_xy`, the person standing there is an obstacle for this plan."""
-        if person_xy is None:
-            return self._plan(command, q_start)
-        self._check_target_clear_of(person_xy, command)
-        with self.model.person_obstacle(person_xy, self.options.person_radius):
-            return self._plan(command, q_start)
+        `person_xy`, the person standing there is an obstacle for this plan. A free-space
+        move keeps `held`, what the tool holds, as clear of the cell as the tool; a linear
+        move takes it off or sets it down on what it rests on, as the tree tells it."""
+        if person_xy is not None:
+            self._check_target_clear_of(person_xy, command)
+        carried = None if isinstance(command, MoveLinear) else held
+        if carried is not None:
+            self._check_held_part_starts_clear(q_start, carried)
+        with (
+            self.model.person_obstacle(person_xy, self.options.person_radius),
+            self.model.holding(carried),
+        ):
+            try:
+                return self._plan(command, q_start)
+            except PlanningFailed as failure:
+                if carried is None:
+                    raise
+                raise PlanningFailed(f"{failure} {HOLDING}") from None
+
+    def _check_held_part_starts_clear(self, q_start, part: HeldPart) -> None:
+        """A held part still on (or near) what it was taken off fails at once, where the arm
+        alone is clear (the path search says when it is not), and says how to go on."""
+        q_start = np.asarray(q_start, dtype=float)
+        if not self.model.collision_free(q_start):
+            return
+        with self.model.holding(part):
+            clear = self.model.collision_free(q_start)
+        if not clear:
+            raise PlanningFailed(
+                "the part the robot holds starts closer to the cell than the planning "
+                f"clearance ({self.options.clearance:.2f} m): lift it clear with MoveLinear first"
+            )
 
     def _check_target_clear_of(self, person_xy, command) -> None:
         """A tool target inside the person's space fails at once (no IK search)."""

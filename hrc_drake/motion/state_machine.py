@@ -55,9 +55,11 @@ from hrc_drake.motion.messages import (
     SetSpeed,
     Stop,
 )
+from hrc_drake.motion.model import HeldPart
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
 from hrc_drake.wiring import GRIPPER_ISSUER
+from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, WorkpiecesStatus
 
 ARRIVAL_SPEED = 0.01
@@ -205,7 +207,7 @@ class MotionStateMachine:
             seen = max(state.seen_seq, command.seq)
             state = self._accept(state.replace(seen_seq=seen), command, inputs)
         state = self._workpieces_seen(state, inputs.workpieces, t)
-        state = self._planned_when_at_rest(state, t, inputs.person_xy)
+        state = self._planned_when_at_rest(state, t, inputs)
         return self._advanced(state, inputs.q, inputs.v, t)
 
     def horizon(self, state: MotionState) -> float:
@@ -304,15 +306,16 @@ class MotionStateMachine:
             return state.with_result(seq, FAILED, "the workpieces system did not answer")
         return state
 
-    def _planned_when_at_rest(self, state: MotionState, t: float, person_xy) -> MotionState:
-        """Plans the queued move from where the robot holds: only at rest, so the path starts
-        where the robot is and at zero speed."""
+    def _planned_when_at_rest(self, state: MotionState, t: float, inputs) -> MotionState:
+        """Plans the queued move from where the robot holds, with what the tool holds: only
+        at rest, so the path starts where the robot is and at zero speed."""
         if state.pending is None or state.path is not None:
             return state
         command = state.pending
         state = state.replace(pending=None)
+        held = _held_part(inputs.workpieces, state.tool_pose)
         try:
-            path = self._planner.plan(command, np.array(state.hold), person_xy)
+            path = self._planner.plan(command, np.array(state.hold), inputs.person_xy, held)
         except PlanningFailed as failure:
             return state.with_result(command.seq, FAILED, str(failure))
         if path is None:
@@ -357,6 +360,15 @@ class MotionStateMachine:
             reason = f"the robot did not arrive: joint error {error:.4f} rad"
             return _ended(state, state.path.end).with_result(state.move_seq, FAILED, reason)
         return state.replace(arrived_since=since, mode=MOVING)
+
+
+def _held_part(status: WorkpiecesStatus | None, tool_pose: RigidTransform) -> HeldPart | None:
+    """The object the vacuum holds, where it hangs from the tool now (None: nothing)."""
+    held = status.held_by(ROBOT_HOLDER) if status is not None else None
+    if held is None:
+        return None
+    shape = Solid(held.shape, held.size).drake_shape()
+    return HeldPart(shape, tool_pose.InvertAndCompose(held.pose))
 
 
 def _set_speed(state: MotionState, command: SetSpeed) -> MotionState:

@@ -38,8 +38,9 @@ def tool_pose(pose: Pose) -> tuple[RigidTransform, bool]:
 
 
 class RobotMove(RobotCommandNode):
-    """Moves the tool to `target` on a collision-free path; SUCCESS when the whole motion
-    is done (speed changes on the way do not fail it)."""
+    """Moves the tool to `target` on a collision-free path, the part it holds kept as clear
+    of the cell as the tool (lift a part off what it rests on with RobotMoveLinear first);
+    SUCCESS when the whole motion is done (speed changes on the way do not fail it)."""
 
     ports = (InputPort("target", Pose, description="tool pose, x;y;z[;qw;qx;qy;qz] or name"),)
 
@@ -49,8 +50,9 @@ class RobotMove(RobotCommandNode):
 
 
 class RobotMoveLinear(RobotCommandNode):
-    """Moves the tool along a straight line to `target` (approach and retreat); a target
-    without orientation keeps the tool's present orientation."""
+    """Moves the tool along a straight line to `target` (approach and retreat, a held part
+    taken off or set down on what it rests on); a target without orientation keeps the
+    tool's present orientation."""
 
     ports = (InputPort("target", Pose, description="tool pose, x;y;z[;qw;qx;qy;qz] or name"),)
 

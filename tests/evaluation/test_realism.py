@@ -1,5 +1,7 @@
-"""The realism audit: what it measures of the person, step by step and in a diagram."""
+"""The realism audit: what it measures of the person and of what the person and the robot
+hold, step by step, in a diagram and in a run."""
 
+import json
 import math
 from dataclasses import replace
 
@@ -13,6 +15,7 @@ from hrc_drake.evaluation.realism import (
     AuditState,
     Sample,
     audited,
+    over_limits,
     realism_metrics,
     realism_rows,
 )
@@ -21,7 +24,8 @@ from hrc_drake.scenario import HumanConfig, load_scenario, overridden
 from hrc_drake.systems.realism_audit import Recorded
 from hrc_drake.wiring import REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid
-from hrc_drake.workpieces.messages import BOTH_HANDS
+from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT_HOLDER
+from tests.corpus.corpus_helpers import ROBOT_PUT_DOWN_INTO_THE_TABLE, write_workspace
 
 STRIDE = 1.0
 DT = 1.0 / 60.0
@@ -178,8 +182,8 @@ def test_a_carried_box_in_another_box_or_in_the_bench_is_found_inside_it():
     taken = next(o for o in objects if o.type == "material" and o is not on_bench)
     others = tuple(o for o in objects if o is not taken)
 
-    def carried_at(x: float, z: float) -> dict:
-        held = replace(taken, pose=RigidTransform([x, 3.77, z]), holder=BOTH_HANDS, support=None)
+    def carried_at(x: float, z: float, holder: str = BOTH_HANDS) -> dict:
+        held = replace(taken, pose=RigidTransform([x, 3.77, z]), holder=holder, support=None)
         recorded = Recorded(
             None,
             0.05,
@@ -200,3 +204,20 @@ def test_a_carried_box_in_another_box_or_in_the_bench_is_found_inside_it():
     assert into_bench["max"] == pytest.approx(0.02, abs=1e-6)
     assert into_bench["where"] == f"material {taken.id} in bench"
     assert carried_at(0.6, 0.94 + 0.1)["max"] == 0.0
+    by_the_robot = carried_at(0.6, 0.94 - 0.02, ROBOT_HOLDER)
+    assert by_the_robot["max"] == pytest.approx(0.02, abs=1e-6)
+    assert by_the_robot["where"] == f"material {taken.id} in bench"
+
+
+def test_a_part_the_robot_lets_go_of_in_the_table_is_over_the_limit(tmp_path, hrc_drake):
+    """A user's cell let its parts go 3 cm into a table (the target given as the part's
+    centre, not its top) and the run lifted each out: the audit measured only what the person
+    held, and said nothing."""
+    scenario = write_workspace(tmp_path, ROBOT_PUT_DOWN_INTO_THE_TABLE)
+    status, _, err = hrc_drake("run", scenario, "--duration", 7, "--out", tmp_path / "run")
+    assert status == 0, err
+    report = json.loads((tmp_path / "run" / "report.json").read_text())
+    held = report["realism"]["penetration_carried"]
+    assert held["max"] == pytest.approx(0.03, abs=0.002)
+    assert held["where"] == "part 1 in work_table"
+    assert "penetration_carried" in {check.measure for check in over_limits(report["realism"])}
