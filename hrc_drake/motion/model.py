@@ -68,6 +68,8 @@ class PlanningModel:
         self.tcp = self.plant.GetFrameByName(
             TCP_FRAME if station.has_tool else FLANGE_FRAME, tcp_instance
         )
+        self.held: HeldPart | None = None
+        """The part the tool holds in the collision checks, while `holding` it."""
         self.lower = np.array(self.variant.position_lower)
         self.upper = np.array(self.variant.position_upper)
         self.velocity_limits = np.array(self.variant.velocity_limits)
@@ -132,6 +134,7 @@ class PlanningModel:
         if part is None:
             yield
             return
+        self.held = part
         X_BT = self.tcp.GetFixedPoseInBodyFrame()
         self.checker.AddCollisionShapeToBody(
             HELD_GROUP, self.tcp.body(), part.shape, X_BT @ part.X_TP
@@ -140,6 +143,7 @@ class PlanningModel:
             yield
         finally:
             self.checker.RemoveAllAddedCollisionShapes(HELD_GROUP)
+            self.held = None
 
     def collision_free(self, q) -> bool:
         return self.checker.CheckConfigCollisionFree(q)

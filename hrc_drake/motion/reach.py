@@ -11,6 +11,7 @@ import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import BodyIndex
 
+from hrc_drake.motion.model import HeldPart
 from hrc_drake.motion.planner import MotionPlanner
 
 SCAN_STEP = 0.1
@@ -20,11 +21,22 @@ the axis, then to within RADIUS_TOLERANCE."""
 
 
 def reach_problem(
-    planner: MotionPlanner, pose: RigidTransform, free_rotation: bool, linear: bool = False
+    planner: MotionPlanner,
+    pose: RigidTransform,
+    free_rotation: bool,
+    linear: bool = False,
+    held: HeldPart | None = None,
 ) -> str:
     """Why the robot cannot reach `pose` ("" when it can): with `free_rotation` only the
     tool axis must point along the pose's z; at the end of a `linear` move the robot keeps
-    no clearance to the cell (it must only not touch it)."""
+    no clearance to the cell (it must only not touch it); a free-space move keeps `held`,
+    the part the tool holds, as clear of the cell as the tool (the tool's name then stands
+    for both)."""
+    with planner.model.holding(held):
+        return _reach_problem(planner, pose, free_rotation, linear)
+
+
+def _reach_problem(planner, pose, free_rotation, linear) -> str:
     ik, q_start = planner.ik, planner.station.initial_positions
     if ik.reaches(pose, q_start, free_rotation, *_budget(planner), clearance=not linear):
         return ""
@@ -94,6 +106,8 @@ def _name(model, index, robot: bool) -> str:
     """A robot part by its body's name (link_3, vacuum_gripper), a part of the cell by its
     model's name (side_table)."""
     body = model.plant.get_body(BodyIndex(int(index)))
+    if robot and model.held is not None and body.index() == model.tcp.body().index():
+        return f"{body.name()} (or the part it holds)"
     if robot:
         return body.name()
     instance = model.plant.GetModelInstanceName(body.model_instance())

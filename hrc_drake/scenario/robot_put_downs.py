@@ -5,7 +5,11 @@ The part hangs from the tool with its top at the target (a robot target is where
 tool's tip goes, a part's top face: docs/building-a-cell.md). Where its bottom would lie
 inside the cell's fixed geometry deeper than the realism audit allows, `validate` says so
 at the move's target: a user's `drop_spot`, given as the part's centre, put the part 3 cm
-into the table, and the run lifted it out when it was let go."""
+into the table, and the run lifted it out when it was let go.
+
+A RobotMove made holding a part keeps the part as clear of the cell as the tool
+(hrc_drake.motion.planner); where that keeps the robot from a target the tool alone
+reaches, `validate` says so at the target, as the run's move would fail."""
 
 from collections.abc import Callable, Iterator
 
@@ -14,6 +18,7 @@ from pydrake.math import RigidTransform
 
 from hrc_drake.bt import TreeNode
 from hrc_drake.known_values import Known
+from hrc_drake.motion.model import HeldPart
 from hrc_drake.nodes.objects import NextObject, SpawnObject, parse_filter
 from hrc_drake.nodes.robot import (
     TOOL_DOWN,
@@ -53,10 +58,28 @@ def put_downs(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, st
         grip = last_before(release, parents, RobotGrip)
         if not (isinstance(move, TreeNode) and isinstance(grip, TreeNode)):
             continue
-        finder = last_before(grip, parents, _kind(NextObject | SpawnObject))
-        kind = finder_type(known, finder if isinstance(finder, TreeNode) else None)
+        kind = _gripped_type(grip, parents, known)
         for value in known.get((id(move), "target"), ()) if kind else ():
             yield move, kind, value
+
+
+def carried_moves(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, str, Known]]:
+    """(the move, the type of what the robot holds, a known target of the move) of every
+    RobotMove made holding a part: the last grip or release before it is a grip whose
+    finder is known."""
+    parents = parents_of(nodes)
+    for move in (n for n in nodes if isinstance(n, RobotMove)):
+        grip = last_before(move, parents, _kind(RobotGrip | RobotRelease))
+        kind = _gripped_type(grip, parents, known) if isinstance(grip, RobotGrip) else None
+        for value in known.get((id(move), "target"), ()) if kind else ():
+            yield move, kind, value
+
+
+def _gripped_type(grip: TreeNode, parents: dict, known: dict) -> str | None:
+    """The one type of part `grip` takes: what the NextObject or SpawnObject before it
+    finds or makes."""
+    finder = last_before(grip, parents, _kind(NextObject | SpawnObject))
+    return finder_type(known, finder if isinstance(finder, TreeNode) else None)
 
 
 def put_down_findings(
@@ -74,6 +97,32 @@ def put_down_findings(
         if found is not None:
             tip = target.translation()
             yield locate(move, "target", value, _into(value, kind, tip, *found), tip)
+
+
+def carried_move_findings(
+    nodes: list[TreeNode], known: dict, resolve, solids: dict, problem_of, locate: Locate
+) -> Iterator[Finding]:
+    """A Finding at each target the robot moves to holding a part where the part, kept as
+    clear of the cell as the tool, keeps the robot from reaching it (`problem_of(target,
+    free_rotation, held)`: why not, "" when it can or the tool alone cannot either)."""
+    for move, kind, value in carried_moves(nodes, known):
+        pose = resolve(value.value) if isinstance(value.value, Pose) else None
+        if pose is None or kind not in solids:
+            continue
+        target, free = tool_pose(pose)
+        problem = problem_of(target, free, hanging_from_the_tool(solids[kind]))
+        if problem:
+            tip = target.translation()
+            message = f"{value} at {point_text(tip)}: with the {kind} it holds, {problem}"
+            yield locate(move, "target", value, message, tip)
+
+
+def hanging_from_the_tool(solid: Solid) -> HeldPart:
+    """A part held as the vacuum holds it, its top at the tool and its sides along the
+    tool's x and y (a robot target is a part's top face: docs/building-a-cell.md)."""
+    return HeldPart(
+        solid.drake_shape(), RigidTransform(TOOL_DOWN.inverse(), [0, 0, solid.height / 2])
+    )
 
 
 def _kind(classes) -> Callable[[TreeNode], bool]:

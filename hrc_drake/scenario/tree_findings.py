@@ -47,7 +47,11 @@ from hrc_drake.scenario.cell_findings import (
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
-from hrc_drake.scenario.robot_put_downs import finder_type, put_down_findings
+from hrc_drake.scenario.robot_put_downs import (
+    carried_move_findings,
+    finder_type,
+    put_down_findings,
+)
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.scenario.tree_ways import (
     failed_before,
@@ -181,7 +185,19 @@ class _Checks:
         known = {(id(node), port): values for node, port, values in inputs}
         solids = {name: Solid.of(kind) for name, kind in self.scenario.workpieces.types.items()}
         resolve = partial(_resolved, agent)
-        return put_down_findings(tree.node_list, known, resolve, solids, self.scene, self.at.read)
+        yield from put_down_findings(
+            tree.node_list, known, resolve, solids, self.scene, self.at.read
+        )
+        yield from carried_move_findings(
+            tree.node_list, known, resolve, solids, self._carried_reach, self.at.read
+        )
+
+    def _carried_reach(self, target, free: bool, held) -> str:
+        """Why the robot cannot reach `target` holding `held` ("" when it can, or when the
+        tool alone cannot either: that is said at the target already)."""
+        if self._reach_problem(target, free, False):
+            return ""
+        return reach_problem(self.planner, target, free, held=held)
 
     def detours(self, tree, agent, inputs) -> Iterator[Finding]:
         """Walks that go a long way round a gap a little too narrow for the person
@@ -518,14 +534,17 @@ class _Checks:
         if pose is None:
             return
         target, free = tool_pose(pose)
-        linear = isinstance(node, RobotMoveLinear)
-        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear)
-        if key not in self.reach_problems:
-            self.reach_problems[key] = reach_problem(self.planner, target, free, linear)
-        problem = self.reach_problems[key]
+        problem = self._reach_problem(target, free, isinstance(node, RobotMoveLinear))
         if problem:
             message = f"{known} at {_xyz(target.translation())}: {problem}"
             yield self.at.read(node, "target", known, message, target.translation())
+
+    def _reach_problem(self, target, free: bool, linear: bool) -> str:
+        """reach_problem's answer, once per target (one pose may be read by many nodes)."""
+        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear)
+        if key not in self.reach_problems:
+            self.reach_problems[key] = reach_problem(self.planner, target, free, linear)
+        return self.reach_problems[key]
 
     def _standing(self, agent, node, known: Known) -> Iterator[Finding]:
         """A place to walk to: room to stand and turn there (floor-level locations are

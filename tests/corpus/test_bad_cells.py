@@ -691,6 +691,18 @@ CASES = {
         found_in=None,
     ),
     "a part the robot lets go of inside the table": ROBOT_PUT_DOWN_INTO_THE_TABLE,
+    "a move holding a part that the tool alone makes, the part not": replace(
+        ROBOT_PUT_DOWN_INTO_THE_TABLE,
+        new=ROBOT_PUT_DOWN_INTO_THE_TABLE.new.replace(
+            '<RobotMove target="0.2;0.42;1.03"/>', '<RobotMove target="0.2;0.42;0.945"/>'
+        ).replace("0.2;0.42;0.93", "0.2;0.42;0.96"),
+        says=(
+            "port 'target': '0.2;0.42;0.945' at (0.20, 0.42, 0.94): with the part it holds, "
+            "unreachable with the tool pointing down: the vacuum_gripper (or the part it "
+            "holds) would touch work_table there",
+        ),
+        at='target="0.2;0.42;0.945"',
+    ),
     "a put-down whose tote would be in the board above where it is put": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
