@@ -16,6 +16,9 @@ from hrc_drake.cli.arguments import (
 )
 from hrc_drake.yaml_check import InputError
 
+MOSTLY_STOPPED = 0.5
+"""The fraction of a run stopped above which the summary says where the person stood."""
+
 
 def add_commands(commands) -> None:
     run = commands.add_parser("run", help="simulate a scenario and write its run directory")
@@ -261,6 +264,20 @@ def _margin_line(margin: dict) -> str:
     return f"{line} ({where})" if where else line
 
 
+def _stopped_line(utilisation: dict) -> list[str]:
+    """A hint when the robot stood stopped for most of the run: where the person stood
+    then (a person who waits there for the robot keeps it stopped: a user's cell stood
+    still 95 % of its run, and the summary gave no hint why)."""
+    place = utilisation.get("stopped_with_person_at")
+    if utilisation.get("stopped", 0.0) < MOSTLY_STOPPED or place is None:
+        return []
+    return [
+        f"the robot was stopped {100 * utilisation['stopped']:.0f} % of the run, the person "
+        f"near it, most of that time at ({place[0]:.2f}, {place[1]:.2f}): a person who waits "
+        "there for the robot keeps it stopped"
+    ]
+
+
 def key_metrics(metrics: dict) -> list[str]:
     """The figures a user looks at first: output, safety, how much the robot was slowed,
     and whether the person moved as a person does (the realism audit)."""
@@ -281,6 +298,7 @@ def key_metrics(metrics: dict) -> list[str]:
             f"{safety['contacts']['robot_at_rest']} with it at rest, stops: {safety['stops']}, "
             f"reduced {safety['time_reduced']:.1f} s, stopped {safety['time_stopped']:.1f} s",
         ]
+    lines += _stopped_line((metrics.get("utilisation") or {}).get("robot") or {})
     sensing = metrics.get("sensing") or {}
     if sensing.get("sensors"):
         lines.append(

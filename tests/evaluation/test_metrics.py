@@ -53,7 +53,22 @@ def test_robot_utilisation_splits_the_run():
         "moving": 0.5,
         "waiting": 0.25,
         "stopped": 0.25,
+        "stopped_with_person_at": [0.0, 0.0],
     }
+
+
+def test_where_the_person_stood_while_the_robot_was_stopped_is_where_they_stood_longest():
+    # 1 s intervals: stopped with the person by the robot for 3 s (about (1.05, 0.52)),
+    # then 2 s across the cell, then free
+    stopped, free = ZONES.index("stopped"), ZONES.index("free")
+    run = signals(
+        zone=[stopped] * 5 + [free] * 2,
+        person_x=[1.0, 1.05, 1.1, 3.0, 3.05, 0.0, 0.0],
+        person_y=[0.5, 0.55, 0.5, 2.0, 2.0, 0.0, 0.0],
+    )
+    metrics = utilisation_metrics(np.arange(7) * 1.0, run, 0.01)
+    assert metrics["stopped"] == pytest.approx(5 / 6)
+    assert metrics["stopped_with_person_at"] == [1.05, 0.517]
 
 
 def test_person_walks_three_metres_and_waits_two_seconds():

@@ -8,6 +8,7 @@ import pytest
 from hrc_drake.cli.simulate import key_metrics
 from hrc_drake.evaluation.realism import LIMITS, realism_rows, realism_verdict
 from hrc_drake.evaluation.sweep_report import summarize
+from tests.corpus.corpus_helpers import write_workspace
 
 
 def realism(**worst) -> dict:
@@ -168,3 +169,45 @@ def test_the_summary_says_what_set_the_safety_margin(margin, line):
     110.1 s)' under 'SSM violations: 0' read as a miscalculation; the -5.10 came from a
     contact 11.2 times its limit, not from that place. The line says which set it."""
     assert key_metrics({"margin": margin}) == [line]
+
+
+PERSON_WAITING_BY_THE_ROBOT = """<root BTCPP_format="4" main_tree_to_execute="Human">
+  <BehaviorTree ID="Human">
+    <Sequence>
+      <ActorMovement target="by_the_robot"/>
+      <Repeat num_cycles="-1"><ActorAnimation animation_name="idle"/></Repeat>
+    </Sequence>
+  </BehaviorTree>
+</root>
+"""
+
+
+def test_a_robot_stopped_most_of_the_run_says_where_the_person_stood(tmp_path, hrc_drake):
+    """A user's robot stood stopped 113.7 s of a 120 s run while the person waited for it
+    within its reach; the summary gave the stopped time and no hint of why."""
+    scenario = write_workspace(tmp_path)
+    text = scenario.read_text().replace(
+        "  robot: {file: robot.xml, period: 0.05}\n",
+        "  robot: {file: robot.xml, period: 0.05}\n  human: {file: human.xml, period: 0.1}\n",
+    )
+    text = text.replace(
+        "  door:",
+        "  by_the_robot: {translation: [0.6, -0.1, 0.0], rotation: !Rpy {deg: [0, 0, 180]}}\n"
+        "  door:",
+    )
+    scenario.write_text(text)
+    (tmp_path / "human.xml").write_text(PERSON_WAITING_BY_THE_ROBOT)
+    robot = (tmp_path / "robot.xml").read_text()
+    (tmp_path / "robot.xml").write_text(
+        robot.replace(
+            '<SubTree ID="Reach" at="pick_spot"/>\n      <SubTree ID="Reach" at="pick_spot"/>',
+            '<Repeat num_cycles="-1"><Sequence><SubTree ID="Reach" at="pick_spot"/>'
+            '<RobotMove target="0.1;0.42;1.0"/></Sequence></Repeat>',
+        )
+    )
+    status, out, err = hrc_drake("run", scenario, "--duration", 12, "--out", tmp_path / "run")
+    assert status == 0, err
+    hint = next(line for line in out.splitlines() if "the robot was stopped" in line)
+    stopped = float(hint.split("stopped ")[1].split(" %")[0])
+    assert stopped > 70, hint
+    assert "the person near it, most of that time at (0.60, -0.10)" in hint
