@@ -15,10 +15,12 @@ one runs after its own branch, never a sibling's: each way (`ways_before`) is fo
 each object it leaves (a NextObject's area, a SpawnObject's pose, a put-down's target)
 judged on its own, its line naming where it comes from; the walks the ways end with are
 judged together, as a walk's several targets are (which walk goes with which object is
-often a condition of the tree). A Fallback's tries before the one that succeeded failed,
-and may have run a walk or writer among them or not: where the way's own branch has none,
-nothing is said; nor after a Parallel, a loop or a skippable walk (`RUN_ONCE` decorators are
-passed through), nor past MAX_WAYS ways.
+often a condition of the tree). A Fallback's tries before the one that succeeded failed:
+one that starts by looking for an object is judged as the run meets it, its NextObject
+finding none (what ran before that in it has run, what it looked for is gone); where a try
+fails otherwise, and the way's own branch has no walk or writer, nothing is said; nor after
+a Parallel, a loop or a skippable walk (`RUN_ONCE` decorators are passed through), nor past
+MAX_WAYS ways.
 """
 
 from collections.abc import Callable, Iterator

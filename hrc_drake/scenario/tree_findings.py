@@ -222,10 +222,12 @@ class _Checks:
     def _not_found(self, source, parents, known) -> list:
         """The objects at the start that are not there when `source` runs: those the
         NextObjects before it in a Fallback look for (they found none; a user's restocking
-        SpawnObject was judged making a part inside the one on the board at the start), all
-        those in their areas where their filter is not known (coexistence's restock, its
-        filter made by a Script, was judged taken from between the two boxes it replaces)."""
-        if not isinstance(source, SpawnObject):
+        SpawnObject was judged making a part inside the one on the board at the start, and
+        a pick of a small housing a Fallback's second try finds is judged with the large
+        ones its first try looked for gone), all those in their areas where their filter is
+        not known (coexistence's restock, its filter made by a Script, was judged taken from
+        between the two boxes it replaces)."""
+        if not isinstance(source, NextObject | SpawnObject):
             return []
         return [
             obj
