@@ -86,8 +86,8 @@ def tree_findings(
         inputs = list(known_inputs(tree, sections(places)))
         reads += [(handle, *read) for read in inputs]
         found += [
-            at.node(node, port, _never_set(key, hint))
-            for node, port, key, hint in unwritten_inputs(tree)
+            at.node(node, port, _never_set(key, why))
+            for node, port, key, why in unwritten_inputs(tree, sections(places))
         ]
         found += checks.reaches_from_stand(tree, handle, inputs)
         found += checks.detours(tree, handle, inputs)
@@ -556,13 +556,9 @@ class _Checks:
         return self.walk_problems[key]
 
 
-def _never_set(key: str, hint: str | None) -> str:
+def _never_set(key: str, why: str) -> str:
     """What a run would end with ("blackboard entry 'key' is not set"), said before it."""
-    hint = f" ({hint})" if hint else ""
-    return (
-        f"blackboard entry '{key}' is never set: no scenario parameter, location or area, "
-        f"SubTree port, node output, SetBlackboard or script writes it{hint}"
-    )
+    return f"blackboard entry '{key}' is never set: {why}"
 
 
 def _heading(pose: Pose) -> float | None:
