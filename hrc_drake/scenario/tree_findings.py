@@ -47,8 +47,9 @@ from hrc_drake.scenario.cell_findings import (
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
-from hrc_drake.scenario.robot_put_downs import finder_type, put_down_findings
+from hrc_drake.scenario.robot_put_downs import put_down_findings
 from hrc_drake.scenario.schema import Scenario
+from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
     failed_before,
     finder_of,

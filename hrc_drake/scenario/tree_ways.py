@@ -128,6 +128,12 @@ def _leaves_object(entry, parents: dict, way: Way | None, node: TreeNode) -> boo
     if isinstance(node, ActorPlace):
         held = held_at(node, parents, way)
         return isinstance(held, ActorPick) and _entry(held, "inputs") is entry
+    return writes(entry, node)
+
+
+def writes(entry, node: TreeNode) -> bool:
+    """Whether `node` is an action or condition writing `entry` (a SubTree's port only
+    passes it on)."""
     outputs = node.config.outputs.values()
     return not node.children_nodes() and any(getattr(o, "entry", None) is entry for o in outputs)
 

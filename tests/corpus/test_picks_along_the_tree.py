@@ -203,3 +203,41 @@ def test_a_pick_in_a_fallbacks_second_try_is_judged(name, tmp_path, hrc_drake):
     bad = case(SECOND_TRIES[name], says, 'name="other"')
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, bad))
     assert_one_line_error(status, err, expected_place(tmp_path, bad), *says)
+
+
+BIG = (
+    "safety:\n",
+    "    big: {shape: box, size: [0.1, 0.1, 0.12], mass: 0.5, capacity: 4}\n"
+    f"{OBJECTS}{PART_ON_TABLE}    - {{type: big, pose: {{translation: [-0.3, 0.6, 0.96]}}}}\n"
+    "safety:\n",
+)
+"""A part (6 cm high) and a big part (12 cm high) on the table."""
+
+
+def test_a_put_down_in_a_switch_on_the_type_is_judged_with_that_type(tmp_path, hrc_drake):
+    """A user's assembly cell (#26): a housing of either type found, its type read and
+    switched on, each branch putting down its own type at its own height. Validate judged
+    the branch for small parts holding a big one too: "3.0 cm into 'work_table'"; with the
+    cases swapped, the big part is put down there and still found."""
+    tree = (
+        '<ActorMovement target="table_front"/>\n'
+        "      <Fallback>\n"
+        '        <NextObject area="table" filter="type=part" object_id="{p}"/>\n'
+        '        <NextObject area="table" filter="type=big" object_id="{p}"/>\n'
+        "      </Fallback>\n"
+        '      <ObjectAttribute object_id="{p}" attribute="type" value="{kind}"/>\n'
+        '      <ActorPick object_id="{p}"/>\n'
+        '      <Switch2 variable="{kind}" case_1="big" case_2="part">\n'
+        '        <ActorPlace target="0.2;0.6;0.96"/>\n'
+        '        <ActorPlace target="0.2;0.6;0.93"/>\n'
+        "        <AlwaysFailure/>\n"
+        "      </Switch2>"
+    )
+    fine = person('<ActorMovement target="door"/>', tree, (), None, changes=[FRONTS, BIG])
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, fine))
+    assert status == 0, err
+    swapped = tree.replace('case_1="big" case_2="part"', 'case_1="part" case_2="big"')
+    says = ("holding what NextObject at ", "would be 3.0 cm into 'work_table' where it is put")
+    bad = person('<ActorMovement target="door"/>', swapped, says, "0.93", changes=[FRONTS, BIG])
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, bad))
+    assert_one_line_error(status, err, expected_place(tmp_path, bad), *says)
