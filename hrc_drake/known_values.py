@@ -82,14 +82,17 @@ def known_inputs(tree: Tree, sections: dict[str, str]) -> Iterator[tuple[TreeNod
                 yield node, port, found
 
 
-def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | None]]:
-    """(node, port, key, a hint: `_hint`) of every input a node reads from a
-    blackboard entry that nothing ever sets: no scenario entry or SubTree literal, no
-    node's output, SetBlackboard or script (reading it ends a run: "blackboard entry 'key'
-    is not set"); and of every key a node's script (a Script port, a pre- or
+def unwritten_inputs(
+    tree: Tree, sections: dict[str, str]
+) -> Iterator[tuple[TreeNode, str, str, str]]:
+    """(node, port, key, why nothing sets it: `_why_unset`) of every input a node reads from
+    a blackboard entry that nothing ever sets where it reads: no scenario entry or SubTree
+    literal, no node's output, SetBlackboard or script (reading it ends a run: "blackboard
+    entry 'key' is not set"); and of every key a node's script (a Script port, a pre- or
     postcondition; `port` names it) reads that nothing sets ("variable 'key' is not
     set"). None when a script's code is itself an entry (what it writes is not known).
-    SwitchN's cases are left out: an unset case matches nothing."""
+    SwitchN's cases are left out: an unset case matches nothing. `sections`: as
+    `known_inputs`'s."""
     written = _written_entries(tree)
     if written is None:
         return
@@ -102,20 +105,46 @@ def unwritten_inputs(tree: Tree) -> Iterator[tuple[TreeNode, str, str, str | Non
                 continue
             if isinstance(node, Switch) and port in node.case_ports:
                 continue
-            yield node, port, binding.key, _hint(binding.key, node, written, names)
+            yield node, port, binding.key, _why_unset(binding.key, node, written, names, sections)
         for port, key in _script_reads(node):
             entry = node.blackboard.entry(key)
             if entry is None and key.lstrip("@") in created:
                 continue
             if entry is not None and (entry.value is not UNSET or id(entry) in written):
                 continue
-            yield node, port, key, _hint(key, node, written, names)
+            yield node, port, key, _why_unset(key, node, written, names, sections)
 
 
 SUBTREE_HINT = (
     "'{key}' is set outside this SubTree, whose blackboard is its own: pass it in on the "
     'SubTree ({key}="{{{key}}}") or give the SubTree _autoremap="true"'
 )
+
+
+UNSET_WHY = (
+    "no scenario parameter, location or area, SubTree port, node output, SetBlackboard or "
+    "script writes it"
+)
+SCENARIO_WHY = (
+    "the scenario {section} '{key}' is on the root blackboard, which this SubTree does not "
+    'see (its blackboard is its own): remap it on the SubTree ({key}="{{{key}}}") or give '
+    'the SubTree _autoremap="true"'
+)
+
+
+def _why_unset(key: str, node: TreeNode, written, names: set[str], sections) -> str:
+    """Why the entry `key` that `node` reads is never set: a scenario entry of that name
+    is not remapped into the SubTree that reads it (a user's waiting SubTree read the
+    scenario's 'wait_weights' and was told no scenario parameter writes it), or nothing
+    writes it (with `_hint`'s guess)."""
+    name = key.lstrip("@")
+    root = node.blackboard.root
+    scenario = root.local_entries().get(name)
+    if node.blackboard is not root and scenario is not None and scenario.value is not UNSET:
+        section = sections.get(name, "parameters")[:-1]
+        return SCENARIO_WHY.format(section=section, key=name)
+    hint = _hint(key, node, written, names)
+    return f"{UNSET_WHY} ({hint})" if hint else UNSET_WHY
 
 
 def _hint(key: str, node: TreeNode, written: set[int], names: set[str]) -> str | None:

@@ -11,14 +11,17 @@ Where the person stands is the last walk, and what a pick takes what the last no
 wrote its `object_id` entry found or made (or where a put-down since left it), among the
 earlier children of the Sequences above the node. A choice (Fallback, WeightedRandom,
 Switch) before the node may have run any one of its children to success, and a node inside
-one runs after its own branch, never a sibling's: each way (`ways_before`) is followed,
+one runs after its own branch, never a sibling's: each way (`ways_before`; a Switch on
+the type of what a NextObject found only to its case, `switch_ways`) is followed,
 each object it leaves (a NextObject's area, a SpawnObject's pose, a put-down's target)
 judged on its own, its line naming where it comes from; the walks the ways end with are
 judged together, as a walk's several targets are (which walk goes with which object is
-often a condition of the tree). A Fallback's tries before the one that succeeded failed,
-and may have run a walk or writer among them or not: where the way's own branch has none,
-nothing is said; nor after a Parallel, a loop or a skippable walk (`RUN_ONCE` decorators are
-passed through), nor past MAX_WAYS ways.
+often a condition of the tree). A Fallback's tries before the one that succeeded failed:
+one that starts by looking for an object is judged as the run meets it, its NextObject
+finding none (what ran before that in it has run, what it looked for is gone); where a try
+fails otherwise, and the way's own branch has no walk or writer, nothing is said; nor after
+a Parallel, a loop or a skippable walk (`RUN_ONCE` decorators are passed through), nor past
+MAX_WAYS ways.
 """
 
 from collections.abc import Callable, Iterator
@@ -32,6 +35,7 @@ from hrc_drake.human.targeting import MAX_HORIZONTAL_REACH, TARGETED
 from hrc_drake.known_values import Known
 from hrc_drake.nodes.targeted import ActorPick, ActorPlace, ActorReach
 from hrc_drake.scenario.located import Finding, Locator
+from hrc_drake.scenario.switch_ways import ways_to
 from hrc_drake.scenario.tree_ways import (
     UNKNOWN,
     Way,
@@ -40,7 +44,6 @@ from hrc_drake.scenario.tree_ways import (
     held_at,
     parents_of,
     walk_before,
-    ways_before,
 )
 
 Resolve = Callable[[Known], np.ndarray | None]
@@ -89,14 +92,14 @@ def reach_findings(
     for node in nodes:
         if isinstance(node, ActorPick) and taken is not None:
             port = "object_id"
-            targets = _each_way(node, parents, partial(taken, node))
+            targets = _each_way(node, parents, known, partial(taken, node))
         elif isinstance(node, ActorPlace | ActorReach):
             port = "target"
             targets = [(value, resolve(value), None) for value in known.get((id(node), port), ())]
             if isinstance(node, ActorPlace) and placing is not None:
                 stands_at = partial(_stands_before, parents, known, resolve, start)
                 placings = partial(_placings, node, parents, targets, placing, stands_at)
-                targets = _each_way(node, parents, placings)
+                targets = _each_way(node, parents, known, placings)
         else:
             continue
         stands = _stands_before(parents, known, resolve, start, node)
@@ -126,10 +129,10 @@ def _judged(at: Locator, node, port: str, targets, stands, limit: float) -> Iter
                 yield at.read(node, port, what, message, target)
 
 
-def _each_way(node, parents, targets: Callable[[Way], list]) -> list:
-    """The `targets` of `node` each way the tree may go to it, each once."""
+def _each_way(node, parents, known, targets: Callable[[Way], list]) -> list:
+    """The `targets` of `node` each way the tree may go to it (`ways_to`), each once."""
     found: dict[tuple, tuple] = {}
-    for way in ways_before(node, parents):
+    for way in ways_to(node, parents, known):
         for what, point, *rest in targets(way):
             key = (str(what), None if point is None else tuple(point), *rest[1:])
             found.setdefault(key, (what, point, *rest))
@@ -167,7 +170,7 @@ def _stands_before(parents, known, resolve, start, node, ways=None) -> list:
     """Where the person may stand when `node` starts, whichever of `ways` (all) the tree
     went to it ([] when not known for one of them)."""
     points: dict[str, tuple] = {}
-    for way in ways_before(node, parents) if ways is None else ways:
+    for way in ways_to(node, parents, known) if ways is None else ways:
         stand = walk_before(node, parents, way)
         more = [] if stand is UNKNOWN else _stand_points(stand, known, resolve, start)
         if not more:

@@ -19,7 +19,7 @@ from pydrake.math import RigidTransform
 from hrc_drake.bt import TreeNode
 from hrc_drake.known_values import Known
 from hrc_drake.motion.model import HeldPart
-from hrc_drake.nodes.objects import NextObject, SpawnObject, parse_filter
+from hrc_drake.nodes.objects import NextObject, SpawnObject
 from hrc_drake.nodes.robot import (
     TOOL_DOWN,
     RobotGrip,
@@ -31,6 +31,7 @@ from hrc_drake.nodes.robot import (
 from hrc_drake.scenario.cell_findings import SURFACE_SEARCH, CellScene, below_top
 from hrc_drake.scenario.located import Finding
 from hrc_drake.scenario.reach_from_stand import point_text
+from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import last_before, parents_of
 from hrc_drake.scene_geometry import OBJECT_DEPTH_LIMIT
 from hrc_drake.tree_types import Pose
@@ -38,14 +39,6 @@ from hrc_drake.workpieces.geometry import Solid, footprint
 
 Locate = Callable[[TreeNode, str, Known, str, object], Finding]
 """Makes the Finding of a node's port reading a known value (message, point)."""
-
-
-def finder_type(known: dict, finder: TreeNode | None) -> str | None:
-    """The one object type that `finder`, a NextObject or a SpawnObject, filters for or
-    makes, as its known values say (None: not one type, or no finder)."""
-    types = {parse_filter(w.value).get("type") for w in known.get((id(finder), "filter"), ())}
-    types |= {made.value for made in known.get((id(finder), "type"), ())}
-    return types.pop() if len(types) == 1 else None
 
 
 def put_downs(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, str, Known]]:

@@ -47,12 +47,9 @@ from hrc_drake.scenario.cell_findings import (
 from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
-from hrc_drake.scenario.robot_put_downs import (
-    carried_move_findings,
-    finder_type,
-    put_down_findings,
-)
+from hrc_drake.scenario.robot_put_downs import carried_move_findings, put_down_findings
 from hrc_drake.scenario.schema import Scenario
+from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
     failed_before,
     finder_of,
@@ -90,8 +87,8 @@ def tree_findings(
         inputs = list(known_inputs(tree, sections(places)))
         reads += [(handle, *read) for read in inputs]
         found += [
-            at.node(node, port, _never_set(key, hint))
-            for node, port, key, hint in unwritten_inputs(tree)
+            at.node(node, port, _never_set(key, why))
+            for node, port, key, why in unwritten_inputs(tree, sections(places))
         ]
         found += checks.reaches_from_stand(tree, handle, inputs)
         found += checks.detours(tree, handle, inputs)
@@ -238,10 +235,12 @@ class _Checks:
     def _not_found(self, source, parents, known) -> list:
         """The objects at the start that are not there when `source` runs: those the
         NextObjects before it in a Fallback look for (they found none; a user's restocking
-        SpawnObject was judged making a part inside the one on the board at the start), all
-        those in their areas where their filter is not known (coexistence's restock, its
-        filter made by a Script, was judged taken from between the two boxes it replaces)."""
-        if not isinstance(source, SpawnObject):
+        SpawnObject was judged making a part inside the one on the board at the start, and
+        a pick of a small housing a Fallback's second try finds is judged with the large
+        ones its first try looked for gone), all those in their areas where their filter is
+        not known (coexistence's restock, its filter made by a Script, was judged taken from
+        between the two boxes it replaces)."""
+        if not isinstance(source, NextObject | SpawnObject):
             return []
         return [
             obj
@@ -573,13 +572,9 @@ class _Checks:
         return self.walk_problems[key]
 
 
-def _never_set(key: str, hint: str | None) -> str:
+def _never_set(key: str, why: str) -> str:
     """What a run would end with ("blackboard entry 'key' is not set"), said before it."""
-    hint = f" ({hint})" if hint else ""
-    return (
-        f"blackboard entry '{key}' is never set: no scenario parameter, location or area, "
-        f"SubTree port, node output, SetBlackboard or script writes it{hint}"
-    )
+    return f"blackboard entry '{key}' is never set: {why}"
 
 
 def _heading(pose: Pose) -> float | None:

@@ -2,9 +2,12 @@
 the last walk (where the person stands), the last pick (what the hands hold), and what last
 left the object a pick takes (a NextObject's find, a SpawnObject's make, a put-down). A
 choice (Fallback, WeightedRandom, Switch) before the node may have run any one of its
-children to success: each way (`ways_before`) through them is followed on its own. Not
-known (UNKNOWN): a Fallback's failed tries, a Parallel's others, a loop's earlier rounds
-(decorators that run their child once, `RUN_ONCE`, are passed through)."""
+children to success: each way (`ways_before`) through them is followed on its own; a
+Fallback's tries before the child that succeeded failed, as the run meets it when a try
+starts by looking for an object: its NextObject found none (what its Sequences ran before
+that has run). Not known (UNKNOWN): a Fallback's tries that fail otherwise, a Parallel's
+others, a loop's earlier rounds (decorators that run their child once, `RUN_ONCE`, are
+passed through)."""
 
 from collections.abc import Callable
 from functools import partial
@@ -125,6 +128,12 @@ def _leaves_object(entry, parents: dict, way: Way | None, node: TreeNode) -> boo
     if isinstance(node, ActorPlace):
         held = held_at(node, parents, way)
         return isinstance(held, ActorPick) and _entry(held, "inputs") is entry
+    return writes(entry, node)
+
+
+def writes(entry, node: TreeNode) -> bool:
+    """Whether `node` is an action or condition writing `entry` (a SubTree's port only
+    passes it on)."""
     outputs = node.config.outputs.values()
     return not node.children_nodes() and any(getattr(o, "entry", None) is entry for o in outputs)
 
@@ -144,12 +153,11 @@ def last_before(
     child = node
     while (parent := parents.get(id(child))) is not None:
         if _is_sequence(parent):
-            for sibling in reversed(_earlier_siblings(parent, child)):
-                if (last := _last_of(sibling, kind, way)) is not None:
-                    return last
+            if (last := _last_in(_earlier_siblings(parent, child), kind, way)) is not None:
+                return last
         elif _is_choice(parent):
-            if failed_tries(parent, child, kind):
-                return UNKNOWN  # a Fallback's failed tries
+            if (tried := _last_of_tries(parent, child, kind, way)) is not None:
+                return tried  # a Fallback's failed tries
         elif not isinstance(parent, SubTreeNode) and not _runs_first(parent, child):
             return UNKNOWN  # a Parallel's others, a loop
         child = parent
@@ -174,8 +182,44 @@ def _last_of(node: TreeNode, kind: Kind, way: Way) -> TreeNode | None | object:
         if chosen.config.preconditions:
             return UNKNOWN
         last = _last_of(chosen, kind, way)
-        return UNKNOWN if last is None and failed_tries(node, chosen, kind) else last
+        return _last_of_tries(node, chosen, kind, way) if last is None else last
     return UNKNOWN
+
+
+def _last_of_tries(parent: TreeNode, child: TreeNode, kind: Kind, way: Way):
+    """The last node of `kind` that has run in the tries of a Fallback `parent` that failed
+    before `child` ran, each failing the way the run meets first: its first NextObject
+    finding nothing (no housing of the first child's type left on a user's rack, its second
+    child, taking another type there, was never judged); None: none ran."""
+    for try_ in reversed(failed_tries(parent, child, kind)):
+        if (last := _last_until_finder(try_, kind, way)) is not None:
+            return last
+    return None
+
+
+def _last_until_finder(node: TreeNode, kind: Kind, way: Way) -> TreeNode | None | object:
+    """The last node of `kind` that has run when `node` fails at its first NextObject,
+    which found nothing: what its Sequences ran before it (None: none; UNKNOWN: where
+    `node` fails is not known, no NextObject starts it)."""
+    if isinstance(node, NextObject):
+        return UNKNOWN if node.config.preconditions else None
+    if isinstance(node, SubTreeNode):
+        return _last_until_finder(node.child, kind, way)
+    finders = [c for c in node.children_nodes() if _holds(c, NextObject)]
+    if not (_is_sequence(node) and finders):
+        return UNKNOWN
+    if (last := _last_until_finder(finders[0], kind, way)) is not None:
+        return last
+    return _last_in(_earlier_siblings(node, finders[0]), kind, way)
+
+
+def _last_in(siblings: list[TreeNode], kind: Kind, way: Way) -> TreeNode | None | object:
+    """The last node of `kind` that has run once `siblings`, children of a Sequence, all
+    succeeded (None: none of them holds one)."""
+    for sibling in reversed(siblings):
+        if (last := _last_of(sibling, kind, way)) is not None:
+            return last
+    return None
 
 
 def _is_choice(node: TreeNode) -> bool:

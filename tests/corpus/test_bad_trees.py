@@ -159,6 +159,19 @@ CASES = {
         ),
         'input="{at}"',
     ),
+    "a SubTree reads a scenario parameter it is not given": Case(
+        T,
+        MOVE,
+        f'<SetRobotVelocity velocity="{{speed}}"/>{MOVE}',
+        (
+            "tree 'Reach', node 'Reach::",
+            "port 'velocity': blackboard entry 'speed' is never set: the scenario parameter "
+            "'speed' is on the root blackboard, which this SubTree does not see (its "
+            'blackboard is its own): remap it on the SubTree (speed="{speed}") or give the '
+            'SubTree _autoremap="true"',
+        ),
+        '"{speed}"/><RobotMove',
+    ),
     "a script counts from a key never set": Case(
         T,
         MOVE,
