@@ -5,6 +5,8 @@ from pathlib import Path
 
 from hrc_drake.runner import run
 from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario.findings import findings
+from tests.scenarios.realism_checks import assert_within_the_audit_limits
 
 CELLS = Path(__file__).resolve().parent / "cells"
 HEAD_IN_THE_RACK = "the head would go 2.5 cm into 'klt_rack'"
@@ -29,3 +31,24 @@ def test_a_small_person_by_percentile_is_planned_with_their_own_clips(tmp_path, 
     report = run(load_scenario(cell))
     pick = report.metrics["bt"]["human"]["ActorPick::3"]
     assert pick["successes"] == 0 and HEAD_IN_THE_RACK in pick["first_failure"], pick
+
+
+OFF_THE_EDGE = CELLS / "off_the_edge" / "cell.yaml"
+OFF_THE_TOP = (
+    "where it is put is 15.0 cm off the top of 'table_b', nothing but the floor under it: "
+    "put it on the top, at about (-1.00, 1.80, 0.77)"
+)
+
+
+def test_a_put_down_past_a_tables_edge_is_refused_by_validate_and_the_run():
+    """A tray put down 15 cm past a table's front edge: the objects' world rested it on
+    the table its footprint touched, in the air against the person's belly (2.5 cm in it),
+    and `validate` said ok. Both now refuse it as on nothing, saying where on the top it
+    would go; the person keeps it, within the audit's limits."""
+    scenario = load_scenario(OFF_THE_EDGE)
+    said = [f.message for f in findings(scenario, OFF_THE_EDGE)]
+    assert len(said) == 1 and said[0].endswith(OFF_THE_TOP), said
+    report = run(scenario)
+    place = report.metrics["bt"]["human"]["ActorPlace::5"]
+    assert place["successes"] == 0 and place["first_failure"].endswith(OFF_THE_TOP), place
+    assert_within_the_audit_limits(report.metrics["realism"])
