@@ -19,11 +19,11 @@ from pydrake.systems.framework import LeafSystem
 from pydrake.systems.rendering import MultibodyPositionToGeometryPose
 
 from hrc_drake.human.anthropometry import DEFAULT_HEIGHT, DEFAULT_MASS
-from hrc_drake.human.body import HumanBody, human_body, parse_human
-from hrc_drake.human.clip import Clip, load_clips, scaled_clips
+from hrc_drake.human.body import HumanBody, parse_human
+from hrc_drake.human.clip import Clip, load_clips
 from hrc_drake.human.messages import HumanStatus
 from hrc_drake.human.navigation import NavigationMap
-from hrc_drake.human.performer import Performer
+from hrc_drake.human.performer import Performer, sized_performer
 from hrc_drake.human.protocol import UPDATE_PERIOD, ActorState, advance, pose_at, status
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scene_geometry import collision_geometries, filter_against
@@ -51,15 +51,13 @@ class HumanActor(LeafSystem):
 
     def __init__(
         self,
-        body: HumanBody | None = None,
-        clips: dict[str, Clip] | None = None,
+        performer: Performer,
         start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0),
         period: float = UPDATE_PERIOD,
         issuers: tuple[str, ...] = issuers_of(HUMAN),
-        navigation: NavigationMap | None = None,
     ):
         LeafSystem.__init__(self)
-        self._performer = Performer(body or human_body(), clips or load_clips(), navigation)
+        self._performer = performer
         self.period = period
         self.stride_time = self._performer.clips[WALK_CLIP].duration
         """One gait cycle of the walk clip (s)."""
@@ -132,12 +130,10 @@ def add_human(
     actor = builder.AddNamedSystem(
         HUMAN_ACTOR,
         HumanActor(
-            human_body(height, mass),
-            scaled_clips(clips or load_clips(), height),
+            sized_performer(height, mass, clips or load_clips(), navigation),
             start_pose,
             period,
             issuers=issuers,
-            navigation=navigation,
         ),
     )
     to_pose = builder.AddNamedSystem(HUMAN_GEOMETRY, MultibodyPositionToGeometryPose(plant))

@@ -90,6 +90,9 @@ def _validate(args) -> int:
     overrides, _ = single_sets(args, "validate", "validate one value at a time")
     scenario = load_scenario(args.scenario, overrides)
     found = findings(scenario, resolve_scenario_path(args.scenario))
+    person = scenario.human.survey_person() if scenario.human is not None else ""
+    if person:
+        print(f"{args.scenario}: person: {person}")
     for finding in found:
         print(f"{PROG}: error: {finding}", file=sys.stderr)
     if found:

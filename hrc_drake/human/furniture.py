@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+import shapely.ops
 from shapely.geometry import LineString, Point, Polygon
 
 from hrc_drake.human.navigation import Obstacle, box_obstacle
@@ -64,6 +65,23 @@ class Furniture:
             if piece.high <= z + RESTING and piece.outline.covers(Point(x, y))
         ]
         return max(below, key=lambda piece: piece.high, default=None)
+
+    def nearest_top(self, point, across: float) -> tuple[Obstacle, float, np.ndarray] | None:
+        """The top at or below a point (x, y, z) that is nearest to it, how far the point is
+        off it along the floor, and the point on it nearest to the point with `across` of
+        room round it (the top's middle when it has not that room; None: no top is so
+        low). Nearest in space: a table's top 15 cm off, not its leg's foot under the
+        point."""
+        x, y, z = point
+        below = [piece for piece in self.pieces if piece.high <= z + RESTING]
+        if not below:
+            return None
+        at = Point(x, y)
+        piece = min(below, key=lambda p: np.hypot(at.distance(p.outline), z - p.high))
+        room = piece.outline.buffer(-across)
+        inside = room if not room.is_empty else piece.outline.centroid
+        onto = shapely.ops.nearest_points(inside, at)[0]
+        return piece, at.distance(piece.outline), np.array([onto.x, onto.y, piece.high])
 
     def pile(self, piece: Obstacle) -> Obstacle:
         """`piece` and what it stands on, down to the floor, as one prism (its outlines'

@@ -203,6 +203,28 @@ def placed_going_in(furniture: Furniture, hold: Hold, center, heading: float) ->
     return _box_going_in(furniture, box_corners(center, heading, hold.size), "where it is put")
 
 
+def put_on_nothing(furniture: Furniture, hold: Hold, center) -> str:
+    """Where an object held as `hold`, put down onto a top with its centre at `center`, has
+    nothing but the floor under its middle ("" when something is under it): the top it is
+    off, by how far and where on that top it goes. Let go there, the objects' world rested
+    a tray 15 cm past a table's edge on the table its footprint touched, in the air against
+    the person's belly, 2.5 cm in it (a user's cell: #26); fallen 0.9 m to the floor, it
+    would be no put-down either."""
+    size = np.asarray(hold.size, dtype=float)
+    bottom = np.asarray(center, dtype=float) - (0.0, 0.0, size[2] / 2)
+    if furniture.support(bottom) is not None:
+        return ""
+    nearest = furniture.nearest_top(bottom, np.hypot(*size[:2]) / 2)
+    if nearest is None:
+        return f"where it is put, {100 * bottom[2]:.0f} cm up, has nothing under it"
+    piece, off, onto = nearest
+    x, y, z = onto + (0.0, 0.0, size[2] / 2)
+    return (
+        f"where it is put is {100 * off:.1f} cm off the top of '{piece.name}', nothing but "
+        f"the floor under it: put it on the top, at about ({x:.2f}, {y:.2f}, {z:.2f})"
+    )
+
+
 def arrived_going_in(performer: Performer, activity: Activity, carry, furniture):
     """How deep the object the hands carry (`carry`) would be in the furniture in the last
     ARRIVING seconds of `activity`, a walk, and what it would be in deeper than DEPTH_LIMIT

@@ -14,7 +14,12 @@ from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.clip_files import no_animation, walks
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.going_in import arrived_going_in, going_in, placed_going_in
+from hrc_drake.human.going_in import (
+    arrived_going_in,
+    going_in,
+    placed_going_in,
+    put_on_nothing,
+)
 from hrc_drake.human.grasp import (
     CarryArms,
     carry_arms,
@@ -40,7 +45,7 @@ from hrc_drake.human.segments import (
 )
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.human.step_back import stepped_back
-from hrc_drake.human.targeting import APPROACH_AT, TARGETED, aim_clip
+from hrc_drake.human.targeting import APPROACH_AT, ONTO_A_TOP, TARGETED, aim_clip
 from hrc_drake.human.walk_paths import cut_at_sharp_corners, without_short_legs
 from hrc_drake.human.walking import WalkSegment
 
@@ -252,7 +257,9 @@ def _aimed_hands(
         center = room_for_the_palms(
             performer.body, furniture, command.hold, command.target, pose[2]
         )
-        problem = placed_going_in(furniture, command.hold, center, pose[2])
+        problem = placed_going_in(furniture, command.hold, center, pose[2]) or (
+            clip.name == ONTO_A_TOP and put_on_nothing(furniture, command.hold, center)
+        )
         if problem:
             raise Unreachable(problem)
         return release_targets(command.hold, center, pose[2]), False

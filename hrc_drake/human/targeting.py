@@ -48,6 +48,10 @@ TARGETED = {
     "hand_over": "extended",
 }
 """Clips that accept a target, and the event at which the hands arrive."""
+ONTO_A_TOP = "place_table"
+"""The clip that puts what the hands hold down onto a top at a table's height; the other
+(place_floor) lets go over the floor, or a bin's floor (below what the furniture keeps:
+hrc_drake.human.navigation.BAND; cooperation's scrap bin, 12 cm over its floor)."""
 HOLD_AFTER_EVENT = 0.3
 MAX_HORIZONTAL_REACH = 1.2
 APPROACH_AT = 0.7

@@ -88,6 +88,29 @@ class HumanConfig:
             return self.height, self.mass
         return survey_size(self.sex, self.percentile)
 
+    def survey_person(self) -> str:
+        """Which person of the survey a `percentile` takes, in words ("" without one), for
+        `validate` to say: the sex defaults to male, and a user's `percentile: 5` with no
+        sex was a 1.64 m man, not the documented 1.52 m 5th-percentile woman (#26)."""
+        if self.percentile is None:
+            return ""
+        height, mass = self.size()
+        return (
+            f"{_ordinal(self.percentile)}-percentile {self.sex} of ANSUR II, {height:.3f} m and "
+            f"{mass:.1f} kg (human.sex: female or male)"
+        )
+
+
+ORDINAL_SUFFIXES = {1: "st", 2: "nd", 3: "rd"}
+
+
+def _ordinal(number: float) -> str:
+    """5th, 1st, 22nd, 12.5th."""
+    whole = int(number)
+    if number != whole or 10 <= whole % 100 <= 20:
+        return f"{number:g}th"
+    return f"{whole}{ORDINAL_SUFFIXES.get(whole % 10, 'th')}"
+
 
 @dataclass
 class ReportOptions:

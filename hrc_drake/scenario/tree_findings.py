@@ -22,13 +22,12 @@ from pydrake.math import RigidTransform
 
 from hrc_drake.agent_trees import sections
 from hrc_drake.human.aiming import Unreachable
-from hrc_drake.human.body import human_body
 from hrc_drake.human.clip_files import clip_catalog, no_animation, walks
 from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
 from hrc_drake.human.navigation import FLOOR_LEVEL, NoWay
-from hrc_drake.human.performer import Performer, place
+from hrc_drake.human.performer import Performer, place, sized_performer
 from hrc_drake.human.planning import plan_animation
 from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
@@ -174,7 +173,8 @@ class _Checks:
 
         start = self.scenario.human.start[:2]
         nodes = tree.node_list
-        return reach_findings(self.at, nodes, known, point, start, self.clips, taken, placing)
+        clips = self.performer.clips
+        return reach_findings(self.at, nodes, known, point, start, clips, taken, placing)
 
     def robot_put_downs(self, tree, agent, inputs) -> Iterator[Finding]:
         """Parts the robot lets go of inside the cell's fixed geometry
@@ -469,7 +469,7 @@ class _Checks:
     @cached_property
     def performer(self) -> Performer:
         """The person as the run has them: their body, clips and the cell's walkable floor."""
-        return Performer(human_body(*self.scenario.human.size()), self.clips, self.scene.navigation)
+        return sized_performer(*self.scenario.human.size(), self.clips, self.scene.navigation)
 
     def of(self, agent, node, port: str, known: Known) -> Iterator[Finding]:
         value = known.value

@@ -849,8 +849,11 @@ def test_a_part_the_robot_lets_go_of_on_the_table_is_not_judged(tmp_path, hrc_dr
 
 def test_an_object_the_person_would_go_into_is_named(tmp_path, hrc_drake):
     """A packing cell of our own (#26): stooping to a carton on a shelf's middle board, the
-    head of a small woman would go into the carton on the board above; validate said
-    "into 'object'". It names the object and where it lies."""
+    head of a tall man would go into the carton on the board above, standing 5 cm out past
+    its front edge; validate said "into 'object'". It names the object and where it lies,
+    as the run refuses the pick. (A small woman's head went into the carton flush with the
+    edge only as validate planned her body with a 1.75 m person's clips; the run, her own
+    clips, takes the carton within the audit's limits.)"""
     case = person(
         '<ActorAnimation animation_name="wave"/>',
         '<ActorMovement target="shelf_front"/>'
@@ -864,7 +867,7 @@ def test_an_object_the_person_would_go_into_is_named(tmp_path, hrc_drake):
                 "safety:\n",
                 "    carton: {shape: box, size: [0.3, 0.2, 0.2], mass: 0.6, capacity: 4}\n"
                 f"{OBJECTS}    - {{type: carton, pose: {{translation: [3.0, 0.45, 0.70]}}}}\n"
-                "    - {type: carton, pose: {translation: [3.0, 0.45, 1.20]}}\n"
+                "    - {type: carton, pose: {translation: [3.0, 0.40, 1.20]}}\n"
                 "safety:\n",
             ),
             (
@@ -876,10 +879,9 @@ def test_an_object_the_person_would_go_into_is_named(tmp_path, hrc_drake):
         ],
     )
     scenario = write_workspace(tmp_path, case)
-    small = ("--set", "human.sex=female", "--set", "human.percentile=5")
-    status, _, err = hrc_drake("validate", scenario, *small)
+    status, _, err = hrc_drake("validate", scenario, "--set", "human.percentile=95")
     assert_one_line_error(
-        status, err, expected_place(tmp_path, case), "into 'carton at (3.00, 0.45, 1.20)'"
+        status, err, expected_place(tmp_path, case), "into 'carton at (3.00, 0.40, 1.20)'"
     )
 
 

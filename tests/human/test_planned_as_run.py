@@ -1,0 +1,54 @@
+"""`validate` plans the person's picks and put-downs for the person the run has, and both
+refuse the same ones, saying the same (#26: two cut-down cells of a user's assembly station)."""
+
+from pathlib import Path
+
+from hrc_drake.runner import run
+from hrc_drake.scenario import load_scenario
+from hrc_drake.scenario.findings import findings
+from tests.scenarios.realism_checks import assert_within_the_audit_limits
+
+CELLS = Path(__file__).resolve().parent / "cells"
+HEAD_IN_THE_RACK = "the head would go 2.5 cm into 'klt_rack'"
+
+
+def _copied(cell: str, to: Path) -> Path:
+    """The cell's files in `to`, its `{dir}` there (its own rack model's URL)."""
+    for source in (CELLS / cell).iterdir():
+        (to / source.name).write_text(source.read_text().replace("{dir}", str(to)))
+    return to / "cell.yaml"
+
+
+def test_a_small_person_by_percentile_is_planned_with_their_own_clips(tmp_path, hrc_drake):
+    """`human: {percentile: 5}` with no sex, a 1.64 m man: the run refused his pick of a
+    housing off a rack's 0.5 m board 55 times, the head 2.5 cm in the rack, and `validate`
+    said ok: it planned his body with the clips of a 1.75 m person. Both now plan the
+    same person, and `validate` says which person the percentile took."""
+    cell = _copied("small_man_rack", tmp_path)
+    status, out, err = hrc_drake("validate", cell)
+    assert status == 2 and "ActorPick" in err and HEAD_IN_THE_RACK in err, err
+    assert "person: 5th-percentile male of ANSUR II, 1.643 m and 62.0 kg" in out, out
+    report = run(load_scenario(cell))
+    pick = report.metrics["bt"]["human"]["ActorPick::3"]
+    assert pick["successes"] == 0 and HEAD_IN_THE_RACK in pick["first_failure"], pick
+
+
+OFF_THE_EDGE = CELLS / "off_the_edge" / "cell.yaml"
+OFF_THE_TOP = (
+    "where it is put is 15.0 cm off the top of 'table_b', nothing but the floor under it: "
+    "put it on the top, at about (-1.00, 1.80, 0.77)"
+)
+
+
+def test_a_put_down_past_a_tables_edge_is_refused_by_validate_and_the_run():
+    """A tray put down 15 cm past a table's front edge: the objects' world rested it on
+    the table its footprint touched, in the air against the person's belly (2.5 cm in it),
+    and `validate` said ok. Both now refuse it as on nothing, saying where on the top it
+    would go; the person keeps it, within the audit's limits."""
+    scenario = load_scenario(OFF_THE_EDGE)
+    said = [f.message for f in findings(scenario, OFF_THE_EDGE)]
+    assert len(said) == 1 and said[0].endswith(OFF_THE_TOP), said
+    report = run(scenario)
+    place = report.metrics["bt"]["human"]["ActorPlace::5"]
+    assert place["successes"] == 0 and place["first_failure"].endswith(OFF_THE_TOP), place
+    assert_within_the_audit_limits(report.metrics["realism"])
