@@ -22,6 +22,10 @@ RESTING = 0.02
 """m: a point this far above a surface, or less, rests on it."""
 FAR = 5.0
 """m: further than any piece of furniture is across."""
+UNION_GRID = 1e-9
+"""m: outlines joined into one are snapped to this grid: a pallet's slats joined without it
+left steps of 1e-16 m in the outline, on which a mitred buffer divides by zero (a warning
+printed to a user)."""
 
 
 @dataclass(frozen=True)
@@ -96,7 +100,7 @@ class Furniture:
                 and any(_stands_on(top, other) for top in added)
             ]
             pile += added
-        outline = shapely.union_all([p.outline for p in pile])
+        outline = shapely.union_all([p.outline for p in pile], grid_size=UNION_GRID)
         return Obstacle(piece.name, outline, min(p.low for p in pile), piece.high)
 
     def room(self, point, direction, low: float, high: float) -> float:

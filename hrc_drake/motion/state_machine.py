@@ -100,6 +100,10 @@ class MotionState:
     gripper_waiting: bool = False
     gripper_since: float = 0.0
     held_object: int | None = None
+    failed_plan: tuple | None = None
+    """The last move whose plan failed, as planned (`_plan_key`), and why: every plan draws
+    from the same seed, so the same move planned from the same hold fails the same way
+    (`_failed_again`)."""
     mode: str = IDLE
 
     def __deepcopy__(self, memo):
@@ -314,9 +318,14 @@ class MotionStateMachine:
         command = state.pending
         state = state.replace(pending=None)
         held = _held_part(inputs.workpieces, state.tool_pose)
+        key = _plan_key(command, state.hold, held, inputs.person_xy)
+        again = _failed_again(state, key)
+        if again:
+            return state.with_result(command.seq, FAILED, again)
         try:
             path = self._planner.plan(command, np.array(state.hold), inputs.person_xy, held)
         except PlanningFailed as failure:
+            state = state.replace(failed_plan=(key, str(failure)))
             return state.with_result(command.seq, FAILED, str(failure))
         if path is None:
             return state.with_result(command.seq, SUCCEEDED, "already at the target")
@@ -369,6 +378,38 @@ def _held_part(status: WorkpiecesStatus | None, tool_pose: RigidTransform) -> He
         return None
     shape = Solid(held.shape, held.size).drake_shape()
     return HeldPart(shape, tool_pose.InvertAndCompose(held.pose))
+
+
+def _plan_key(command, hold: tuple, held: HeldPart | None, person_xy) -> tuple:
+    """What a plan's outcome depends on: the move as asked (its seq left out), where the
+    robot holds, where what it holds hangs from the tool and where the person stands (to a
+    tenth of a millimetre: a robot holding still measures its tool a hair apart each time)."""
+    asked = tuple(
+        _rounded(getattr(command, field.name))
+        for field in dataclasses.fields(command)
+        if field.name != "seq"
+    )
+    hanging = None if held is None else _rounded(held.X_TP)
+    person = None if person_xy is None else _rounded(person_xy)
+    return (type(command).__name__, asked, hold, hanging, person)
+
+
+def _rounded(value):
+    """A value of a plan's key, comparable: poses and arrays as rounded tuples."""
+    if isinstance(value, RigidTransform):
+        value = value.GetAsMatrix34()
+    if isinstance(value, np.ndarray | list | tuple):
+        return tuple(np.round(np.asarray(value, dtype=float), 4).ravel())
+    return value
+
+
+def _failed_again(state: MotionState, key: tuple) -> str:
+    """Why the move of `key` failed the last time it was planned, if it was the last plan
+    to fail ("": it was not). A tree retrying a target the robot cannot reach planned it
+    anew at every tick: a 5 s run of a user's cell took 366 s."""
+    if state.failed_plan is None or state.failed_plan[0] != key:
+        return ""
+    return state.failed_plan[1]
 
 
 def _set_speed(state: MotionState, command: SetSpeed) -> MotionState:

@@ -1,5 +1,7 @@
 """The ways of the hands off a surface (hrc_drake.human.hand_ways), planned alone."""
 
+import warnings
+
 import numpy as np
 import pytest
 import shapely
@@ -8,6 +10,8 @@ from hrc_drake.human.body import human_body
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.hand_ways import over_the_edge
 from hrc_drake.human.navigation import Obstacle
+from tests.human.cell_walks import Cell
+from tests.human.cell_walks import Furniture as CellPiece
 
 BENCH = Furniture((Obstacle("bench", shapely.box(-0.6, 0.35, 0.6, 1.15), 0.0, 0.9),))
 """Coexistence's bench as the person standing at (0, 0) facing +y sees it (top 0.9 m, its
@@ -35,3 +39,18 @@ def test_hands_that_put_an_object_down_at_a_tables_side_leave_over_its_front_tog
     assert left[1] < 0.35
     assert right[1] == pytest.approx(left[1]), (left, right)
     assert right[0] == opened["right"][0][0]
+
+
+def test_hands_leaving_a_pallets_top_are_worked_out_without_a_warning():
+    """A user's tray stack on a euro pallet at (-1.9, 1.0): its slats joined into one outline
+    left steps of 1e-16 m, and the mitred buffer of the hands' way off its edge printed
+    numpy's "divide by zero encountered in buffer" at every validate of a small woman (for
+    this margin, the hand's extent there, and not for a rounder one)."""
+    margin = 0.05190356410638735
+    cell = Cell([CellPiece("tray_pallet", "euro_pallet", -1.9, 1.0)])
+    furniture = Furniture(tuple(cell.navigation.obstacles))
+    deck = max(furniture.pieces, key=lambda piece: piece.high)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        edge = furniture.behind_edge(furniture.pile(deck), (-1.282, 1.295), (0, 1), margin)
+    assert edge[1] == pytest.approx(deck.outline.bounds[3] + margin, abs=1e-6)

@@ -3,6 +3,7 @@ the workpieces and planning at rest, driven update by update with hand-made inpu
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform, RollPitchYaw
 
 from hrc_drake.iisy import VARIANTS
 from hrc_drake.messages import (
@@ -14,7 +15,16 @@ from hrc_drake.messages import (
     CommandResult,
     ResultLog,
 )
-from hrc_drake.motion.messages import IDLE, MOVING, STOPPING, Grip, MoveJoints, Release, Stop
+from hrc_drake.motion.messages import (
+    IDLE,
+    MOVING,
+    STOPPING,
+    Grip,
+    MoveJoints,
+    MoveTo,
+    Release,
+    Stop,
+)
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.state_machine import MotionInputs, MotionStateMachine
@@ -102,3 +112,31 @@ def test_holds_still_until_a_path_exists(machine, home):
     state = machine.initial(home)
     assert state.mode == IDLE and state.path_rate_at(1.0) == 0.0
     assert np.array_equal(state.motion_at(1.0), np.concatenate([home, np.zeros(12)]))
+
+
+OUT_OF_REACH = RigidTransform(RollPitchYaw(np.pi, 0.0, 0.0), [0.0, 0.65, 1.15])
+"""Over the work table, where link_4 would touch it (the iisy 3 on its pedestal)."""
+
+
+def test_a_move_that_failed_asked_again_from_where_it_failed_is_not_planned_again(home):
+    """A user's tree retried a RobotMove the robot cannot make at every tick, and each was
+    planned anew to the same failure: a 5 s run took 366 s."""
+    planner = MotionPlanner(make_scenario().station, MotionOptions(), stream(0, ROBOT_MOTION))
+    machine, planned = MotionStateMachine(planner), []
+    plan = planner.plan
+    planner.plan = lambda *args: planned.append(args[0].seq) or plan(*args)
+    state = machine.initial(home)
+    for seq in (1, 2, 3):
+        asked = MoveTo(seq, OUT_OF_REACH)
+        state = machine.update(state, at_rest(home, seq * PERIOD, asked, SILENT))
+        state = machine.update(state, at_rest(home, (seq + 0.5) * PERIOD, asked, SILENT))
+        assert state.results.outcome_of(seq) == FAILED
+    first, third = state.results.result_of(1), state.results.result_of(3)
+    assert planned == [1] and third.reason == first.reason
+    assert "unreachable" in first.reason
+    elsewhere = home + np.array([0.2, 0, 0, 0, 0, 0])
+    state = machine.update(
+        state.replace(hold=tuple(elsewhere)),
+        at_rest(elsewhere, 1.0, MoveTo(4, OUT_OF_REACH), SILENT),
+    )
+    assert planned == [1, 4], "from another posture it is planned again"
