@@ -55,6 +55,9 @@ class Agent:
         self.next_seq = first_seq(self.name)
         self.outbox: dict[str, list] = {actor: [] for actor in self.commands}
         self.events: list[TaskEvent] = []
+        self.called_sent: tuple[int, bool, float] | None = None
+        """This tree's last SetCalledTo: its seq, the flag and when it was sent (IsCalled
+        reads it until the person has taken it)."""
 
     @property
     def issuer(self) -> str:

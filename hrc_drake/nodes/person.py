@@ -224,8 +224,7 @@ class IsCalled(ConditionNode):
     """SUCCESS while the person is being called (by the robot)."""
 
     def tick(self) -> Status:
-        status = self.agent.human
-        return Status.SUCCESS if status is not None and status.called else Status.FAILURE
+        return Status.SUCCESS if _called(self.agent) else Status.FAILURE
 
 
 class SetCalledTo(SyncActionNode):
@@ -236,8 +235,26 @@ class SetCalledTo(SyncActionNode):
 
     def tick(self) -> Status:
         called = self.get_input("state")
-        self.agent.send(HUMAN, lambda seq: human.SetCalledCommand(seq, called))
+        seq = self.agent.send(HUMAN, lambda seq: human.SetCalledCommand(seq, called))
+        self.agent.called_sent = (seq, called, self.agent.now)
         return Status.SUCCESS
+
+
+def _called(agent) -> bool:
+    """The person's called flag, as this tree's own last SetCalledTo left it until the
+    person has taken it (a user's loop reset the call and asked IsCalled again in the same
+    tick: it read the flag the person last reported, and the person walked to the hand-over
+    spot again for nothing), else as the person reports it."""
+    status, sent = agent.human, agent.called_sent
+    if sent is not None and (status is None or _not_yet_taken(status, sent)):
+        return sent[1]
+    return status is not None and status.called
+
+
+def _not_yet_taken(status, sent: tuple[int, bool, float]) -> bool:
+    """Whether the person's report predates the SetCalledTo `sent` (seq, flag, time)."""
+    seq, _, sent_at = sent
+    return status.results.outcome_of(seq) is None and status.time <= sent_at
 
 
 NODES = (ActorAnimation, ActorMovement, ActorCarry, IsCalled, SetCalledTo)

@@ -39,6 +39,16 @@ def test_robot_calls_the_person_who_walks_over_and_resets_the_call():
     assert np.linalg.norm(base_xy(human) - table_front) < 0.05
 
 
+def test_a_call_the_persons_tree_resets_is_not_seen_again_in_the_same_tick():
+    """A user's person reset the call at the end of a kit change and their loop asked
+    IsCalled again at once: it still read the flag as the person last reported it, and the
+    person walked to the hand-over spot again for nothing."""
+    sim = Simulation(cell("call_robot.xml", "answer_call_once.xml")).advance(12.0)
+    assert sim.events("robot") == ["called"]
+    assert sim.events("human") == ["helped"]
+    assert not sim["human_status"].called
+
+
 def test_a_call_interrupts_the_persons_animation_and_the_walk_is_accepted():
     """The ReactiveFallback starts the walk and halts the animation in one tick: the
     person takes the cancel first, so the walk is not refused as 'busy'."""
