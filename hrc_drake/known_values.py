@@ -175,7 +175,7 @@ def _written_entries(tree: Tree) -> set[int] | None:
     written = set()
     for node in tree.node_list:
         written.update(id(binding.entry) for binding in node.config.outputs.values())
-        if isinstance(node, SetBlackboard) and (entry := _set_entry(node)) is not None:
+        if isinstance(node, SetBlackboard) and (entry := set_entry(node)) is not None:
             written.add(id(entry))
         if any(code is None for _, code in _script_codes(node)):
             return None
@@ -233,7 +233,7 @@ class _KnownValues:
                 for port, binding in node.config.outputs.items():
                     self.writers.setdefault(id(binding.entry), []).append((node, port))
         for node in tree.node_list:
-            if isinstance(node, SetBlackboard) and (entry := _set_entry(node)) is not None:
+            if isinstance(node, SetBlackboard) and (entry := set_entry(node)) is not None:
                 self.writers.setdefault(id(entry), []).append((node, "value"))
         self.known: dict[int, list[Known]] = {}
 
@@ -257,7 +257,7 @@ class _KnownValues:
         if not all(inputs.values()):
             return []
         names = list(inputs)
-        step = _step(node)
+        step = step_of(node)
         found = []
         for combination in itertools.islice(itertools.product(*inputs.values()), MAX_KNOWN):
             given = dict(zip(names, combination, strict=True))
@@ -276,7 +276,7 @@ class _KnownValues:
         return self.of(binding.entry)
 
 
-def _set_entry(node: SetBlackboard) -> Entry | None:
+def set_entry(node: SetBlackboard) -> Entry | None:
     """The entry a SetBlackboard writes, if declared."""
     key = _set_key(node)
     return node.blackboard.entry(key) if key else None
@@ -289,18 +289,18 @@ def _set_key(node: SetBlackboard) -> str:
 
 
 def _copied(values: list[Known], node: SetBlackboard) -> list[Known]:
-    entry = _set_entry(node)
+    entry = set_entry(node)
     found = []
     for known in values:
         try:
             value = coerce(known.value, entry.type)
         except ValueError:
             continue  # the node would fail to write it
-        found.append(Known(value, known.origin, (*known.via, _step(node))))
+        found.append(Known(value, known.origin, (*known.via, step_of(node))))
     return found
 
 
-def _step(node: TreeNode) -> str:
+def step_of(node: TreeNode) -> str:
     """`OffsetPose (robot.xml:12)`: a node that made a value, as messages name it."""
     return f"{node.registration_id} ({Path(node.config.file).name}:{node.config.line})"
 

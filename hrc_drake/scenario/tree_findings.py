@@ -44,6 +44,7 @@ from hrc_drake.scenario.cell_findings import (
     walk_problem,
 )
 from hrc_drake.scenario.detours import Detours, detour_findings
+from hrc_drake.scenario.found_targets import found_reach_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
 from hrc_drake.scenario.robot_put_downs import carried_move_findings, put_down_findings
@@ -92,6 +93,8 @@ def tree_findings(
         found += checks.reaches_from_stand(tree, handle, inputs)
         found += checks.detours(tree, handle, inputs)
         found += checks.robot_put_downs(tree, handle, inputs)
+        if robot_placed:
+            found += checks.found_reaches(tree, handle, inputs)
     if robot_placed:
         found += checks.configurations(skip_configurations)
     for handle, node, port, known in reads:
@@ -188,6 +191,25 @@ class _Checks:
         yield from carried_move_findings(
             tree.node_list, known, resolve, solids, self._carried_reach, self.at.read
         )
+
+    def found_reaches(self, tree, agent, inputs) -> Iterator[Finding]:
+        """Targets made from the objects a NextObject can find that the robot cannot reach
+        (hrc_drake.scenario.found_targets)."""
+        known = {(id(node), port): values for node, port, values in inputs}
+        finds = partial(self._finds, known)
+        resolve = partial(_resolved, agent)
+        return found_reach_findings(
+            tree.node_list, known, finds, resolve, self._reach_problem, self.at.node
+        )
+
+    def _finds(self, known, finder) -> list[tuple[str, Pose]]:
+        """(label, centre as its `pose` gives it) of each object at the start that the
+        NextObject `finder` can find (`_found_by`)."""
+        return [
+            (f"{obj.label} in area '{area}' at {point_text(centre)}", Pose(tuple(centre)))
+            for area, obj in self._found_by(finder, known)
+            for centre in [[float(v) for v in obj.pose.translation()]]
+        ]
 
     def _carried_reach(self, target, free: bool, held) -> str:
         """Why the robot cannot reach `target` holding `held` ("" when it can, or when the
