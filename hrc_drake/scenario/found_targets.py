@@ -30,6 +30,8 @@ from hrc_drake.scenario.reach_from_stand import point_text
 from hrc_drake.scenario.tree_ways import Way, last_before, parents_of, ways_before, writes
 from hrc_drake.tree_types import Pose
 
+LISTED = 3
+"""A move's further unreachable targets named by where they lie; the rest are counted."""
 MAX_DEPTH = 16
 """The most writers followed back from a move's target (an entry offset from itself in a
 chain of SubTrees is followed no further)."""
@@ -73,10 +75,12 @@ def found_targets(nodes: list[TreeNode], finds: Finds, known: dict) -> Iterator[
 def found_reach_findings(
     nodes: list[TreeNode], known: dict, finds: Finds, resolve, problem_of, locate
 ) -> Iterator[Finding]:
-    """A Finding at the target port of each move for each object a NextObject can find
-    whose target the robot cannot reach (`resolve`: a Pose to the scenario's, None when it
-    names no location; `problem_of(target, free_rotation, linear)`: why not, "" when it
-    can, asked once per pose; `locate(node, port, message, point)`)."""
+    """A Finding at the target port of each move with a target the robot cannot reach, for
+    the first object a NextObject can find there, the others after it by where they lie
+    (`resolve`: a Pose to the scenario's, None when it names no location;
+    `problem_of(target, free_rotation, linear)`: why not, "" when it can, asked once per
+    pose; `locate(node, port, message, point)`)."""
+    missed: dict[int, tuple[TreeNode, list]] = {}
     for move, found in found_targets(nodes, finds, known):
         pose = resolve(found.value) if isinstance(found.value, Pose) else None
         if pose is None:
@@ -84,10 +88,24 @@ def found_reach_findings(
         target, free = tool_pose(pose)
         problem = problem_of(target, free, isinstance(move, RobotMoveLinear))
         if problem:
-            tip = target.translation()
-            text = move.config.attributes.get("target", "")
-            message = f"{text} {found} at {point_text(tip)}: {problem}"
-            yield locate(move, "target", message, tip)
+            missed.setdefault(id(move), (move, []))[1].append(
+                (found, target.translation(), problem)
+            )
+    for move, misses in missed.values():
+        found, tip, problem = misses[0]
+        text = move.config.attributes.get("target", "")
+        message = f"{text} {found} at {point_text(tip)}: {problem}{_and_more(misses[1:])}"
+        yield locate(move, "target", message, tip)
+
+
+def _and_more(misses: list) -> str:
+    """The move's other targets the robot cannot reach, by where they lie: one line for
+    the move (a user's wrong shelf gave 36 lines, one per part and move)."""
+    if not misses:
+        return ""
+    places = ", ".join(point_text(tip) for _, tip, _ in misses[:LISTED])
+    rest = f" and {len(misses) - LISTED} more" if len(misses) > LISTED else ""
+    return f"; nor {len(misses)} more of its targets, at {places}{rest}"
 
 
 class _Values:

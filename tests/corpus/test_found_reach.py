@@ -1,9 +1,9 @@
 """The robot's moves to targets made from what a NextObject finds are checked for reach
 against every object the scenario places where it looks: a user's kitting cell (#26) took
 parts off shelf boards the robot cannot reach, validate said ok, and the run failed the
-RobotMove 50 times ("no collision-free inverse kinematics solution"). One line per object
-the robot cannot reach; the objects it reaches, and offsets another branch of a Fallback
-sets for what it finds there, are not judged."""
+RobotMove 50 times ("no collision-free inverse kinematics solution"). One line per move
+with objects the robot cannot reach; the objects it reaches, and offsets another branch of
+a Fallback sets for what it finds there, are not judged."""
 
 from tests.corpus.corpus_helpers import (
     GOOD_SCENARIO,
@@ -77,3 +77,22 @@ def test_offsets_set_for_what_another_branch_finds_are_not_judged(tmp_path, hrc_
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert status == 0, err
+
+
+def test_the_parts_a_move_cannot_reach_are_one_line_at_the_move(tmp_path, hrc_drake):
+    """A user's wrong shelf gave 36 lines, one per part and move: each move now says it once,
+    naming the first part and where the others lie."""
+    third = "    - {type: part, pose: {translation: [0.3, 1.0, 0.93]}}\nsafety:\n"
+    case = Case(
+        "robot.xml",
+        MOVE,
+        MOVE + TAKE,
+        (
+            "port 'target': {grasp} from part in area 'table' at (0.00, 1.00, 0.93) made by ",
+            "; nor 1 more of its targets, at (0.30, 1.00, 0.96)",
+        ),
+        '<RobotMove target="{grasp}"/>',
+        {"scenario.yaml": scenario().replace("safety:\n", third, 1)},
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)
