@@ -40,36 +40,27 @@ class MotionPlanner:
         """The timed path for `command` from `q_start`; None when already there. With
         `person_xy`, the person standing there is an obstacle for this plan. A free-space
         move keeps `held`, what the tool holds, as clear of the cell as the tool; a linear
-        move takes it off or sets it down on what it rests on, as the tree tells it."""
+        move takes it off or sets it down on what it rests on, as the tree tells it. A held
+        part still on (or near) what it was taken off fails at once, where the arm alone is
+        clear (the path search says when it is not), and says how to go on."""
         if person_xy is not None:
             self._check_target_clear_of(person_xy, command)
         carried = None if isinstance(command, MoveLinear) else held
-        if carried is not None:
-            self._check_held_part_starts_clear(q_start, carried)
-        with (
-            self.model.person_obstacle(person_xy, self.options.person_radius),
-            self.model.holding(carried),
-        ):
-            try:
-                return self._plan(command, q_start)
-            except PlanningFailed as failure:
-                if carried is None:
-                    raise
-                raise PlanningFailed(f"{failure} {HOLDING}") from None
-
-    def _check_held_part_starts_clear(self, q_start, part: HeldPart) -> None:
-        """A held part still on (or near) what it was taken off fails at once, where the arm
-        alone is clear (the path search says when it is not), and says how to go on."""
-        q_start = np.asarray(q_start, dtype=float)
-        if not self.model.collision_free(q_start):
-            return
-        with self.model.holding(part):
-            clear = self.model.collision_free(q_start)
-        if not clear:
-            raise PlanningFailed(
-                "the part the robot holds starts closer to the cell than the planning "
-                f"clearance ({self.options.clearance:.2f} m): lift it clear with MoveLinear first"
-            )
+        arm_clear = carried is not None and self.model.collision_free(np.asarray(q_start))
+        with self.model.holding(carried):
+            if arm_clear and not self.model.collision_free(np.asarray(q_start)):
+                raise PlanningFailed(
+                    "the part the robot holds starts closer to the cell than the planning "
+                    f"clearance ({self.options.clearance:.2f} m): lift it clear with "
+                    "MoveLinear first"
+                )
+            with self.model.person_obstacle(person_xy, self.options.person_radius):
+                try:
+                    return self._plan(command, q_start)
+                except PlanningFailed as failure:
+                    if carried is None:
+                        raise
+                    raise PlanningFailed(f"{failure} {HOLDING}") from None
 
     def _check_target_clear_of(self, person_xy, command) -> None:
         """A tool target inside the person's space fails at once (no IK search)."""
