@@ -4,6 +4,7 @@ It is a RobotDiagram (plant + SceneGraph) inside a SceneGraphCollisionChecker, s
 the simulated station: planning never touches the station's context.
 """
 
+from collections.abc import Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 
@@ -15,6 +16,7 @@ from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
 from hrc_drake.station import StationSpec, add_station_models
+from hrc_drake.workpieces.geometry import Solid
 
 EDGE_STEP = 0.01
 """Joint-space resolution (rad) of edge collision checks: about 1 cm at the tool."""
@@ -25,6 +27,8 @@ APART_INFLUENCE = 0.01
 value gives the same answers; a small one leaves most pairs to the broad phase)."""
 PERSON_GROUP = "person"
 HELD_GROUP = "held"
+OBJECTS_GROUP = "objects"
+PROBE_GROUP = "probe"
 PERSON_HEIGHT = 1.9
 """m: a standing person with some margin overhead."""
 
@@ -38,11 +42,21 @@ class HeldPart:
     X_TP: RigidTransform
 
 
+@dataclass(frozen=True)
+class RestingObject:
+    """An object resting in the cell, as a free-space path keeps out of it: its solid and its
+    pose in the world."""
+
+    solid: Solid
+    X_WO: RigidTransform
+
+
 class PlanningModel:
     """Robot + tool + static cell: kinematics, limits and collision checks for planning."""
 
     def __init__(self, station: StationSpec, clearance: float):
         self.variant = VARIANTS[station.variant]
+        self.clearance = clearance
         builder = RobotDiagramBuilder(time_step=0.0)
         arm, robot_instances = add_station_models(builder.plant(), builder.parser(), station)
         builder.plant().Finalize()
@@ -144,6 +158,38 @@ class PlanningModel:
         finally:
             self.checker.RemoveAllAddedCollisionShapes(HELD_GROUP)
             self.held = None
+
+    @contextmanager
+    def among(self, objects: Sequence[RestingObject], ends: Sequence[np.ndarray]):
+        """The objects resting in the cell in the collision checks, for one path, but those
+        the robot (or the part it holds) touches at either end: what it takes or sets down,
+        what it has just let go. The robot may come up to an object, not into it: the
+        clearance is for the cell's furniture, so each object is shrunk by it first.
+        Yields how many objects are in the checks."""
+        shrunk = [(o.solid.shrunk(self.clearance).drake_shape(), o.X_WO) for o in objects]
+        clear_ends = [q for q in ends if self.collision_free(q)]
+        kept = shrunk
+        self._add_shapes(OBJECTS_GROUP, kept)
+        try:
+            if not all(self.collision_free(q) for q in clear_ends):
+                self.checker.RemoveAllAddedCollisionShapes(OBJECTS_GROUP)
+                kept = [s for s in shrunk if not self._touched(s, clear_ends)]
+                self._add_shapes(OBJECTS_GROUP, kept)
+            yield len(kept)
+        finally:
+            self.checker.RemoveAllAddedCollisionShapes(OBJECTS_GROUP)
+
+    def _add_shapes(self, group: str, shapes) -> None:
+        for shape, X_WO in shapes:
+            self.checker.AddCollisionShapeToBody(group, self.plant.world_body(), shape, X_WO)
+
+    def _touched(self, shape, ends) -> bool:
+        """Whether the robot at any of `ends` touches this one shape."""
+        self._add_shapes(PROBE_GROUP, [shape])
+        try:
+            return not all(self.collision_free(q) for q in ends)
+        finally:
+            self.checker.RemoveAllAddedCollisionShapes(PROBE_GROUP)
 
     def collision_free(self, q) -> bool:
         return self.checker.CheckConfigCollisionFree(q)

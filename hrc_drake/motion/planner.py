@@ -14,13 +14,17 @@ from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.ik import ToolTargetSolver
 from hrc_drake.motion.linear import linear_waypoints
 from hrc_drake.motion.messages import MoveJoints, MoveLinear, MoveTo
-from hrc_drake.motion.model import HeldPart, PlanningModel
+from hrc_drake.motion.model import HeldPart, PlanningModel, RestingObject
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.roadmap import collision_free_waypoints
 from hrc_drake.motion.timing import TimedPath, polyline_path, spline_path, time_path
 from hrc_drake.station import StationSpec
 
 HOLDING = "(with the part the robot holds, kept as clear of the cell as the tool)"
+AMONG_OBJECTS = (
+    "no path to the target keeps the robot out of the objects resting in the cell (one "
+    "without them was found): lift what it holds higher over them first, or move them"
+)
 """Said of a free-space move that failed with a part held: the tool alone may have made it."""
 ARRIVED = 1e-6
 """Joint distance (rad) below which a target counts as the start: nothing to move."""
@@ -36,11 +40,19 @@ class MotionPlanner:
         self.model = PlanningModel(station, options.clearance)
         self.ik = ToolTargetSolver(self.model, np.array(self.model.variant.home))
 
-    def plan(self, command, q_start, person_xy=None, held: HeldPart | None = None):
+    def plan(
+        self,
+        command,
+        q_start,
+        person_xy=None,
+        held: HeldPart | None = None,
+        objects: tuple[RestingObject, ...] = (),
+    ):
         """The timed path for `command` from `q_start`; None when already there. With
         `person_xy`, the person standing there is an obstacle for this plan. A free-space
-        move keeps `held`, what the tool holds, as clear of the cell as the tool; a linear
-        move takes it off or sets it down on what it rests on, as the tree tells it. A held
+        move keeps `held`, what the tool holds, as clear of the cell as the tool, and the
+        robot out of the resting `objects` on its way (not at its ends); a linear move takes
+        a part off or sets it down on what it rests on, as the tree tells it. A held
         part still on (or near) what it was taken off fails at once, where the arm alone is
         clear (the path search says when it is not), and says how to go on."""
         if person_xy is not None:
@@ -56,7 +68,7 @@ class MotionPlanner:
                 )
             with self.model.person_obstacle(person_xy, self.options.person_radius):
                 try:
-                    return self._plan(command, q_start)
+                    return self._plan(command, q_start, objects)
                 except PlanningFailed as failure:
                     if carried is None:
                         raise
@@ -75,7 +87,7 @@ class MotionPlanner:
                 "(collision with the person)"
             )
 
-    def _plan(self, command, q_start) -> TimedPath | None:
+    def _plan(self, command, q_start, objects) -> TimedPath | None:
         q_start = np.asarray(q_start, dtype=float)
         rng = np.random.default_rng(self.seed)
         if isinstance(command, MoveLinear):
@@ -84,12 +96,21 @@ class MotionPlanner:
         q_goal = self._goal(command, q_start, rng)
         if np.linalg.norm(q_goal - q_start) < ARRIVED:
             return None
-        waypoints = collision_free_waypoints(
-            self.model, q_start, q_goal, rng, self.options.search_nodes
-        )
-        if waypoints is None:
-            raise PlanningFailed("no collision-free path to the target was found")
-        return self._timed(self._smoothest_safe_path(waypoints))
+        return self._timed(self._path_among(objects, q_start, q_goal, rng))
+
+    def _path_among(self, objects, q_start, q_goal, rng):
+        """A collision-free path that keeps out of the resting objects on its way. When there
+        is none, a search without them tells the user whether the objects are why."""
+        with self.model.among(objects, (q_start, q_goal)) as kept:
+            waypoints = self._waypoints(q_start, q_goal, rng)
+            if waypoints is not None:
+                return self._smoothest_safe_path(waypoints)
+        if kept and self._waypoints(q_start, q_goal, rng) is not None:
+            raise PlanningFailed(AMONG_OBJECTS)
+        raise PlanningFailed("no collision-free path to the target was found")
+
+    def _waypoints(self, q_start, q_goal, rng):
+        return collision_free_waypoints(self.model, q_start, q_goal, rng, self.options.search_nodes)
 
     def _goal(self, command, q_start, rng) -> np.ndarray:
         if isinstance(command, MoveJoints):

@@ -55,12 +55,18 @@ from hrc_drake.motion.messages import (
     SetSpeed,
     Stop,
 )
-from hrc_drake.motion.model import HeldPart
+from hrc_drake.motion.model import HeldPart, RestingObject
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.timing import TimedPath
 from hrc_drake.wiring import GRIPPER_ISSUER
 from hrc_drake.workpieces.geometry import Solid
-from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Detach, WorkpiecesStatus
+from hrc_drake.workpieces.messages import (
+    ROBOT_HOLDER,
+    Attach,
+    Detach,
+    ObjectStatus,
+    WorkpiecesStatus,
+)
 
 ARRIVAL_SPEED = 0.01
 """rad/s: joint speeds below which a finished move counts as at rest."""
@@ -318,12 +324,15 @@ class MotionStateMachine:
         command = state.pending
         state = state.replace(pending=None)
         held = _held_part(inputs.workpieces, state.tool_pose)
-        key = _plan_key(command, state.hold, held, inputs.person_xy)
+        objects = _resting_objects(inputs.workpieces)
+        key = _plan_key(command, state.hold, held, inputs.person_xy, objects)
         again = _failed_again(state, key)
         if again:
             return state.with_result(command.seq, FAILED, again)
         try:
-            path = self._planner.plan(command, np.array(state.hold), inputs.person_xy, held)
+            path = self._planner.plan(
+                command, np.array(state.hold), inputs.person_xy, held, objects
+            )
         except PlanningFailed as failure:
             state = state.replace(failed_plan=(key, str(failure)))
             return state.with_result(command.seq, FAILED, str(failure))
@@ -380,10 +389,29 @@ def _held_part(status: WorkpiecesStatus | None, tool_pose: RigidTransform) -> He
     return HeldPart(shape, tool_pose.InvertAndCompose(held.pose))
 
 
-def _plan_key(command, hold: tuple, held: HeldPart | None, person_xy) -> tuple:
+def _resting_objects(status: WorkpiecesStatus | None) -> tuple[RestingObject, ...]:
+    """The objects at rest on something (not held, falling or carried along a belt), where
+    they are now: a path planned now keeps out of them."""
+    if status is None:
+        return ()
+    return tuple(
+        RestingObject(Solid(o.shape, o.size), o.pose)
+        for o in status.objects
+        if o.holder is None and o.support is not None and _still(o)
+    )
+
+
+def _still(status: ObjectStatus) -> bool:
+    return not np.any(status.velocity.get_coeffs())
+
+
+def _plan_key(
+    command, hold: tuple, held: HeldPart | None, person_xy, objects: tuple[RestingObject, ...]
+) -> tuple:
     """What a plan's outcome depends on: the move as asked (its seq left out), where the
-    robot holds, where what it holds hangs from the tool and where the person stands (to a
-    tenth of a millimetre: a robot holding still measures its tool a hair apart each time)."""
+    robot holds, where what it holds hangs from the tool, where the person stands and the
+    objects rest (to a tenth of a millimetre: a robot holding still measures its tool a hair
+    apart each time)."""
     asked = tuple(
         _rounded(getattr(command, field.name))
         for field in dataclasses.fields(command)
@@ -391,7 +419,8 @@ def _plan_key(command, hold: tuple, held: HeldPart | None, person_xy) -> tuple:
     )
     hanging = None if held is None else _rounded(held.X_TP)
     person = None if person_xy is None else _rounded(person_xy)
-    return (type(command).__name__, asked, hold, hanging, person)
+    resting = tuple((o.solid, _rounded(o.X_WO)) for o in objects)
+    return (type(command).__name__, asked, hold, hanging, person, resting)
 
 
 def _rounded(value):

@@ -21,6 +21,8 @@ CIRCLE_SIDES = 16
 """Cylinders' outlines are regular polygons with this many sides (circumscribed)."""
 OVERLAP_MARGIN = 1e-6
 """m: outlines that merely touch (side by side objects) do not overlap."""
+THINNEST = 1e-3
+"""m: the least size `Solid.shrunk` leaves (a shape needs some thickness)."""
 
 
 @dataclass(frozen=True)
@@ -40,6 +42,14 @@ class Solid:
 
     def drake_shape(self) -> Shape:
         return Box(*self.size) if self.shape == BOX else Cylinder(*self.size)
+
+    def shrunk(self, by: float) -> "Solid":
+        """The solid with every face moved `by` inwards (no thinner than THINNEST): padded by
+        `by` again, as a collision check pads, it is the solid itself (rounded at its edges)."""
+        if self.shape == BOX:
+            return Solid(BOX, tuple(max(s - 2 * by, THINNEST) for s in self.size))
+        radius, length = self.size
+        return Solid(self.shape, (max(radius - by, THINNEST), max(length - 2 * by, THINNEST)))
 
     def outline(self) -> np.ndarray:
         """The footprint (= top face) in the object's x-y plane, counter-clockwise, (n, 2),

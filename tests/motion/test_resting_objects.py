@@ -1,0 +1,91 @@
+"""A free-space move keeps the robot, and what it holds, out of the objects resting in the cell,
+but not out of those it works on at its ends: what it takes or sets down, what it has just let
+go.
+
+The checks are made outside the planner: the part's corners along the planned path against the
+object's outline and top, and, in a run, the realism audit's depth of what the robot holds."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from pydrake.math import RigidTransform
+
+from hrc_drake.motion.errors import PlanningFailed
+from hrc_drake.motion.messages import MoveTo
+from hrc_drake.motion.model import RestingObject
+from hrc_drake.motion.options import MotionOptions
+from hrc_drake.motion.planner import MotionPlanner
+from hrc_drake.workpieces.geometry import Solid
+from tests.motion.motion_helpers import build_station, make_scenario
+from tests.motion.test_held_part import (
+    BOX_AT,
+    BOX_TOP,
+    DOWN,
+    PART,
+    SIZE,
+    TABLE_TOP,
+    VARIANT,
+    lowest_over_the_box,
+    posture,
+)
+
+CRATE = RestingObject(
+    Solid("box", (0.2, 0.3, BOX_TOP - TABLE_TOP)),
+    RigidTransform([BOX_AT[0], BOX_AT[1], (BOX_TOP + TABLE_TOP) / 2]),
+)
+"""A crate resting on the table where test_held_part's cell has its box (same outline)."""
+CELL = Path(__file__).parent / "cells" / "swing_past_objects" / "cell.yaml"
+
+
+@pytest.fixture(scope="module")
+def planner():
+    return build_station(make_scenario(VARIANT)).motion.planner
+
+
+def test_a_held_part_is_carried_over_a_resting_crate(planner):
+    start, target = posture(planner, -0.35, 1.3), RigidTransform(DOWN, [0.35, BOX_AT[1], 1.3])
+    blind = planner.plan(MoveTo(seq=1, pose=target), start, held=PART)
+    assert lowest_over_the_box(planner, blind) < BOX_TOP - 0.03, "the straight move must clip it"
+
+    seen = planner.plan(MoveTo(seq=1, pose=target), start, held=PART, objects=(CRATE,))
+    assert lowest_over_the_box(planner, seen) > BOX_TOP
+    end = planner.model.tool_pose(seen.end).translation()
+    assert np.linalg.norm(end - target.translation()) < 1e-3
+
+
+def test_the_robot_sets_a_part_down_on_a_crate_and_leaves_it(planner):
+    """The crate is touched at the move's end (the part set on it) and at the next move's
+    start: both plan, and each ends where it was sent."""
+    start = posture(planner, -0.35, 1.3)
+    on_the_crate = RigidTransform(DOWN, [BOX_AT[0], BOX_AT[1], BOX_TOP + SIZE[2]])
+    put = planner.plan(MoveTo(seq=1, pose=on_the_crate), start, held=PART, objects=(CRATE,))
+    assert planner.model.tool_pose(put.end).translation() == pytest.approx(
+        on_the_crate.translation(), abs=1e-3
+    )
+    away = RigidTransform(DOWN, [0.35, BOX_AT[1], 1.3])
+    left = planner.plan(MoveTo(seq=2, pose=away), put.end, objects=(CRATE,))
+    assert planner.model.tool_pose(left.end).translation() == pytest.approx(
+        away.translation(), abs=1e-3
+    )
+
+
+def test_a_move_the_objects_block_says_they_are_why(planner):
+    """With a search too small to go round the crate, the failure names the objects: the
+    same move among the cell alone is the straight line."""
+    tight = MotionPlanner(planner.station, MotionOptions(search_nodes=2), planner.seed)
+    start, target = posture(planner, -0.35, 1.3), RigidTransform(DOWN, [0.35, BOX_AT[1], 1.3])
+    assert tight.plan(MoveTo(seq=1, pose=target), start, held=PART) is not None
+    with pytest.raises(PlanningFailed, match="out of the objects resting in the cell"):
+        tight.plan(MoveTo(seq=1, pose=target), start, held=PART, objects=(CRATE,))
+
+
+def test_a_part_lifted_5_cm_is_swung_over_the_taller_crate_beside_it(tmp_path, hrc_drake):
+    """A user's tree lifts a part 5 cm and swings it past a 25 cm crate: the run carried it
+    15 cm deep through the crate, and the audit said so. Now it goes over, and is set down."""
+    status, _, err = hrc_drake("run", CELL, "--out", tmp_path / "run")
+    assert status == 0, err
+    report = json.loads((tmp_path / "run" / "report.json").read_text())
+    assert report["realism"]["penetration_carried"]["max"] <= 0.01
+    assert report["bt"]["robot"]["RobotRelease::8"]["successes"] == 1
