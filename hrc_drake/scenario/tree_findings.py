@@ -434,11 +434,23 @@ class _Checks:
         return self._planned_problem(command, (x, y, yaw))
 
     def _lying_on(self, taken) -> list:
-        """The objects at the start lying on or in `taken` (`_lies_on`): whether they are
-        still there when it is taken is the tree's doing (the machine cell's takes the
-        checked parts out of the tote before it takes the tote; planned with them, the tote
-        went 7.6 cm into a part); the run refuses the pick if they are."""
-        return [obj for obj in self.scene.objects if obj is not taken and _lies_on(obj, taken)]
+        """The objects at the start lying on or in `taken` (`_lies_on`), and those lying on
+        them in turn: whether they are still there when it is taken is the tree's doing (the
+        machine cell's takes the checked parts out of the tote before it takes the tote;
+        planned with them, the tote went 7.6 cm into a part; a stack's bottom tray is found
+        only once the trays above it are gone, and planned with the top one, went 8.9 cm
+        into it); the run refuses the pick if they are."""
+        above, lower = [], [taken]
+        while lower:
+            below = lower.pop()
+            on_it = [
+                obj
+                for obj in self.scene.objects
+                if all(obj is not seen for seen in (taken, *above)) and _lies_on(obj, below)
+            ]
+            above += on_it
+            lower += on_it
+        return above
 
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
         """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run

@@ -838,6 +838,40 @@ def test_a_put_down_onto_a_box_lying_at_the_target_is_planned_on_top_of_it(tmp_p
     assert status == 0, err
 
 
+def test_a_stacks_bottom_tray_is_judged_with_the_trays_above_it_gone(tmp_path, hrc_drake):
+    """A user's kitting cell (#26): a small woman takes empty trays off a stack of three on
+    the floor, one at a time as NextObject offers them, top first. validate planned the bottom
+    tray's pick with the top tray still there (only the one right on it left out) and said
+    the tray she lifts "would go 9.8 cm into 'tote at (2.00, 0.90, 0.25)'"."""
+    totes = (
+        "safety:\n",
+        "    tote: {shape: box, size: [0.3, 0.4, 0.1], mass: 1.2, capacity: 4}\n"
+        f"{OBJECTS}    - {{type: tote, pose: {{translation: [2.0, 0.9, 0.05]}}}}\n"
+        "    - {type: tote, pose: {translation: [2.0, 0.9, 0.15]}}\n"
+        "    - {type: tote, pose: {translation: [2.0, 0.9, 0.25]}}\n"
+        "safety:\n",
+    )
+    places = (
+        "locations:\n",
+        "locations:\n  stack_front: {translation: [2.0, 1.45, 0.0], "
+        "rotation: !Rpy {deg: [0, 0, -90]}}\n",
+    )
+    stack = ("areas:\n", "areas:\n  stack: [[1.7, 0.6], [2.3, 0.6], [2.3, 1.2], [1.7, 1.2]]\n")
+    case = person(
+        '<ActorAnimation animation_name="wave"/>',
+        '<ActorMovement target="stack_front"/>'
+        '<NextObject area="stack" filter="type=tote" object_id="{t}" pose="{at}"/>'
+        '<ActorPick object_id="{t}"/>',
+        (),
+        "ActorPick",
+        changes=[totes, places, stack],
+    )
+    scenario = write_workspace(tmp_path, case)
+    small_woman = ("--set", "human.percentile=5", "--set", "human.sex=female")
+    status, _, err = hrc_drake("validate", scenario, *small_woman)
+    assert status == 0, err
+
+
 def test_a_part_the_robot_lets_go_of_on_the_table_is_not_judged(tmp_path, hrc_drake):
     """The robot's put-down of the corpus's case with the part's top 5 mm over where it
     rests on the table: the part drops 5 mm, as a user's cell lets go of its parts."""
