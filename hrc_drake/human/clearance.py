@@ -256,7 +256,7 @@ def _keeping_held_hands(body, near, q, corrected, holding):
 def _held_check(body: HumanBody, near: Prisms, q: np.ndarray, side: str) -> ArmCheck:
     """How the arm of a holding or aimed hand at q gets out of the prisms: along its palm's
     face, never across it (off the face, the palm leaves what it holds)."""
-    palm = body.frame_pose(f"{side}_hand_grasp", q).rotation().col(1)
+    palm = body.frame_pose(f"{side}_hand_grasp", q).rotation().matrix()[:, 1]
     return check_arm(body, near, q, side, not_along=palm)
 
 

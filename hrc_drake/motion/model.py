@@ -15,6 +15,7 @@ from pydrake.math import RigidTransform
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from hrc_drake.iisy import FLANGE_FRAME, TCP_FRAME, VARIANTS
+from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.station import StationSpec, add_station_models
 from hrc_drake.workpieces.geometry import Solid
 
@@ -29,6 +30,13 @@ PERSON_GROUP = "person"
 HELD_GROUP = "held"
 OBJECTS_GROUP = "objects"
 PROBE_GROUP = "probe"
+TOUCH_DEPTH = 0.01
+"""m: the deepest a move may end in an object it works on (the realism audit's limit for what
+the robot holds: docs/realism.md); a target deeper in is in the object, not on it."""
+SLACK = TOUCH_DEPTH / 2
+"""m: how far the robot may press into an object before the checks count it as in it (so
+that a carton set down touching its neighbours fits between them, and a tool on a part's top
+face is on it)."""
 PERSON_HEIGHT = 1.9
 """m: a standing person with some margin overhead."""
 
@@ -44,11 +52,12 @@ class HeldPart:
 
 @dataclass(frozen=True)
 class RestingObject:
-    """An object resting in the cell, as a free-space path keeps out of it: its solid and its
-    pose in the world."""
+    """An object resting in the cell, as a free-space path keeps out of it: its solid, its
+    pose in the world and its name in messages ("carton 3")."""
 
     solid: Solid
     X_WO: RigidTransform
+    name: str
 
 
 class PlanningModel:
@@ -160,20 +169,22 @@ class PlanningModel:
             self.held = None
 
     @contextmanager
-    def among(self, objects: Sequence[RestingObject], ends: Sequence[np.ndarray]):
-        """The objects resting in the cell in the collision checks, for one path, but those
-        the robot (or the part it holds) touches at either end: what it takes or sets down,
-        what it has just let go. The robot may come up to an object, not into it: the
-        clearance is for the cell's furniture, so each object is shrunk by it first.
-        Yields how many objects are in the checks."""
-        shrunk = [(o.solid.shrunk(self.clearance).drake_shape(), o.X_WO) for o in objects]
-        clear_ends = [q for q in ends if self.collision_free(q)]
+    def among(self, objects: Sequence[RestingObject], start, goal=None):
+        """The objects resting in the cell in the collision checks, for one plan, but those the
+        robot (or the part it holds) touches at `start` or `goal`: what it takes or sets down,
+        what it has just let go. One it would be deeper than TOUCH_DEPTH into at `goal` fails
+        the plan: that is a target in an object, not on it. The robot may come up to an
+        object, not SLACK into it: the clearance is for the cell's furniture, so each object
+        is shrunk by it and SLACK first. Yields how many objects are in the checks."""
+        ends = [q for q in (start, goal) if q is not None]
+        shrink = self.clearance + SLACK
+        shrunk = [(o.solid.shrunk(shrink).drake_shape(), o.X_WO) for o in objects]
         kept = shrunk
         self._add_shapes(OBJECTS_GROUP, kept)
         try:
-            if not all(self.collision_free(q) for q in clear_ends):
+            if not all(self.collision_free(q) for q in ends):
                 self.checker.RemoveAllAddedCollisionShapes(OBJECTS_GROUP)
-                kept = [s for s in shrunk if not self._touched(s, clear_ends)]
+                kept = [s for s, o in zip(shrunk, objects, strict=True) if self._clear(s, o, ends)]
                 self._add_shapes(OBJECTS_GROUP, kept)
             yield len(kept)
         finally:
@@ -183,13 +194,38 @@ class PlanningModel:
         for shape, X_WO in shapes:
             self.checker.AddCollisionShapeToBody(group, self.plant.world_body(), shape, X_WO)
 
-    def _touched(self, shape, ends) -> bool:
-        """Whether the robot at any of `ends` touches this one shape."""
+    def _clear(self, shape, resting: RestingObject, ends) -> bool:
+        """Whether the robot at every one of `ends` (start, then goal) is clear of this one
+        shape; PlanningFailed when it would be deeper than TOUCH_DEPTH into it at the goal."""
         self._add_shapes(PROBE_GROUP, [shape])
         try:
-            return not all(self.collision_free(q) for q in ends)
+            depths = [self._depth(q) for q in ends]
         finally:
             self.checker.RemoveAllAddedCollisionShapes(PROBE_GROUP)
+        at_goal = depths[-1] if len(ends) > 1 else None
+        if at_goal is not None and at_goal > TOUCH_DEPTH:
+            raise PlanningFailed(
+                f"at the target the robot (or the part it holds) would be "
+                f"{100 * at_goal:.1f} cm into {resting.name} resting there (limit "
+                f"{100 * TOUCH_DEPTH:.0f} cm): move or turn the target"
+            )
+        return all(depth is None for depth in depths)
+
+    def _depth(self, q) -> float | None:
+        """How deep the robot at q is into the objects added to the checks (shapes on the
+        world body; the cell's furniture has bodies of its own), None when no deeper than
+        SLACK. Each object is shrunk by the padding and SLACK, so the padded distance to it
+        is the distance to the object itself plus SLACK."""
+        clearance = self.checker.CalcRobotClearance(q, 0.0)
+        world = self.plant.world_body().index()
+        depths = [
+            SLACK - float(distance)
+            for other, distance in zip(
+                clearance.other_indices(), clearance.distances(), strict=True
+            )
+            if other == world
+        ]
+        return max(depths) if depths else None
 
     def collision_free(self, q) -> bool:
         return self.checker.CheckConfigCollisionFree(q)

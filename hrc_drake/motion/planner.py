@@ -8,7 +8,10 @@ counts (inverse-kinematics starts, search-tree nodes, TOPP-RA grid points), neve
 so a plan comes out the same on a busy machine or a loaded sweep worker.
 """
 
+import contextlib
+
 import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
 
 from hrc_drake.motion.errors import PlanningFailed
 from hrc_drake.motion.ik import ToolTargetSolver
@@ -93,7 +96,7 @@ class MotionPlanner:
         if isinstance(command, MoveLinear):
             waypoints = self._linear(command, q_start)
             return self._timed(spline_path(waypoints)) if len(waypoints) > 1 else None
-        q_goal = self._goal(command, q_start, rng)
+        q_goal = self._goal(command, q_start, rng, objects)
         if np.linalg.norm(q_goal - q_start) < ARRIVED:
             return None
         return self._timed(self._path_among(objects, q_start, q_goal, rng))
@@ -101,7 +104,7 @@ class MotionPlanner:
     def _path_among(self, objects, q_start, q_goal, rng):
         """A collision-free path that keeps out of the resting objects on its way. When there
         is none, a search without them tells the user whether the objects are why."""
-        with self.model.among(objects, (q_start, q_goal)) as kept:
+        with self.model.among(objects, q_start, q_goal) as kept:
             waypoints = self._waypoints(q_start, q_goal, rng)
             if waypoints is not None:
                 return self._smoothest_safe_path(waypoints)
@@ -112,14 +115,50 @@ class MotionPlanner:
     def _waypoints(self, q_start, q_goal, rng):
         return collision_free_waypoints(self.model, q_start, q_goal, rng, self.options.search_nodes)
 
-    def _goal(self, command, q_start, rng) -> np.ndarray:
+    def _goal(self, command, q_start, rng, objects) -> np.ndarray:
         if isinstance(command, MoveJoints):
             return self._joint_goal(command)
         if isinstance(command, MoveTo):
-            return self.ik.solve(
-                command.pose, q_start, command.free_tool_rotation, rng, self.options.ik_attempts
-            )
+            return self._tool_goal(command, q_start, rng, objects)
         raise PlanningFailed(f"not a move command: {type(command).__name__}")
+
+    def _tool_goal(self, command: MoveTo, q_start, rng, objects) -> np.ndarray:
+        """Joint positions for the tool target that keep the robot, and what it holds, out of
+        the resting objects; where none does, any (the path's `among` judges what it touches
+        there). A tool free to turn about its axis is tried turned by quarter turns from
+        where it points now, which is how a box held from above fits beside others (a user's
+        pallet had its cartons set down 4.5 cm into each other: deep in, nothing tells the
+        solver which way to turn)."""
+        with self.model.among(objects, q_start) as seen:
+            try:
+                return self._solve(command.pose, command.free_tool_rotation, q_start, rng)
+            except PlanningFailed:
+                if not seen:
+                    raise
+            if command.free_tool_rotation:
+                for pose in self._quarter_turns(command.pose, q_start):
+                    with contextlib.suppress(PlanningFailed):
+                        return self._solve(pose, False, q_start, rng)
+        return self._solve(command.pose, command.free_tool_rotation, q_start, rng)
+
+    def _quarter_turns(self, pose: RigidTransform, q_start) -> list[RigidTransform]:
+        """`pose` with the tool turned about its axis as it is turned at `q_start`, then by
+        a quarter turn, the other quarter turn and a half turn from there."""
+        axis = pose.rotation().matrix()[:, 2]
+        x_now = self.model.tool_pose(q_start).rotation().matrix()[:, 0]
+        x_now = x_now - axis * (x_now @ axis)
+        if np.linalg.norm(x_now) < 1e-6:
+            return []
+        x_now = x_now / np.linalg.norm(x_now)
+        return [
+            RigidTransform(
+                RotationMatrix(np.column_stack([x, np.cross(axis, x), axis])), pose.translation()
+            )
+            for x in (x_now, np.cross(axis, x_now), -np.cross(axis, x_now), -x_now)
+        ]
+
+    def _solve(self, pose: RigidTransform, free_rotation: bool, q_start, rng) -> np.ndarray:
+        return self.ik.solve(pose, q_start, free_rotation, rng, self.options.ik_attempts)
 
     def _joint_goal(self, command: MoveJoints) -> np.ndarray:
         if command.q is not None:

@@ -395,7 +395,7 @@ def _resting_objects(status: WorkpiecesStatus | None) -> tuple[RestingObject, ..
     if status is None:
         return ()
     return tuple(
-        RestingObject(Solid(o.shape, o.size), o.pose)
+        RestingObject(Solid(o.shape, o.size), o.pose, f"{o.type} {o.id}")
         for o in status.objects
         if o.holder is None and o.support is not None and _still(o)
     )

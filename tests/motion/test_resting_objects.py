@@ -34,9 +34,10 @@ from tests.motion.test_held_part import (
 CRATE = RestingObject(
     Solid("box", (0.2, 0.3, BOX_TOP - TABLE_TOP)),
     RigidTransform([BOX_AT[0], BOX_AT[1], (BOX_TOP + TABLE_TOP) / 2]),
+    "crate 2",
 )
 """A crate resting on the table where test_held_part's cell has its box (same outline)."""
-CELL = Path(__file__).parent / "cells" / "swing_past_objects" / "cell.yaml"
+CELLS = Path(__file__).parent / "cells"
 
 
 @pytest.fixture(scope="module")
@@ -71,6 +72,15 @@ def test_the_robot_sets_a_part_down_on_a_crate_and_leaves_it(planner):
     )
 
 
+def test_a_target_that_puts_the_held_part_into_a_crate_is_refused(planner):
+    """What the robot touches where it stops is what it works on, but 5 cm deep in is a
+    target in the crate, not on it: the plan fails and names the crate."""
+    start = posture(planner, -0.35, 1.3)
+    into = RigidTransform(DOWN, [BOX_AT[0], BOX_AT[1], BOX_TOP + SIZE[2] - 0.05])
+    with pytest.raises(PlanningFailed, match="would be 5.0 cm into crate 2 resting there"):
+        planner.plan(MoveTo(seq=1, pose=into), start, held=PART, objects=(CRATE,))
+
+
 def test_a_move_the_objects_block_says_they_are_why(planner):
     """With a search too small to go round the crate, the failure names the objects: the
     same move among the cell alone is the straight line."""
@@ -84,8 +94,23 @@ def test_a_move_the_objects_block_says_they_are_why(planner):
 def test_a_part_lifted_5_cm_is_swung_over_the_taller_crate_beside_it(tmp_path, hrc_drake):
     """A user's tree lifts a part 5 cm and swings it past a 25 cm crate: the run carried it
     15 cm deep through the crate, and the audit said so. Now it goes over, and is set down."""
-    status, _, err = hrc_drake("run", CELL, "--out", tmp_path / "run")
+    status, _, err = hrc_drake(
+        "run", CELLS / "swing_past_objects" / "cell.yaml", "--out", tmp_path / "run"
+    )
     assert status == 0, err
     report = json.loads((tmp_path / "run" / "report.json").read_text())
     assert report["realism"]["penetration_carried"]["max"] <= 0.01
     assert report["bt"]["robot"]["RobotRelease::8"]["successes"] == 1
+
+
+def test_a_carton_is_turned_to_fit_beside_its_neighbour(tmp_path, hrc_drake):
+    """A user's palletizing cell: the slot beside a carton has no rotation, so the tool may
+    turn about its axis. Turned the way nearest its posture, the robot set the carton down
+    4.5 cm into its neighbour (the audit: carton 1 in carton 2). Now it is turned to fit,
+    and set down touching it."""
+    cell = CELLS / "carton_beside_carton" / "cell.yaml"
+    status, _, err = hrc_drake("run", cell, "--out", tmp_path / "run")
+    assert status == 0, err
+    report = json.loads((tmp_path / "run" / "report.json").read_text())
+    assert report["realism"]["penetration_carried"]["max"] <= 0.01
+    assert report["bt"]["robot"]["RobotRelease::13"]["successes"] == 1
