@@ -47,9 +47,17 @@ def _reach_problem(planner, pose, free_rotation, linear) -> str:
     return f"out of reach {held}: {_beyond(planner, pose, free_rotation)}{_upwards(pose)}"
 
 
-def configuration_problem(planner: MotionPlanner, q: np.ndarray) -> str:
+def configuration_problem(
+    planner: MotionPlanner, q: np.ndarray, held: HeldPart | None = None
+) -> str:
     """Why the planner refuses to move the arm to joint positions `q` ("" when it does
-    not): outside the joint limits, or touching the cell."""
+    not): outside the joint limits, or touching the cell; with `held`, the part the tool
+    holds, kept as clear of the cell as the tool, as a MoveJoints made holding it is."""
+    with planner.model.holding(held):
+        return _configuration_problem(planner, q)
+
+
+def _configuration_problem(planner: MotionPlanner, q: np.ndarray) -> str:
     model = planner.model
     if not model.within_limits(q):
         beyond = [

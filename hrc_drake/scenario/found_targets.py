@@ -8,7 +8,9 @@ follow from their inputs, and SetBlackboard's copies) is worked out for each of 
 way the tree goes to the move (hrc_drake.scenario.tree_ways: the entries' last writers
 before it on that way, so a Fallback's carton offsets are not added to its crates): a
 user's kitting cell took parts off shelf boards the robot cannot reach, validate said ok,
-and the run failed its RobotMove 50 times. Objects made at run time are not known: their
+and the run failed its RobotMove 50 times. A free-space move made holding a part is
+judged with the part hanging from the tool, as the run plans it
+(hrc_drake.scenario.robot_put_downs). Objects made at run time are not known: their
 targets are left out, as are those whose other inputs are not known on that way."""
 
 import itertools
@@ -27,6 +29,7 @@ from hrc_drake.nodes.objects import NextObject
 from hrc_drake.nodes.robot import RobotMove, RobotMoveLinear, tool_pose
 from hrc_drake.scenario.located import Finding
 from hrc_drake.scenario.reach_from_stand import point_text
+from hrc_drake.scenario.robot_put_downs import held_type
 from hrc_drake.scenario.tree_ways import Way, last_before, parents_of, ways_before, writes
 from hrc_drake.tree_types import Pose
 
@@ -78,15 +81,19 @@ def found_reach_findings(
     """A Finding at the target port of each move with a target the robot cannot reach, for
     the first object a NextObject can find there, the others after it by where they lie
     (`resolve`: a Pose to the scenario's, None when it names no location;
-    `problem_of(target, free_rotation, linear)`: why not, "" when it can, asked once per
-    pose; `locate(node, port, message, point)`)."""
+    `problem_of(target, free_rotation, linear, held)`: why not, "" when it can, asked once
+    per pose, `held` the type of part a free-space move is made holding, else None;
+    `locate(node, port, message, point)`)."""
     missed: dict[int, tuple[TreeNode, list]] = {}
+    parents = parents_of(nodes)
     for move, found in found_targets(nodes, finds, known):
         pose = resolve(found.value) if isinstance(found.value, Pose) else None
         if pose is None:
             continue
         target, free = tool_pose(pose)
-        problem = problem_of(target, free, isinstance(move, RobotMoveLinear))
+        linear = isinstance(move, RobotMoveLinear)
+        held = None if linear else held_type(move, parents, known)
+        problem = problem_of(target, free, linear, held)
         if problem:
             missed.setdefault(id(move), (move, []))[1].append(
                 (found, target.translation(), problem)

@@ -9,7 +9,8 @@ into the table, and the run lifted it out when it was let go.
 
 A RobotMove made holding a part keeps the part as clear of the cell as the tool
 (hrc_drake.motion.planner); where that keeps the robot from a target the tool alone
-reaches, `validate` says so at the target, as the run's move would fail."""
+reaches, `validate` says so at the target, as the run's move would fail; so does a
+MoveJoints made holding a part, at a configuration where the part touches the cell."""
 
 from collections.abc import Callable, Iterator
 
@@ -24,6 +25,7 @@ from hrc_drake.nodes.robot import (
     TOOL_DOWN,
     RobotGrip,
     RobotMove,
+    RobotMoveJoints,
     RobotMoveLinear,
     RobotRelease,
     tool_pose,
@@ -56,16 +58,28 @@ def put_downs(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, st
             yield move, kind, value
 
 
-def carried_moves(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, str, Known]]:
-    """(the move, the type of what the robot holds, a known target of the move) of every
-    RobotMove made holding a part: the last grip or release before it is a grip whose
-    finder is known."""
+def carried_moves(
+    nodes: list[TreeNode], known: dict, moves=RobotMove, port: str = "target"
+) -> Iterator[tuple[TreeNode, str, Known]]:
+    """(the move, the type of what the robot holds, a known value of its `port`) of every
+    free-space move of the class `moves` made holding a part (`held_type`)."""
     parents = parents_of(nodes)
-    for move in (n for n in nodes if isinstance(n, RobotMove)):
-        grip = last_before(move, parents, _kind(RobotGrip | RobotRelease))
-        kind = _gripped_type(grip, parents, known) if isinstance(grip, RobotGrip) else None
-        for value in known.get((id(move), "target"), ()) if kind else ():
+    for move in (n for n in nodes if isinstance(n, moves)):
+        kind = held_type(move, parents, known)
+        for value in known.get((id(move), port), ()) if kind else ():
             yield move, kind, value
+
+
+def held_type(move: TreeNode, parents: dict, known: dict) -> str | None:
+    """The type of part the robot holds when `move` starts: the last grip or release
+    before it is a grip whose finder is known (else None)."""
+    grip = last_before(move, parents, _kind(RobotGrip | RobotRelease))
+    return _gripped_type(grip, parents, known) if isinstance(grip, RobotGrip) else None
+
+
+def holding(kind: str, problem: str) -> str:
+    """Why a free-space move fails with the part it holds, as validate says it."""
+    return f"with the {kind} it holds, {problem}"
 
 
 def _gripped_type(grip: TreeNode, parents: dict, known: dict) -> str | None:
@@ -93,21 +107,34 @@ def put_down_findings(
 
 
 def carried_move_findings(
-    nodes: list[TreeNode], known: dict, resolve, solids: dict, problem_of, locate: Locate
+    nodes: list[TreeNode], known: dict, resolve, problem_of, locate: Locate
 ) -> Iterator[Finding]:
     """A Finding at each target the robot moves to holding a part where the part, kept as
     clear of the cell as the tool, keeps the robot from reaching it (`problem_of(target,
-    free_rotation, held)`: why not, "" when it can or the tool alone cannot either)."""
+    free_rotation, kind)`: why not, in `holding`'s words; "" when it can or the tool alone
+    cannot either)."""
     for move, kind, value in carried_moves(nodes, known):
         pose = resolve(value.value) if isinstance(value.value, Pose) else None
-        if pose is None or kind not in solids:
+        if pose is None:
             continue
         target, free = tool_pose(pose)
-        problem = problem_of(target, free, hanging_from_the_tool(solids[kind]))
+        problem = problem_of(target, free, kind)
         if problem:
             tip = target.translation()
-            message = f"{value} at {point_text(tip)}: with the {kind} it holds, {problem}"
-            yield locate(move, "target", value, message, tip)
+            yield locate(move, "target", value, f"{value} at {point_text(tip)}: {problem}", tip)
+
+
+def carried_configuration_findings(
+    nodes: list[TreeNode], known: dict, problem_of, locate: Locate
+) -> Iterator[Finding]:
+    """A Finding at each named configuration the robot moves to holding a part where the
+    part, hanging from the tool as it was taken and kept as clear of the cell as the tool,
+    touches the cell: the run's MoveJoints fails there (`problem_of(name, kind)`: why, in
+    `holding`'s words; "" when it does not, or the arm alone touches it too)."""
+    for move, kind, value in carried_moves(nodes, known, RobotMoveJoints, "configuration"):
+        problem = problem_of(value.value, kind)
+        if problem:
+            yield locate(move, "configuration", value, f"{value}: {problem}")
 
 
 def hanging_from_the_tool(solid: Solid) -> HeldPart:

@@ -47,7 +47,13 @@ from hrc_drake.scenario.detours import Detours, detour_findings
 from hrc_drake.scenario.found_targets import found_reach_findings
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
-from hrc_drake.scenario.robot_put_downs import carried_move_findings, put_down_findings
+from hrc_drake.scenario.robot_put_downs import (
+    carried_configuration_findings,
+    carried_move_findings,
+    hanging_from_the_tool,
+    holding,
+    put_down_findings,
+)
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
@@ -180,17 +186,18 @@ class _Checks:
         return reach_findings(self.at, nodes, known, point, start, clips, taken, placing)
 
     def robot_put_downs(self, tree, agent, inputs) -> Iterator[Finding]:
-        """Parts the robot lets go of inside the cell's fixed geometry
-        (hrc_drake.scenario.robot_put_downs)."""
+        """Parts the robot lets go of inside the cell's fixed geometry, and moves it cannot
+        make with the part it holds (hrc_drake.scenario.robot_put_downs)."""
         known = {(id(node), port): values for node, port, values in inputs}
-        solids = {name: Solid.of(kind) for name, kind in self.scenario.workpieces.types.items()}
-        resolve = partial(_resolved, agent)
-        yield from put_down_findings(
-            tree.node_list, known, resolve, solids, self.scene, self.at.read
-        )
-        yield from carried_move_findings(
-            tree.node_list, known, resolve, solids, self._carried_reach, self.at.read
-        )
+        nodes, resolve = tree.node_list, partial(_resolved, agent)
+        yield from put_down_findings(nodes, known, resolve, self.solids, self.scene, self.at.read)
+        if self.robot_placed:
+            yield from carried_move_findings(
+                nodes, known, resolve, self._carried_reach, self.at.read
+            )
+            yield from carried_configuration_findings(
+                nodes, known, self._carried_configuration, self.at.read
+            )
 
     def found_reaches(self, tree, agent, inputs) -> Iterator[Finding]:
         """Targets made from the objects a NextObject can find that the robot cannot reach
@@ -199,7 +206,7 @@ class _Checks:
         finds = partial(self._finds, known)
         resolve = partial(_resolved, agent)
         return found_reach_findings(
-            tree.node_list, known, finds, resolve, self._reach_problem, self.at.node
+            tree.node_list, known, finds, resolve, self._found_reach, self.at.node
         )
 
     def _finds(self, known, finder) -> list[tuple[str, Pose]]:
@@ -211,12 +218,37 @@ class _Checks:
             for centre in [[float(v) for v in obj.pose.translation()]]
         ]
 
-    def _carried_reach(self, target, free: bool, held) -> str:
-        """Why the robot cannot reach `target` holding `held` ("" when it can, or when the
-        tool alone cannot either: that is said at the target already)."""
-        if self._reach_problem(target, free, False):
+    @cached_property
+    def solids(self) -> dict[str, Solid]:
+        """Each object type's shape."""
+        return {name: Solid.of(kind) for name, kind in self.scenario.workpieces.types.items()}
+
+    def _found_reach(self, target, free: bool, linear: bool, held: str | None) -> str:
+        """Why the robot cannot reach a target made from a found object: the tool alone,
+        else the part of type `held` it holds."""
+        problem = self._reach_problem(target, free, linear)
+        return problem or (self._carried_reach(target, free, held) if held else "")
+
+    def _carried_reach(self, target, free: bool, kind: str) -> str:
+        """Why the robot cannot reach `target` holding a part of type `kind` ("" when it
+        can, or when the tool alone cannot either: that is said at the target already)."""
+        if kind not in self.solids or self._reach_problem(target, free, False):
             return ""
-        return reach_problem(self.planner, target, free, held=held)
+        problem = self._reach_problem(target, free, False, kind)
+        return holding(kind, problem) if problem else ""
+
+    def _carried_configuration(self, name: str, kind: str) -> str:
+        """Why the planner refuses to move the arm to the configuration `name` holding a
+        part of type `kind` ("" when it does not, or the arm alone cannot go there either:
+        that is said at the configuration)."""
+        station = self.scenario.station
+        if name not in station.configuration_names or kind not in self.solids:
+            return ""
+        q = station.configuration(name)
+        if configuration_problem(self.planner, q):
+            return ""
+        problem = configuration_problem(self.planner, q, hanging_from_the_tool(self.solids[kind]))
+        return holding(kind, problem) if problem else ""
 
     def detours(self, tree, agent, inputs) -> Iterator[Finding]:
         """Walks that go a long way round a gap a little too narrow for the person
@@ -572,11 +604,13 @@ class _Checks:
             message = f"{known} at {_xyz(target.translation())}: {problem}"
             yield self.at.read(node, "target", known, message, target.translation())
 
-    def _reach_problem(self, target, free: bool, linear: bool) -> str:
-        """reach_problem's answer, once per target (one pose may be read by many nodes)."""
-        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear)
+    def _reach_problem(self, target, free: bool, linear: bool, held: str | None = None) -> str:
+        """reach_problem's answer, once per target (one pose may be read by many nodes),
+        holding a part of type `held` when given."""
+        key = (*target.GetAsMatrix34().round(9).ravel(), free, linear, held)
         if key not in self.reach_problems:
-            self.reach_problems[key] = reach_problem(self.planner, target, free, linear)
+            part = None if held is None else hanging_from_the_tool(self.solids[held])
+            self.reach_problems[key] = reach_problem(self.planner, target, free, linear, part)
         return self.reach_problems[key]
 
     def _standing(self, agent, node, known: Known) -> Iterator[Finding]:

@@ -74,6 +74,16 @@ GOOD_TREE = """\
 """
 
 
+MOVE = '<RobotMove target="{above}"/>'
+"""The good tree's move that the robot's cases extend."""
+FOUND_GRASP = (
+    '<NextObject area="table" filter="type=part" object_id="{p}" pose="{where}"/>'
+    '<OffsetPose input="{where}" offset="0;0;0.03" output="{grasp}"/>'
+    '<RobotMove target="{grasp}"/>'
+)
+"""The robot's move to the top of a part a NextObject finds on the work table."""
+
+
 @dataclass
 class Case:
     """One bad input: in `file` ("scenario.yaml" or "robot.xml") replace `old` by `new`;

@@ -6,19 +6,16 @@ with objects the robot cannot reach; the objects it reaches, and offsets another
 a Fallback sets for what it finds there, are not judged."""
 
 from tests.corpus.corpus_helpers import (
+    FOUND_GRASP,
     GOOD_SCENARIO,
+    MOVE,
     Case,
     assert_one_line_error,
     expected_place,
     write_workspace,
 )
 
-MOVE = '<RobotMove target="{above}"/>'
-TAKE = (
-    '<NextObject area="table" filter="type=part" object_id="{p}" pose="{where}"/>'
-    '<OffsetPose input="{where}" offset="0;0;0.03" output="{grasp}"/>'
-    '<RobotMove target="{grasp}"/>'
-)
+TAKE = FOUND_GRASP
 
 
 def scenario(far="[0.0, 1.0, 0.93]", types="") -> str:
