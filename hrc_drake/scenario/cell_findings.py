@@ -21,6 +21,8 @@ from pydrake.systems.framework import DiagramBuilder
 from shapely.geometry import Point
 
 from hrc_drake.human.anthropometry import DEFAULT_HEIGHT
+from hrc_drake.human.in_the_way import in_the_way
+from hrc_drake.human.messages import Box
 from hrc_drake.human.navigation import (
     FLOOR_LEVEL,
     SEARCH_RINGS,
@@ -30,6 +32,7 @@ from hrc_drake.human.navigation import (
     cell_navigation,
 )
 from hrc_drake.iisy import VARIANTS
+from hrc_drake.nodes.person import box_at
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.station import add_station_models, model_parser
@@ -110,6 +113,14 @@ class CellScene:
             VARIANTS[scenario.robot.variant].reach,
             scenario.human.size()[0] if scenario.human is not None else DEFAULT_HEIGHT,
         )
+        boxes = tuple(
+            Box(*box_at(obj.pose, obj.solid.shape, obj.solid.size), name=self.named(i))
+            for i, obj in enumerate(self.objects)
+        )
+        self.standing = self.navigation.with_obstacles(in_the_way(boxes))
+        """The map with the objects too, where places to stand are judged: a walk to a
+        place goes round the objects the person meets there, and a place with no room
+        beside one moves as it would beside the furniture (hrc_drake.nodes.person)."""
 
     def _add_object(self, index: int, obj: InitialObject):
         instance = self.plant.AddModelInstance(f"initial_object_{index}")
@@ -183,7 +194,7 @@ def cell_findings(
         pose = scenario.location(name)
         x, y, z = pose.translation()
         if abs(z) <= FLOOR_LEVEL:
-            problem = stand_problem(scene.navigation, x, y, _yaw(pose))
+            problem = stand_problem(scene.standing, x, y, _yaw(pose))
             if problem:
                 yield at.field(("locations", name), problem, (x, y, z))
 
@@ -303,7 +314,7 @@ def _start_findings(scenario: Scenario, scene: CellScene, at: Locator) -> Iterat
     if scenario.human is None:
         return
     x, y, yaw_deg = scenario.human.start
-    problem = stand_problem(scene.navigation, x, y, math.radians(yaw_deg))
+    problem = stand_problem(scene.standing, x, y, math.radians(yaw_deg))
     if problem:
         yield at.field(("human", "start"), problem, (x, y, 0.0))
 

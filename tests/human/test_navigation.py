@@ -291,3 +291,20 @@ def test_validate_names_the_place_to_stand_that_cannot_work(tmp_path, capsys):
     assert error.startswith(f"hrc-drake: error: {bad}:{line}: locations.handover_spot: ")
     assert "euro_pallet" in error and len(error.splitlines()) == 1
     assert "the nearest place with room to stand and turn is [" in error
+
+
+def test_a_walk_out_of_a_tight_spot_steps_in_only_at_a_goal_that_needs_it():
+    """From between two boxes narrower than the walking body the walk steps out first; the
+    goal, 0.3 m from a table and reachable straight from the free floor, is walked to
+    straight: it also stepped in to it from the edge of the table's clearance, 8 cm short
+    (a person leaving a pallet stacked with cartons stopped there to step the last 3 cm
+    into the place at a table, collaboration)."""
+    navigation = NavigationMap(
+        [
+            Obstacle("box_a", box(-0.5, -0.5, -0.25, 0.5), 0.0, 1.0),
+            Obstacle("box_b", box(0.25, -0.5, 0.5, 0.5), 0.0, 1.0),
+            Obstacle("table", box(-0.5, 2.0, 0.5, 2.8), 0.86, 0.9),
+        ]
+    )
+    (way_out,) = navigation.path((0.0, 0.0), (0.0, 1.7))
+    assert way_out == pytest.approx((0.0, 0.787), abs=1e-3)
