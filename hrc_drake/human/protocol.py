@@ -182,7 +182,7 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
     if state.running >= 0:
         return _record(state, command.seq, REJECTED, f"busy with command {state.running}")
     walking, t0 = still_stepping(performer, state.activity, t)
-    asked = None if walking else (replace(command, seq=0), state.activity)
+    asked = None if walking else (replace(command, seq=0), (state.anchor, state.hold))
     again = _refused_again(state, asked)
     if again:
         return _record(state, command.seq, FAILED, again)
@@ -214,17 +214,19 @@ def _handle(performer: Performer, state: ActorState, command, t: float) -> Actor
 
 
 def _refused_again(state: ActorState, asked) -> str:
-    """Why `asked` (the command without its seq, and the activity it comes in) was refused
-    the last time it was asked, if it was the last command refused ("": it was not, or
-    `asked` is None, the person still stepping, so its plan would start elsewhere).
+    """Why `asked` (the command without its seq, and where the person stands and what the
+    hands hold when it is asked) was refused the last time it was asked, if it was the last
+    command refused ("": it was not, or `asked` is None, the person still stepping, so its
+    plan would start elsewhere).
 
     A tree retrying a pick the person cannot make asked it every tick, and each was
     planned anew, 6.5 s of planning to the same refusal (a run at 0.03 of real time, #26).
     The same command holds the same object, target and what stands near them, so none of
-    them moved; the same activity (Activity compares by identity) means the person has done
-    nothing since: every walk, pick or put-down, and every activity's end, replaces it.
-    The memory is the person's state, in Drake's Context: a run restarted from a Context
-    remembers only that run's refusals, and no other run sees them."""
+    them moved; the person stands where they stood, holding what they held, so the plan
+    starts from the same place. (It was the same activity once: a tree that walks to the
+    place before each try, a walk of no length, had every try planned, a user's cell at 0.1
+    of real time.) The memory is the person's state, in Drake's Context: a run restarted
+    from a Context remembers only that run's refusals, and no other run sees them."""
     if asked is None or state.refused is None or state.refused[:2] != asked:
         return ""
     return state.refused[2]
