@@ -3,9 +3,10 @@ target farther from the last walk's end (or the person's start) than a hand reac
 without walking fails the node at run time ("out of reach without walking"), so validate
 says it first. So does a pick of an object that a NextObject finds in an area, for the
 objects that lie there at the start (a pallet's far row: "hand stays 0.27 m from the
-target", every time the person tried), and a place after such a pick, for an object of
-the type it finds (a tote put into a shelf's compartment from too close: "the head would
-go 3.4 cm into 'shelf'").
+target", every time the person tried), or that its port names by number, where it lies
+at the start (a sheet on a shelf's board: "the right arm would go 2.4 cm into"), and a
+place after a pick of what a NextObject finds, for an object of the type it finds (a tote
+put into a shelf's compartment from too close: "the head would go 3.4 cm into 'shelf'").
 
 Where the person stands is the last walk, and what a pick takes what the last node that
 wrote its `object_id` entry found or made (or where a put-down since left it), among the

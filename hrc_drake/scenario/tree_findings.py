@@ -27,8 +27,8 @@ from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
 from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
 from hrc_drake.human.navigation import FLOOR_LEVEL, NoWay
-from hrc_drake.human.performer import Performer, place, sized_performer
-from hrc_drake.human.planning import plan_animation
+from hrc_drake.human.performer import Performer, sized_performer
+from hrc_drake.human.planning import plan_animation, plan_idle
 from hrc_drake.known_values import Known, known_inputs, unwritten_inputs
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import configuration_problem, reach_problem
@@ -57,6 +57,7 @@ from hrc_drake.scenario.robot_put_downs import (
 from hrc_drake.scenario.schema import Scenario
 from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
+    UNKNOWN,
     failed_before,
     finder_of,
     held_at,
@@ -382,10 +383,13 @@ class _Checks:
         """The objects that `pick` may take the `way` the tree went, with their labels:
         those at the start of the type the NextObject that last wrote the entry the pick
         reads filters for (by type alone) in its known area, or the one the SpawnObject
-        that did makes at its known pose; moved where a put-down of them since leaves them."""
+        that did makes at its known pose, or the one its port names by number (`_numbered`);
+        moved where a put-down of them since leaves them."""
         source = object_source(pick, parents, way)
         if isinstance(source, ActorPlace):
             return self._put_down(parents, way, known, source, agent)
+        if source is UNKNOWN and held_at(pick, parents, way) is None:
+            return self._numbered(known, pick)
         if not isinstance(source, NextObject | SpawnObject):
             return []
         where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
@@ -394,6 +398,19 @@ class _Checks:
         return [
             (f"{obj.label} in area '{area}' ({where})", obj)
             for area, obj in self._found_by(source, known)
+        ]
+
+    def _numbered(self, known, pick) -> list[tuple[str, object]]:
+        """The objects at the start whose ids `pick`'s port gives as a literal, with their
+        labels: the run numbers the scenario's `objects` from 1 in their order (a user's
+        pick of object 1 off a shelf's board, refused every time, was never judged). Only
+        while no pick has run before it: one may have moved the object."""
+        ids = {v.value for v in known.get((id(pick), "object_id"), ()) if v.origin.node is pick}
+        return [
+            (f"object {i + 1} (the {obj.label} of workpieces.objects[{i}])", obj)
+            for obj in self.scene.objects
+            for kind, i in [obj.names[1:3]]
+            if kind == "objects" and i + 1 in ids
         ]
 
     def _found_by(self, finder, known, unknown_filter=()) -> list[tuple[str, object]]:
@@ -495,6 +512,10 @@ class _Checks:
         return self.planned_problems[key]
 
     def _plan_problem(self, command: AnimateCommand, stand) -> str:
+        """`_planned_problem`'s answer: the plan taking over from the person standing at
+        ease there, as the run's idle has them when the command comes (from a made-up
+        upright pose, arms straight down, a pick off a shelf's board came clear, and the
+        run refused it every time: the right arm 2.4 cm into the shelf, a user's cell: #26)."""
         performer = self.performer
         try:
             activity = plan_animation(performer, command, stand, 0.0)
@@ -502,8 +523,8 @@ class _Checks:
             return str(error)
         if not going_in(performer, activity, 0.0):
             return ""
-        standing = place(performer, performer.body.standing_pose(), *stand)
-        return going_in(performer, activity.blended_from(performer, standing, 0.0), 0.0)
+        at_ease = plan_idle(performer, stand, 0.0, command.hold).pose(performer, 0.0)
+        return going_in(performer, activity.blended_from(performer, at_ease, 0.0), 0.0)
 
     def _near(self, point, taken=()) -> tuple[Box, ...]:
         """The objects at the start near `point` but those `taken`, as a node tells the

@@ -923,9 +923,7 @@ TOP_BOARD = Path(__file__).resolve().parent / "cells" / "top_board"
 @pytest.mark.parametrize(
     ("cell", "pick"), [("cell.yaml", "ActorPick::3"), ("cell_walk_first.yaml", "ActorPick::4")]
 )
-def test_a_tree_retrying_a_pick_the_person_cannot_make_has_it_planned_once(
-    monkeypatch, cell, pick
-):
+def test_a_tree_retrying_a_pick_the_person_cannot_make_has_it_planned_once(monkeypatch, cell, pick):
     """The user's packing cell, cut down: the box on the shelf's 1.6 m board, which the
     person cannot take from where they stand, asked for at every tick. The tree's commands
     are the same each time, so only the first is planned (benchmarks/refused_again.py). So
