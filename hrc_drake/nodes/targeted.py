@@ -6,6 +6,8 @@ the hand is there. Which hands take an object follows from its size, mass and at
 
 from abc import abstractmethod
 
+import numpy as np
+
 from hrc_drake.bt import InputPort, OneOf, Status
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
@@ -22,6 +24,30 @@ TABLE_HEIGHT = 0.5
 
 class ObjectGone(Exception):
     """The object an action is to take is not in the world (any more)."""
+
+
+class ObjectMoving(ObjectGone):
+    """The object a pick is to take rides a belt: the hands, aimed where it was, would
+    close where it no longer is (a user's palm went 14.4 cm into a carton the belt carried
+    into it)."""
+
+
+def riding(obj: wp.ObjectStatus) -> str:
+    """Why a pick of `obj` is refused while a belt carries it ("" while it stands still,
+    falls or is held), and what the user can do instead."""
+    speed = float(np.linalg.norm(obj.velocity.translational()))
+    if obj.holder is not None or obj.support is None or speed == 0.0:
+        return ""
+    below = obj.supporting_object
+    on = f"belt '{obj.support}'" if below is None else f"object {below} on a belt"
+    moving = f"{obj.type} {obj.id} is moving on {on} at {speed:.2f} m/s"
+    if obj.rests_at is not None:
+        x, y, z = obj.rests_at.translation()
+        return f"{moving}: take it where the belt brings it to rest, at ({x:.2f}, {y:.2f}, {z:.2f})"
+    return (
+        f"{moving}, which carries it off: take it before it goes on the belt, or have the "
+        "belt queue what it carries (at_end: queue) and take it where it comes to rest"
+    )
 
 
 class TargetedAction(PersonCommandNode):
@@ -170,6 +196,15 @@ class ActorPick(TargetedAction):
 
     def clip(self) -> str:
         return "pick_table" if self.object_point()[2] >= TABLE_HEIGHT else "pick_floor"
+
+    def taken(self) -> wp.ObjectStatus:
+        """The object, refused (ObjectMoving) while a belt carries it: at once when the
+        pick starts, at the hands' closing when the belt set it off since."""
+        obj = super().taken()
+        reason = riding(obj)
+        if reason:
+            raise ObjectMoving(reason)
+        return obj
 
     def target_point(self):
         return self.object_point()

@@ -37,6 +37,7 @@ from hrc_drake.nodes.person import NEARBY, ActorAnimation, ActorMovement, box_at
 from hrc_drake.nodes.robot import RobotMove, RobotMoveJoints, RobotMoveLinear, tool_pose
 from hrc_drake.nodes.stacks import COVER_OVERLAP, on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace, ActorReach
+from hrc_drake.scenario.belt_picks import belt_pick_findings
 from hrc_drake.scenario.cell_findings import (
     CellScene,
     InitialObject,
@@ -100,6 +101,7 @@ def tree_findings(
         found += checks.reaches_from_stand(tree, handle, inputs)
         found += checks.detours(tree, handle, inputs)
         found += checks.robot_put_downs(tree, handle, inputs)
+        found += checks.belt_picks(tree, inputs)
         if robot_placed:
             found += checks.found_reaches(tree, handle, inputs)
     if robot_placed:
@@ -199,6 +201,12 @@ class _Checks:
             yield from carried_configuration_findings(
                 nodes, known, self._carried_configuration, self.at.read
             )
+
+    def belt_picks(self, tree, inputs) -> Iterator[Finding]:
+        """Picks of what a belt carries off (hrc_drake.scenario.belt_picks)."""
+        known = {(id(node), port): values for node, port, values in inputs}
+        areas = {name: self.scenario.area(name) for name in self.scenario.areas}
+        return belt_pick_findings(tree.node_list, known, areas, self.scenario.workpieces)
 
     def found_reaches(self, tree, agent, inputs) -> Iterator[Finding]:
         """Targets made from the objects a NextObject can find that the robot cannot reach

@@ -121,9 +121,19 @@ def _detach(step: Step, command: Detach) -> CommandResult:
             reason = f"object {piece.id} is not held by {command.holder} (it is {held})"
             return _result(command, FAILED, reason, piece.id)
     step.pieces[piece.id] = dataclasses.replace(
-        piece, pose=upright(piece.pose), velocity=SpatialVelocity.Zero(), holder=None, grip=None
+        piece,
+        pose=upright(piece.pose),
+        velocity=SpatialVelocity.Zero(),
+        holder=None,
+        grip=None,
+        waits_for=PALMS.get(piece.holder, ()),
     )
     return _result(command, SUCCEEDED, object_id=piece.id)
+
+
+PALMS = {LEFT_HAND: (LEFT_HAND,), RIGHT_HAND: (RIGHT_HAND,), BOTH_HANDS: (LEFT_HAND, RIGHT_HAND)}
+"""The palms each of the person's holders lets go with: what an object set down waits for
+(the robot's cup lifts straight off its top, out of a belt's way)."""
 
 
 def _move(step: Step, command: Move) -> CommandResult:

@@ -18,6 +18,9 @@ from hrc_drake.workpieces.surfaces import Surface
 
 HELD_OVER_THE_BELT = 0.1
 """m: what is held with its bottom this little above a belt stands in its riders' way."""
+HAND_REACH = 0.1
+"""m: how far the hand reaches round its palm's grasp point (the fingers, the heel of the
+hand): a palm this near a rider's way is in it."""
 
 
 @dataclass(frozen=True)
@@ -98,18 +101,36 @@ class Belt:
             and self.under(p.footprint)
         ]
 
+    def in_the_way(self, outline: np.ndarray, top: float, palm: np.ndarray) -> bool:
+        """Whether a palm (its grasp point) is where the rider with `outline` and `top`
+        goes: ahead of its front, or beside or over it, within HAND_REACH of its lane and
+        top (a palm behind it is left behind; one on a short rider's back face counts)."""
+        e, (along, across) = self.extent(outline), self._coordinates(palm[:2])
+        return (
+            along + HAND_REACH > e.front
+            and e.right - HAND_REACH < across < e.left + HAND_REACH
+            and palm[2] < top + HAND_REACH
+        )
+
+    def _coordinates(self, p: np.ndarray) -> tuple[float, float]:
+        """A point's place along the belt and across it."""
+        return float((p - self.start) @ self.axis), float((p - self.start) @ self.across)
+
     def past_end(self, p_W: np.ndarray) -> bool:
         return float((p_W[:2] - self.start) @ self.axis) > self.length
 
     def velocity(self, speed: float) -> np.ndarray:
         return np.array([*(speed * self.axis), 0.0])
 
-    def plan(self, riders: dict[int, np.ndarray], dt: float, blockers=()) -> dict[int, float]:
+    def plan(
+        self, riders: dict[int, np.ndarray], dt: float, blockers=(), held=frozenset()
+    ) -> dict[int, float]:
         """Speed along the belt of each rider (id -> outline) for the next `dt`; `blockers`
         (outlines) stop the riders behind them as a rider ahead does: what is held just over
         the belt (a carton taken off a queueing belt's end: the next one moved into its
-        place, 4.1 cm into it, in a user's palletizing cell)."""
-        advances = self._advances(riders, self.speed * dt, blockers)
+        place, 4.1 cm into it, in a user's palletizing cell). The `held` riders (ids) stay
+        where they are, and hold back those behind them."""
+        advances = self._advances(riders, self.speed * dt, blockers, held)
         return {i: advance / dt for i, advance in advances.items()}
 
     def rest_places(self, riders: dict[int, np.ndarray], blockers=()) -> dict[int, float]:
@@ -119,8 +140,11 @@ class Belt:
         rest after the pick had been planned, a user's palletizing cell)."""
         return self._advances(riders, math.inf, blockers) if self.queues else {}
 
-    def _advances(self, riders: dict[int, np.ndarray], reach: float, blockers) -> dict[int, float]:
-        """How far each rider may advance, at most `reach`, front ones first."""
+    def _advances(
+        self, riders: dict[int, np.ndarray], reach: float, blockers, held=frozenset()
+    ) -> dict[int, float]:
+        """How far each rider may advance, at most `reach` (none, the `held` ones), front
+        ones first."""
         extents = {i: self.extent(outline) for i, outline in riders.items()}
         advances: dict[int, float] = {}
         moved_ahead: list[Extent] = [self.extent(outline) for outline in blockers]
@@ -130,7 +154,7 @@ class Belt:
             for ahead in moved_ahead:
                 if ahead.front >= extent.front and not extent.beside(ahead):
                     limit = min(limit, ahead.back - self.queue_gap)
-            advance = min(reach, max(limit - extent.front, 0.0))
+            advance = 0.0 if i in held else min(reach, max(limit - extent.front, 0.0))
             advances[i] = advance
             moved_ahead.append(
                 Extent(extent.back + advance, extent.front + advance, extent.right, extent.left)

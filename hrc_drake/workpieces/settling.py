@@ -2,11 +2,13 @@
 its footprint: a surface, a belt, another piece, the floor), and the velocity it keeps until
 the next update: its support's (a belt's speed as the belt queues its riders), or falling
 with gravity to land exactly on the support. A piece found below its support's top is
-lifted onto it (never sinks); pieces past the end of a removing belt leave."""
+lifted onto it (never sinks); pieces past the end of a removing belt leave. What the
+person's palms set down on a belt stays until they are out of its way."""
 
 import numpy as np
 from pydrake.multibody.math import SpatialVelocity
 
+from hrc_drake.workpieces.conveyors import Belt
 from hrc_drake.workpieces.geometry import with_height
 from hrc_drake.workpieces.messages import object_id_of_support
 from hrc_drake.workpieces.step import Step
@@ -39,13 +41,15 @@ def settle(step: Step, instantly: bool) -> None:
     piece landing on the belt can only hold it back more. So only moving pieces are
     looked at; every rider still counts in its belt's plan. What is held just over a belt
     holds its riders back as a rider does, but it may go at any update: while it is there,
-    and at the update after, its belt's riders are looked at too."""
+    and at the update after, its belt's riders are looked at too; so is a piece the person
+    let go of until the palms are out of its way (`_let_go_of`)."""
+    _let_go_of(step)
     free = [p for p in step.pieces.values() if p.holder is None]
     held_back = _belts_held_back(step)
     active = (
         free
         if instantly or step.changed
-        else [p for p in free if _moving(p) or p.support in held_back]
+        else [p for p in free if _moving(p) or p.waits_for or p.support in held_back]
     )
     if not active:
         return
@@ -59,6 +63,25 @@ def settle(step: Step, instantly: bool) -> None:
     belt_speeds = _belt_speeds(step)
     for piece in active:
         _plan(step, step.pieces[piece.id], supports[piece.id], belt_speeds)
+
+
+def _let_go_of(step: Step) -> None:
+    """Pieces the person let go of wait no more once they rest off a belt, or the palms
+    that let go of them are out of their way on it (`Belt.in_the_way`); then every rider
+    is planned again (those behind a piece that set off may follow it)."""
+    for piece in [p for p in step.pieces.values() if p.waits_for and p.support is not None]:
+        belt = step.cell.belts.get(piece.support)
+        if belt is None or not _palms_in_the_way(step, piece, belt):
+            step.pieces[piece.id] = piece.in_place(waits_for=())
+            step.changed |= belt is not None
+
+
+def _palms_in_the_way(step: Step, piece: Piece, belt: Belt) -> bool:
+    poses = [step.holder_pose(palm) for palm in piece.waits_for]
+    top = piece.bottom + piece.solid.height
+    return any(
+        X is not None and belt.in_the_way(piece.footprint, top, X.translation()) for X in poses
+    )
 
 
 def _moving(piece: Piece) -> bool:
@@ -91,9 +114,16 @@ def _belts_held_back(step: Step) -> set[str]:
 
 
 def _belt_speeds(step: Step) -> dict[int, float]:
+    """Each rider's speed: the pieces the person let go of on a belt stay where they are
+    while the palms are in their way. A person setting a carton down on a running belt
+    keeps the palms on its faces until the hands have opened and come away, and the belt
+    slides under it meanwhile (set off at once, a carton ran 5.2 cm into the palm ahead of
+    it, a user's palletizing cell)."""
     speeds, pieces = {}, step.pieces.values()
+    waiting = {p.id for p in pieces if p.waits_for}
     for belt in step.cell.belts.values():
-        speeds |= belt.plan(belt.riders(pieces), step.config.period, belt.held_over(pieces))
+        riders, blockers = belt.riders(pieces), belt.held_over(pieces)
+        speeds |= belt.plan(riders, step.config.period, blockers, waiting & riders.keys())
     return speeds
 
 

@@ -70,6 +70,9 @@ class Piece:
     grip: RigidTransform | None
     support: str | None
     attributes: Attributes
+    waits_for: tuple[str, ...] = ()
+    """The person's palms that let go of it: set down on a running belt, it stays where
+    it is until they are out of its way (hrc_drake.workpieces.settling.palms_let_go)."""
 
     @cached_property
     def bottom(self) -> float:
@@ -146,9 +149,13 @@ class World:
     @cached_property
     def at_rest(self) -> bool:
         """Whether every object rests on something, free and without a planned velocity (a
-        belt's queue included): found once per world, which lasts many updates."""
+        belt's queue included) and with no palms to wait for (they go at any update): found
+        once per world, which lasts many updates."""
         return all(
-            piece.holder is None and piece.support is not None and not piece.moving
+            piece.holder is None
+            and piece.support is not None
+            and not piece.moving
+            and not piece.waits_for
             for piece in self.pieces.values()
         )
 

@@ -6,10 +6,11 @@ import itertools
 import numpy as np
 import pytest
 from pydrake.common.schema import Transform
+from pydrake.math import RollPitchYaw
 
 from hrc_drake.messages import SUCCEEDED
 from hrc_drake.workpieces.config import REMOVE, ConveyorConfig, PlacedObject, WorkpiecesConfig
-from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Despawn
+from hrc_drake.workpieces.messages import ROBOT_HOLDER, Attach, Despawn, Detach
 from tests.workpieces.workpieces_rig import (
     BELT_TOP,
     CONVEYOR_Y,
@@ -18,6 +19,7 @@ from tests.workpieces.workpieces_rig import (
     build_rig,
     carry_to,
     config_with,
+    hands_path,
     part_on_table,
     path,
 )
@@ -178,3 +180,31 @@ def test_a_part_held_just_over_the_queue_end_keeps_the_next_one_back_until_lifte
     lifted = rig.advance(9.0)
     assert x_of(lifted, 2) + PART_LENGTH / 2 == pytest.approx(1.0)
     assert x_of(lifted, 1) + PART_LENGTH / 2 == pytest.approx(1.0 - PART_LENGTH)
+
+
+LEVEL = RollPitchYaw(0.0, 0.0, 0.0)
+
+
+def test_a_part_the_palms_set_down_on_the_belt_rides_once_they_are_out_of_its_way():
+    """Both palms take the front part of the queue off the belt's end, set it down 0.6 m
+    upstream and stay at its ends; then the palm ahead of it lifts away. The part stays
+    where the palms left it while that palm is in its way (it rode into the palm ahead,
+    5.2 cm into it, in a user's palletizing cell), then the belt takes it."""
+    front, z = 1.0 - PART_LENGTH / 2, BELT_TOP + PART_HEIGHT / 2
+    ends = PART_LENGTH / 2 + 0.005
+
+    def palm(side: float, away: float = 0.0):
+        knots = [(0.0, front, z), (0.5, front, z + 0.05), (1.5, 0.4, z + 0.05), (2.0, 0.4, z)]
+        knots += [(3.0, 0.4, z), (3.5, 0.4, z + away)]
+        return path([(t, (x + side * ends, CONVEYOR_Y, h), LEVEL) for t, x, h in knots])
+
+    commands = [(0.2, Attach(seq=1, holder="both_hands", object_id=1, max_mass=3.0))]
+    commands += [(2.1, Detach(seq=2, holder="both_hands"))]
+    config = config_with(objects=[on_belt(front, CONVEYOR_Y)])
+    hands = hands_path(palm(1.0, away=0.3), palm(-1.0))
+    rig = build_rig(config, commands={"human_tree": commands}, hands=hands)
+    waiting = rig.advance(3.0)
+    assert waiting.results_of("human_tree").outcome_of(2) == SUCCEEDED
+    assert (waiting.object(1).support, x_of(waiting, 1)) == ("belt", pytest.approx(0.4))
+    assert x_of(rig.advance(3.1), 1) == pytest.approx(0.4)
+    assert x_of(rig.advance(4.5), 1) > 0.4 + 0.1 * SPEED
