@@ -3,10 +3,11 @@
 A part that fits in one hand and is light is taken with the right hand, the palm on its
 right-hand face and the fingers round it (a thin one: the palm on its top, the forearm
 turned in); anything else with both hands, the palms on the two faces that face the
-person's sides. An attribute `grasp` (`one_hand` or `both_hands`)
-overrides the choice; a `fragile` object always gets both hands. While held, the arms keep
-a carry posture solved for the object's size: as people carry a box, close to the body at
-the waist, the upper arms hanging and the elbows bent (docs/realism.md).
+person's sides (a thin one: on its top beside those faces). An attribute `grasp`
+(`one_hand` or `both_hands`) overrides the choice; a `fragile` object always gets both
+hands. While held, the arms keep a carry posture solved for the object's size: as people
+carry a box, close to the body at the waist, the upper arms hanging and the elbows bent
+(docs/realism.md).
 
 Hand frames: the grasp frame lies just off the palm (skeleton `_frames`), so a grasp frame
 put on a face is a palm touching it, not sinking in. With the arms hanging every hand frame
@@ -22,6 +23,7 @@ import numpy as np
 from pydrake.math import RotationMatrix
 
 from hrc_drake.human.body import FrameTask, HumanBody
+from hrc_drake.human.hand_shape import hand_half_breadth
 from hrc_drake.human.keyed_clips import HOLD, pose_vector
 from hrc_drake.human.messages import BOTH_HANDS, ONE_HAND, Grasp, Hold
 
@@ -89,11 +91,16 @@ straight ahead the forearm turned in to its limit and the trunk bent aside to ro
 the rest: a right hand putting a board into a bin ahead bent the trunk 25 degrees to the
 left, and the free arm went 6 cm into the table beside the person (a user's cell); turned
 in 60 degrees, 16 and clear of it. Further in, the shoulder's rotation reaches its limit
-carrying the part at the waist."""
+carrying the part at the waist. The left hand's are their mirror images (the same for
+palms on an object's sides)."""
+MIRROR = np.diag([1.0, -1.0, 1.0])
+"""The person's left-right mirror (the heading frame's y flipped)."""
 
 
-def facing(heading: float, hand: str) -> RotationMatrix:
-    return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(HAND_AXES[hand])
+def facing(heading: float, hand: str, side: str = "right") -> RotationMatrix:
+    """The `side` hand's frame in the world for the orientation `hand` (a HAND_AXES key)."""
+    axes = HAND_AXES[hand] if side == "right" else MIRROR @ HAND_AXES[hand] @ MIRROR + 0.0
+    return RotationMatrix.MakeZRotation(heading) @ RotationMatrix(axes)
 
 
 FINGERS_DOWN = 0.1
@@ -107,16 +114,18 @@ the frame) stays clear of what the object stands on."""
 
 
 PINCHED_BELOW = 0.03
-"""m: a part taken in one hand that is lower than this is taken from above, the palm down on
-its top and the fingers round its edges. Held from the side, the hand's breadth upright, the
-palm stays GRIP_ABOVE_SUPPORT above what the part stands on: more than 2 cm (the realism
-audit's limit) above a lower part's top (a 1.5 cm circuit board was held 3.5 cm under the
-palm and pushed along beside the hand, a user's cell)."""
+"""m: a part lower than this is taken from above, the palm down on its top and the fingers
+round its edges (both hands: PALM_IN_FROM_EDGE in from its two side faces). Held from the
+side, the hand's breadth upright, the palm stays GRIP_ABOVE_SUPPORT above what the part
+stands on: more than 2 cm (the realism audit's limit) above a lower part's top (a 1.5 cm
+circuit board was held 3.5 cm under the palm and pushed along beside the hand, a user's
+cell; an 8 mm cardboard sheet 4.2 cm under both palms, taken and carried, a user's
+palletizing cell)."""
 
 
 def grip_style(hands: str, height: float) -> str:
     """How the hands take an object this tall (a HAND_AXES key)."""
-    if hands == ONE_HAND and height < PINCHED_BELOW:
+    if height < PINCHED_BELOW:
         return "top_fingers_in"
     return "sides_fingers_down" if height / 2 >= FINGERS_DOWN else "sides_fingers_forward"
 
@@ -191,10 +200,7 @@ def _holding(hands: str, center, heading: float, left, size) -> dict:
     held = np.asarray(center, dtype=float) - palm_back(hands, depth) * toward
     held = held + [0.0, 0.0, grip_lift(hands, height)]
     style = grip_style(hands, height)
-    R = facing(math.atan2(toward[1], toward[0]), style)
-    if style == "top_fingers_in":
-        return {"right": (held, R)}
-    return _on_sides(hands, held, left, width, R)
+    return palms_on(hands, held, left, width, style, math.atan2(toward[1], toward[0]))
 
 
 def reach_target(body: HumanBody, point, heading: float) -> dict:
@@ -210,45 +216,37 @@ def outward(side: str, R: RotationMatrix) -> np.ndarray:
     return (1.0 if side == "left" else -1.0) * R.matrix()[:, 1]
 
 
-def hand_half_breadth(body: HumanBody) -> float:
-    """Half the hand's breadth (its collision box across the palm), from the skeleton."""
-    (hand,) = body.skeleton.body("right_hand").collisions
-    return hand.shape.size[0] / 2
+def spread(palms: dict) -> dict:
+    """The direction from the midpoint of two palms holding an object (side: orientation) to
+    each: outwards for palms facing each other on its side faces; for palms on its top,
+    across it, as their grip turns the hand frames (HAND_AXES). Told apart by whether they
+    face each other, in any frame (in the chest's, a palm on a box's side leans with the
+    trunk: lifted from the floor, one looked as if it were on the box's top)."""
+    if outward("left", palms["left"]) @ outward("right", palms["right"]) < 0.0:
+        return {side: outward(side, R) for side, R in palms.items()}
+    sign = {"left": 1.0, "right": -1.0}
+    return {
+        side: R @ (facing(0.0, "top_fingers_in", side).inverse() @ np.array([0.0, sign[side], 0.0]))
+        for side, R in palms.items()
+    }
 
 
-def hand_below(body: HumanBody, R: RotationMatrix | None, side: str) -> float:
-    """How far the `side` hand reaches below its grasp frame when that has the world
-    orientation `R` (None: any; the farthest, fingers straight down)."""
-    return hand_extent(body, R, (0.0, 0.0, -1.0), side)
+PALM_IN_FROM_EDGE = 0.05
+"""m: two palms on a thin object's top lie this far in from its side faces: the hand (9 cm
+across the palm for the default adult) on it, its heel at the edge."""
 
 
-def hand_extent(body: HumanBody, R: RotationMatrix | None, direction, side: str) -> float:
-    """How far the `side` hand reaches from its grasp frame along the world `direction` (a
-    unit vector) when the frame has the world orientation `R` (None: any orientation). The
-    hands are mirror images: the grasp frame lies off the palm, so a left hand's back is
-    where a right hand's palm would be."""
-    corners = _hand_corners(body, side)
-    if R is None:
-        return float(np.max(np.linalg.norm(corners, axis=1)))
-    return float(np.max(np.asarray(direction) @ (R.matrix() @ corners.T)))
-
-
-@lru_cache(maxsize=16)
-def _hand_corners(body: HumanBody, side: str) -> np.ndarray:
-    """The corners of the `side` hand's collision box in its grasp frame."""
-    (hand,) = body.skeleton.body(f"{side}_hand").collisions
-    q = body.standing_pose()
-    X_GH = body.frame_pose(f"{side}_hand_grasp", q).inverse() @ body.frame_pose(f"{side}_hand", q)
-    half = np.asarray(hand.shape.size) / 2
-    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    return np.array([X_GH @ (np.asarray(hand.shape.xyz) + sign * half) for sign in signs])
-
-
-def _on_sides(hands: str, center, left, width: float, R) -> dict:
-    """The palms PALM_GAP off the faces `width` apart across `left` (one hand: the right)."""
-    half = width / 2 + PALM_GAP
-    right = {"right": (center - left * half, R)}
-    return right if hands == ONE_HAND else {"left": (center + left * half, R), **right}
+def palms_on(hands: str, center, left, width: float, style: str, yaw: float) -> dict:
+    """The palms (grip `style`, the fingers forward along `yaw`) on an object `width`
+    across `left` held at `center`: PALM_GAP off its faces, or on its top, one hand at the
+    centre, two PALM_IN_FROM_EDGE in from those faces (one hand: the right)."""
+    if style == "top_fingers_in" and hands == ONE_HAND:
+        return {"right": (center, facing(yaw, style))}
+    half = width / 2 - PALM_IN_FROM_EDGE if style == "top_fingers_in" else width / 2 + PALM_GAP
+    right = {"right": (center - left * half, facing(yaw, style))}
+    if hands == ONE_HAND:
+        return right
+    return {"left": (center + left * half, facing(yaw, style, "left")), **right}
 
 
 def object_center_in_holder(hold: Hold) -> tuple[float, float, float]:
@@ -347,12 +345,10 @@ def _carry_arms(body: HumanBody, hands: str, size: tuple) -> CarryArms:
         forward = TRUNK_CLEARANCE + depth / 2 - palm_back(hands, depth)
         elbows = body.sizes["shoulder_height"] - body.sizes["upper_arm"]
         z = max(elbows - BELOW_ELBOWS, LOWEST_CARRY + height / 2 + grip_lift(hands, height))
-        R = facing(0.0, "sides_fingers_forward")
-        half = width / 2 + PALM_GAP
-        targets = {
-            "left": (np.array([forward, half, z]), R),
-            "right": (np.array([forward, -half, z]), R),
-        }
+        style = "top_fingers_in" if height < PINCHED_BELOW else "sides_fingers_forward"
+        targets = palms_on(
+            hands, np.array([forward, 0.0, z]), np.array([0.0, 1.0, 0.0]), width, style, 0.0
+        )
     q = pose_vector(body, HOLD)
     free = arm_indices(body, tuple(targets))
     solved = body.solve(q, hand_tasks(targets), free, iterations=100, posture_weight=1e-4)

@@ -26,11 +26,9 @@ from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
     arm_indices,
     facing,
-    hand_below,
-    hand_extent,
-    hand_half_breadth,
     outward,
 )
+from hrc_drake.human.hand_shape import hand_below, hand_extent, hand_half_breadth
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.skeleton import SIDES
 

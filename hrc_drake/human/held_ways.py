@@ -27,12 +27,12 @@ from hrc_drake.human.grasp import (
     arm_indices,
     facing,
     grip_style,
-    hand_below,
-    hand_extent,
     hand_tasks,
     object_center_in_holder,
     outward,
+    spread,
 )
+from hrc_drake.human.hand_shape import hand_below, hand_extent
 from hrc_drake.human.hand_ways import CLEARANCE, LEAVE_AT, Keys, below_the_top
 from hrc_drake.human.keyed_clips import minimum_jerk
 from hrc_drake.human.legs import legs_of
@@ -97,7 +97,8 @@ def _between(start: dict, end: dict, s: float) -> dict:
     a, b = (np.mean([X[side].translation() for side in sides], axis=0) for X in (start, end))
     width = float(np.linalg.norm(start["left"].translation() - start["right"].translation()))
     middle = a + s * (b - a)
-    return {side: (middle + outward(side, R) * width / 2, R) for side, R in turned.items()}
+    across = spread(turned)
+    return {side: (middle + across[side] * width / 2, R) for side, R in turned.items()}
 
 
 def _slerp(a: RotationMatrix, b: RotationMatrix, s: float) -> RotationMatrix:
@@ -442,11 +443,12 @@ def _held_outline(body, carry: CarryArms, heading: float):
     of its outline on the floor (offsets), and how far it reaches below and above."""
     depth, width, height = carry.size
     ahead, aside, below = object_center_in_holder(carry.hold)
-    R = facing(heading, grip_style(carry.hold.hands, height))
-    hand = max(hand_extent(body, R, outward(side, R), side) for side in carry.hands)
-    lowest = max(-below + height / 2, *(hand_below(body, R, side) for side in carry.hands))
+    style = grip_style(carry.hold.hands, height)
+    R = {side: facing(heading, style, side) for side in carry.hands}
+    hand = max(hand_extent(body, R[s], outward(s, R[s]), s) for s in carry.hands)
+    lowest = max(-below + height / 2, *(hand_below(body, R[s], s) for s in carry.hands))
     up = (0.0, 0.0, 1.0)
-    highest = max(below + height / 2, *(hand_extent(body, R, up, side) for side in carry.hands))
+    highest = max(below + height / 2, *(hand_extent(body, R[s], up, s) for s in carry.hands))
     forward = np.array([np.cos(heading), np.sin(heading)])
     left = np.array([-forward[1], forward[0]])
     corners = [

@@ -9,12 +9,10 @@ from hrc_drake.human.body import HumanBody
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import (
     PALM_GAP,
-    hand_below,
-    hand_extent,
-    hand_half_breadth,
     outward,
     release_targets,
 )
+from hrc_drake.human.hand_shape import hand_below, hand_extent, hand_half_breadth
 from hrc_drake.human.hand_ways import EDGE_MARGIN
 from hrc_drake.human.messages import Hold
 

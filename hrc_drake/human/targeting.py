@@ -27,7 +27,8 @@ from hrc_drake.human.aiming import AimedMotion, Unreachable, hands_on, offset_to
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.furniture import Furniture
-from hrc_drake.human.grasp import CarryArms, hand_below, hand_half_breadth
+from hrc_drake.human.grasp import CarryArms
+from hrc_drake.human.hand_shape import hand_below, hand_half_breadth
 from hrc_drake.human.hand_ways import (
     LEAVE_AT,
     Keys,

@@ -659,6 +659,18 @@ def test_a_low_tray_carried_in_both_hands_rolls_with_them():
     assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
 
 
+SHEET_CARRY = Path(__file__).resolve().parent / "cells" / "sheet_carry" / "cell.yaml"
+
+
+def test_a_thin_sheet_carried_in_both_hands_is_held_with_the_palms_on_its_top():
+    """A user's palletizing cell, cut down: an 8 mm cardboard sheet taken off a side table in
+    both hands, carried 2.5 m and put on another. Held from the sides, the hands' edges
+    clear of the table, the palms were 4.2 cm above the sheet from the pick to the put-down
+    (4.5 cm walking). The palms go on its top beside its side faces."""
+    realism = _taken_carried_and_put_down(SHEET_CARRY)
+    assert realism["hand_object_gap"]["max"] <= 0.015, realism["hand_object_gap"]
+
+
 RACK_TRAY = Path(__file__).resolve().parent / "cells" / "rack_tray" / "cell.yaml"
 
 
