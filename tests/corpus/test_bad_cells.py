@@ -597,12 +597,12 @@ CASES = {
             ),
         ],
     ),
-    "a pick of object 1, a sheet on a shelf's board, the arm in the shelf from at ease": person(
+    "a pick of object 1, a tray on a shelf's board, the arm in the shelf from at ease": person(
         '<ActorAnimation animation_name="wave"/>',
         '<ActorMovement target="shelf_front"/><ActorPick object_id="1"/>',
         (
-            "port 'object_id': object 1 (the sheet of workpieces.objects[0]) at (3.00, 0.55, "
-            "1.10), taken where the person stands (location 'shelf_front', ActorMovement at ",
+            "port 'object_id': object 1 (the tray of workpieces.objects[0]) at (3.00, 0.55, "
+            "1.12), taken where the person stands (location 'shelf_front', ActorMovement at ",
             "): the right arm would go ",
             " cm into 'shelf' ",
             "no way to do it from where the person stands",
@@ -612,8 +612,8 @@ CASES = {
             A_SHELF,
             (
                 "safety:\n",
-                "    sheet: {shape: box, size: [0.5, 0.36, 0.008], mass: 0.4, capacity: 4}\n"
-                f"{OBJECTS}    - {{type: sheet, pose: {{translation: [3.0, 0.55, 1.104]}}}}\n"
+                "    tray: {shape: box, size: [0.5, 0.36, 0.04], mass: 0.8, capacity: 4}\n"
+                f"{OBJECTS}    - {{type: tray, pose: {{translation: [3.0, 0.55, 1.12]}}}}\n"
                 "safety:\n",
             ),
             A_SHELF_FRONT,
