@@ -24,11 +24,12 @@ from hrc_drake.motion.timing import TimedPath, polyline_path, spline_path, time_
 from hrc_drake.station import StationSpec
 
 HOLDING = "(with the part the robot holds, kept as clear of the cell as the tool)"
+"""Said of a free-space move that failed with a part held: the tool alone may have made it."""
 AMONG_OBJECTS = (
     "no path to the target keeps the robot out of the objects resting in the cell (one "
     "without them was found): lift what it holds higher over them first, or move them"
 )
-"""Said of a free-space move that failed with a part held: the tool alone may have made it."""
+"""Said of a free-space move only the resting objects kept from its target."""
 ARRIVED = 1e-6
 """Joint distance (rad) below which a target counts as the start: nothing to move."""
 
