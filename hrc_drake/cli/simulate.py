@@ -168,12 +168,12 @@ def _fresh_directory(path: Path) -> Path:
 
 def _print_node_failures(name: str, metrics: dict) -> None:
     """Before anything else: the actions that went wrong, and why."""
-    from hrc_drake.evaluation.metrics import node_failures
+    from hrc_drake.evaluation.metrics import WHY_NODES_FAIL, node_failures
 
     failures = node_failures(metrics.get("bt", {}))
     if failures:
         count = f"{len(failures)} tree node{'s' if len(failures) != 1 else ''}"
-        print(f"{name}: {count} failed (an actor refused or could not carry out a command):")
+        print(f"{name}: {count} failed {WHY_NODES_FAIL}:")
     for line in failures:
         print(f"  {line}")
 

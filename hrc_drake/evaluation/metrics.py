@@ -202,9 +202,16 @@ def bt_metrics(node_statistics: dict | None) -> dict:
     return _rounded_tree(node_statistics or {})
 
 
+WHY_NODES_FAIL = (
+    "(an actor refused or could not carry out a command, "
+    "or a NextObject found only objects with others lying on them)"
+)
+"""The reasons a node gives for failing (`node_failures`), as the run's summary says them."""
+
+
 def node_failures(bt: dict) -> list[str]:
-    """One line per tree node that failed with a reason (an actor refused or failed its
-    command): which node, how often, the first reason; most frequent first."""
+    """One line per tree node that failed with a reason (WHY_NODES_FAIL): which node, how
+    often, the first reason; most frequent first."""
     failed = [
         (counts["failures"], agent, path, counts["first_failure"])
         for agent, nodes in bt.items()

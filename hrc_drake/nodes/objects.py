@@ -85,14 +85,24 @@ class NextObject(ObjectsNode):
 
     def tick(self) -> Status:
         found = self.free_objects_in("area", "filter")
-        if found:
-            under = covered(self.agent.workpieces.objects)
-            found = [obj for obj in found if obj.id not in under]
-        if not found:
+        under = covered(self.agent.workpieces.objects) if found else {}
+        free = [obj for obj in found if obj.id not in under]
+        self.failure_reason = _all_under_others(found, under) if found and not free else ""
+        if not free:
             return Status.FAILURE
-        self.set_output("object_id", found[0].id)
-        self.set_output("pose", Pose(tuple(float(v) for v in found[0].pose.translation())))
+        self.set_output("object_id", free[0].id)
+        self.set_output("pose", Pose(tuple(float(v) for v in free[0].pose.translation())))
         return Status.SUCCESS
+
+
+def _all_under_others(found, under: dict[int, int]) -> str:
+    """Why a NextObject finds none where objects its filter takes lie (a user's tray with
+    parts on it was never taken, and the run said nothing of why)."""
+    pairs = ", ".join(f"object {under[obj.id]} on object {obj.id}" for obj in found)
+    return (
+        f"every object here that the filter takes has another lying on it ({pairs}): "
+        "the one on top is taken first"
+    )
 
 
 class ObjectAttribute(ObjectsNode):

@@ -13,12 +13,13 @@ COVER_OVERLAP = 0.01
 support a piece keeps is what it landed on; boxes that stand side by side touch)."""
 
 
-def covered(objects) -> set[int]:
-    """The ids of the objects another free object lies on."""
+def covered(objects) -> dict[int, int]:
+    """The ids of the objects another free object lies on, each with the id of one lying
+    on it."""
     by_id = {obj.id: obj for obj in objects}
     pairs = [(obj, by_id.get(wp.object_id_of_support(obj.support))) for obj in objects]
     return {
-        below.id
+        below.id: obj.id
         for obj, below in pairs
         if obj.holder is None
         and below is not None

@@ -4,10 +4,12 @@ port in one line (a blackboard entry no one ever sets too); a fault only the run
 the run wrote."""
 
 import json
+from pathlib import Path
 
 import pytest
 
 from hrc_drake.agent_trees import tree_errors
+from hrc_drake.evaluation.metrics import WHY_NODES_FAIL
 from hrc_drake.scenario import load_scenario
 from tests.corpus.corpus_helpers import (
     GOOD_TREE,
@@ -408,9 +410,24 @@ def test_node_failures_come_first_in_the_run_summary(tmp_path, hrc_drake):
     status, stdout, err = hrc_drake("run", scenario, "--out", tmp_path / "run", "--duration", "0.3")
     assert status == 0, err
     first, reason = stdout.splitlines()[:2]
-    assert (
-        first == "corpus: 1 tree node failed (an actor refused or could not carry out a command):"
-    )
+    assert first == f"corpus: 1 tree node failed {WHY_NODES_FAIL}:"
     assert reason.startswith("  robot grip_nothing: failed ")
     assert reason.endswith("first: failed: nothing graspable at the robot's grasp frame")
     assert stdout.splitlines()[2].startswith("corpus: simulated 0.3 s")
+
+
+TRAY_WITH_PARTS = Path(__file__).parents[1] / "human" / "cells" / "tray_with_parts" / "cell.yaml"
+
+
+def test_a_tray_with_parts_on_it_is_never_found_and_the_run_says_why(tmp_path, hrc_drake):
+    """A user's tray with two parts lying on it, to be carried away: the person's NextObject
+    never offers it (the one on top is taken first), and the run said nothing of why."""
+    status, stdout, err = hrc_drake("run", TRAY_WITH_PARTS, "--out", tmp_path / "run")
+    assert status == 0, err
+    first, reason = stdout.splitlines()[:2]
+    assert first == f"tray_with_parts: 1 tree node failed {WHY_NODES_FAIL}:"
+    assert reason.startswith("  human NextObject::2: failed ")
+    assert reason.endswith(
+        "first: every object here that the filter takes has another lying on it (object 3 on "
+        "object 1): the one on top is taken first"
+    )

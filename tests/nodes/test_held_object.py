@@ -206,3 +206,27 @@ def test_a_pick_keeps_the_arms_out_of_a_box_the_stopped_robot_holds_over_it(spee
     )
     names = _nearby_told('<ActorPick object_id="1"/>', (taken, hanging), 0.0)
     assert names == (["material 2 the robot holds"] if kept else []), names
+
+
+def test_next_object_says_why_it_offers_none_where_every_one_has_another_on_it():
+    """A user's tray with parts lying on it: the NextObject for the tray failed every tick,
+    and the run said nothing of why. Its failure now names what lies on what; a later
+    failure for want of any tray says nothing (a tree polling an empty area is no mistake)."""
+    tray = replace(_material(1, (1.0, 0.0, 0.94)), type="tray")
+    part = _material(2, (1.02, 0.0, 1.02), support=wp.object_support(1))
+    xml = (
+        '<root BTCPP_format="4"><BehaviorTree ID="Main">'
+        '<NextObject area="-9,-9;9,-9;9,9;-9,-9;9,9;-9,9" filter="type=tray" object_id="{id}"/>'
+        "</BehaviorTree></root>"
+    )
+    agent = Agent("human", Places())
+    agent.statuses["workpieces"] = wp.WorkpiecesStatus(0.0, (tray, part), {}, {})
+    tree = load_tree(xml, hrc_registry(), agent=agent)
+    (node,) = tree.node_list
+    assert tree.tick(0.0) is Status.FAILURE
+    assert node.failure_reason == (
+        "every object here that the filter takes has another lying on it (object 2 on "
+        "object 1): the one on top is taken first"
+    )
+    agent.statuses["workpieces"] = wp.WorkpiecesStatus(0.1, (part,), {}, {})
+    assert tree.tick(0.1) is Status.FAILURE and node.failure_reason == ""
