@@ -56,7 +56,8 @@ class MotionPlanner:
         `person_xy`, the person standing there is an obstacle for this plan. A free-space
         move keeps `held`, what the tool holds, as clear of the cell as the tool, and the
         robot out of the resting `objects` on its way (not at its ends); a linear move takes
-        a part off or sets it down on what it rests on, as the tree tells it. A held
+        a part off or sets it down on what it rests on, as the tree tells it, and neither
+        ends deeper in a resting object than a touch. A held
         part still on (or near) what it was taken off fails at once, where the arm alone is
         clear (the path search says when it is not), and says how to go on."""
         if person_xy is not None:
@@ -72,7 +73,7 @@ class MotionPlanner:
                 )
             with self.model.person_obstacle(person_xy, self.options.person_radius):
                 try:
-                    return self._plan(command, q_start, objects)
+                    return self._plan(command, q_start, objects, held)
                 except PlanningFailed as failure:
                     if carried is None:
                         raise
@@ -91,12 +92,15 @@ class MotionPlanner:
                 "(collision with the person)"
             )
 
-    def _plan(self, command, q_start, objects) -> TimedPath | None:
+    def _plan(self, command, q_start, objects, held) -> TimedPath | None:
         q_start = np.asarray(q_start, dtype=float)
         rng = np.random.default_rng(self.seed)
         if isinstance(command, MoveLinear):
             waypoints = self._linear(command, q_start)
-            return self._timed(spline_path(waypoints)) if len(waypoints) > 1 else None
+            if len(waypoints) < 2:
+                return None
+            self._check_ends_among(objects, q_start, waypoints[-1], held)
+            return self._timed(spline_path(waypoints))
         q_goal = self._goal(command, q_start, rng, objects)
         if np.linalg.norm(q_goal - q_start) < ARRIVED:
             return None
@@ -112,6 +116,13 @@ class MotionPlanner:
         if kept and self._waypoints(q_start, q_goal, rng) is not None:
             raise PlanningFailed(AMONG_OBJECTS)
         raise PlanningFailed("no collision-free path to the target was found")
+
+    def _check_ends_among(self, objects, q_start, q_goal, held) -> None:
+        """A linear move ends on what it takes or sets down, not in it: PlanningFailed where
+        the robot, or the part it holds, would end deeper in a resting object than a touch
+        (a user's RobotMoveLinear set a part 4.5 cm into the one lying on the table)."""
+        with self.model.holding(held), self.model.among(objects, q_start, q_goal):
+            pass
 
     def _waypoints(self, q_start, q_goal, rng):
         return collision_free_waypoints(self.model, q_start, q_goal, rng, self.options.search_nodes)

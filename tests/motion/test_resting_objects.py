@@ -13,7 +13,7 @@ import pytest
 from pydrake.math import RigidTransform
 
 from hrc_drake.motion.errors import PlanningFailed
-from hrc_drake.motion.messages import MoveTo
+from hrc_drake.motion.messages import MoveLinear, MoveTo
 from hrc_drake.motion.model import RestingObject
 from hrc_drake.motion.options import MotionOptions
 from hrc_drake.motion.planner import MotionPlanner
@@ -81,6 +81,21 @@ def test_a_target_that_puts_the_held_part_into_a_crate_is_refused(planner):
         planner.plan(MoveTo(seq=1, pose=into), start, held=PART, objects=(CRATE,))
 
 
+def test_a_linear_set_down_ends_on_the_crate_not_in_it(planner):
+    """A RobotMoveLinear sets the part down on the crate's top (touching it) as the tree
+    tells it; one 5 cm lower would leave it in the crate (a user's tree set a part 4.5 cm
+    into the one lying on the table, and the run let it): refused, naming the crate."""
+    start = posture(planner, *BOX_AT[:1], BOX_TOP + SIZE[2] + 0.05)
+    on_it = RigidTransform(DOWN, [BOX_AT[0], BOX_AT[1], BOX_TOP + SIZE[2]])
+    put = planner.plan(MoveLinear(seq=1, pose=on_it), start, held=PART, objects=(CRATE,))
+    assert planner.model.tool_pose(put.end).translation() == pytest.approx(
+        on_it.translation(), abs=1e-3
+    )
+    into = RigidTransform(DOWN, [BOX_AT[0], BOX_AT[1], BOX_TOP + SIZE[2] - 0.05])
+    with pytest.raises(PlanningFailed, match="would be 5.0 cm into crate 2 resting there"):
+        planner.plan(MoveLinear(seq=2, pose=into), start, held=PART, objects=(CRATE,))
+
+
 def test_a_move_the_objects_block_says_they_are_why(planner):
     """With a search too small to go round the crate, the failure names the objects: the
     same move among the cell alone is the straight line."""
@@ -114,3 +129,19 @@ def test_a_carton_is_turned_to_fit_beside_its_neighbour(tmp_path, hrc_drake):
     report = json.loads((tmp_path / "run" / "report.json").read_text())
     assert report["realism"]["penetration_carried"]["max"] <= 0.01
     assert report["bt"]["robot"]["RobotRelease::13"]["successes"] == 1
+
+
+def test_a_linear_set_down_onto_a_part_lying_there_is_refused(tmp_path, hrc_drake):
+    """A user's tree sets its part down with a RobotMoveLinear 4.5 cm too low, where another
+    part lies: the run set it 4.5 cm into that part (the audit: part 1 in part 2). Now the
+    move is refused, naming the part, and nothing goes into anything."""
+    cell = CELLS / "set_down_into_a_part" / "cell.yaml"
+    status, _, err = hrc_drake("run", cell, "--out", tmp_path / "run")
+    assert status == 0, err
+    report = json.loads((tmp_path / "run" / "report.json").read_text())
+    assert report["realism"]["penetration_carried"]["max"] <= 0.01
+    put = report["bt"]["robot"]["RobotMoveLinear::7"]
+    assert put["first_failure"] == (
+        "failed: at the target the robot (or the part it holds) would be 4.5 cm into part 2 "
+        "resting there (limit 1 cm): move or turn the target"
+    )
