@@ -235,18 +235,32 @@ class Check:
         """`body in the cell's geometry 34.0 cm (limit 1 cm): pelvis in work_table at 36.2 s`"""
         description, unit = MEASURES[self.measure]
         return (
-            f"{description} {_amount(self.worst, unit, 1)} "
+            f"{description} {_amount(self.worst, unit, self._decimals(unit))} "
             f"(limit {_amount(self.limit, unit, 0)}): {self.where}"
         )
 
+    def _decimals(self, unit: str) -> int:
+        """One decimal, or as many more as show a worst value beyond its limit as beyond it
+        (a hand 1.04 cm into a rack was printed "1.0 cm (limit 1 cm)", a user's cell)."""
+        scale = SHOWN_AS[unit][0]
+        decimals = 1
+        while (
+            not self.within
+            and decimals < 3
+            and round(scale * self.worst, decimals) <= (scale * self.limit)
+        ):
+            decimals += 1
+        return decimals
+
+
+SHOWN_AS = {"m": (100, " cm"), "deg": (1, "°"), "fraction": (100, " %")}
+"""Each unit as a reader pictures it at this scale: centimetres, degrees or per cent (the
+factor from report.json's unit, the suffix)."""
+
 
 def _amount(value: float, unit: str, decimals: int) -> str:
-    """Centimetres, degrees or per cent: what a reader pictures at this scale."""
-    if unit == "m":
-        return f"{100 * value:.{decimals}f} cm"
-    if unit == "deg":
-        return f"{value:.{decimals}f}°"
-    return f"{100 * value:.{decimals}f} %"
+    scale, suffix = SHOWN_AS[unit]
+    return f"{scale * value:.{decimals}f}{suffix}"
 
 
 def realism_checks(metrics: dict) -> list[Check]:

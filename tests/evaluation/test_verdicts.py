@@ -53,6 +53,16 @@ def test_the_verdict_leads_with_the_measure_farthest_beyond_its_limit():
     ]
 
 
+def test_a_measure_just_over_its_limit_is_shown_over_it():
+    """A user's hand 1.04 cm into a rack was printed "1.0 cm (limit 1 cm)" as the worst of
+    the measures over their limits: the figure shows as many decimals as it takes."""
+    just_over = realism(penetration_static=(0.01045, 42.0, "right_hand in flow_rack"))
+    assert realism_verdict(just_over) == [
+        "1 of 7 measures over their limits; worst: body in the cell's geometry 1.04 cm "
+        "(limit 1 cm): right_hand in flow_rack at 42.0 s"
+    ]
+
+
 def test_within_the_limits_says_so_and_without_a_person_nothing():
     at_limits = realism(**{name: (limit, 1.0, "x") for name, limit in LIMITS.items()})
     assert realism_verdict(at_limits) == ["within its limits (7 measures)"]
