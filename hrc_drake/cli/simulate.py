@@ -278,13 +278,19 @@ def _stopped_line(utilisation: dict) -> list[str]:
     ]
 
 
+def _per_hour(rate: float) -> str:
+    """An hourly rate to three figures, whole from 100 on ("51.4", not "51.4286": a
+    user's 70 s run)."""
+    return f"{rate:.0f}" if rate >= 100 else f"{rate:.3g}"
+
+
 def key_metrics(metrics: dict) -> list[str]:
     """The figures a user looks at first: output, safety, how much the robot was slowed,
     and whether the person moved as a person does (the realism audit)."""
     from hrc_drake.evaluation.realism import realism_verdict
 
     lines = [
-        f"{name}: {count} ({metrics['tasks']['throughput_per_hour'][name]:g}/h)"
+        f"{name}: {count} ({_per_hour(metrics['tasks']['throughput_per_hour'][name])}/h)"
         for name, count in metrics.get("tasks", {}).get("events", {}).items()
     ]
     safety = metrics.get("safety") or {}

@@ -103,6 +103,14 @@ def test_the_run_summary_prints_the_verdict():
     assert key_metrics({"realism": realism()}) == ["realism: within its limits (7 measures)"]
 
 
+def test_the_run_summary_gives_hourly_rates_to_three_figures():
+    """A user's 70 s run printed "call: 1 (51.4286/h)"."""
+    events = {"call": 1, "part": 30, "rare": 1}
+    per_hour = {"call": 360 / 7, "part": 30 * 360 / 7, "rare": 0.123456}
+    lines = key_metrics({"tasks": {"events": events, "throughput_per_hour": per_hour}})
+    assert lines == ["call: 1 (51.4/h)", "part: 30 (1543/h)", "rare: 1 (0.123/h)"]
+
+
 def row(seed: int, events: dict, margin: float | None, section: dict) -> dict:
     """A sweep's row of a successful run: its task events, margin and realism audit."""
     metrics = {
