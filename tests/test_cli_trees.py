@@ -110,3 +110,31 @@ def _scenario_with_trees(tmp_path, robot_tree) -> Path:
         + f"trees:\n  robot: {{file: {robot_tree}}}\n"
     )
     return scenario
+
+
+def test_list_names_the_shared_subtrees_and_a_users_cell_includes_a_copy(tmp_path):
+    """A user's cell used the bundled CallPersonAndWait by including it by the absolute path
+    of a checkout: `list` now says where the shared SubTrees are and how to use them, and a
+    copy included as it says is what validate loads."""
+    listed = hrc_drake("list").stdout.splitlines()
+    (heading,) = [line for line in listed if line.startswith("shared SubTrees (in ")]
+    common = Path(heading.removeprefix("shared SubTrees (in ").split(";")[0])
+    assert (
+        "  call_person.xml    CallPerson, CallPersonAndWait," in listed[listed.index(heading) + 1]
+    )
+    (tmp_path / "common").mkdir()
+    (tmp_path / "common" / "call_person.xml").write_text((common / "call_person.xml").read_text())
+    cell = ROOT / "tests" / "motion" / "cells" / "set_down_into_a_part"
+    for name in ("cell.yaml", "human.xml"):
+        (tmp_path / name).write_text((cell / name).read_text())
+    (tmp_path / "robot.xml").write_text(
+        '<root BTCPP_format="4" main_tree_to_execute="Robot">\n'
+        '  <include path="common/call_person.xml"/>\n'
+        '  <BehaviorTree ID="Robot">\n'
+        '    <SubTree ID="CallPersonAndWait" reason="help"/>\n'
+        "  </BehaviorTree>\n"
+        "</root>\n"
+    )
+    result = hrc_drake("validate", tmp_path / "cell.yaml")
+    assert result.returncode == 0, result.stderr
+    assert "trees robot: robot.xml" in result.stdout

@@ -141,7 +141,27 @@ def _list(args) -> int:
             f"  {name:16s} payload {variant.payload:g} kg, reach {variant.reach:g} m, "
             f"{variant.total_mass:g} kg"
         )
+    _list_shared_subtrees()
     return 0
+
+
+def _list_shared_subtrees() -> None:
+    """The bundled trees' shared SubTrees, by file: a cell of a user's own copies the file
+    into a folder beside its trees and includes it (a user's cell included them by the
+    absolute path of a checkout; `common/robot.xml` beside a cell's own `robot.xml` would
+    take its name)."""
+    from xml.etree import ElementTree
+
+    from hrc_drake.paths import resource_dir
+
+    common = resource_dir("trees") / "common"
+    print(
+        f"shared SubTrees (in {common}; copy a file into a folder common/ beside your trees "
+        'and <include path="common/FILE"/> it):'
+    )
+    for path in sorted(common.glob("*.xml")):
+        ids = [tree.get("ID") for tree in ElementTree.parse(path).getroot().iter("BehaviorTree")]
+        print(f"  {path.name:18s} {', '.join(ids)}")
 
 
 def _list_nodes(xml_file: str | None) -> int:
