@@ -112,7 +112,7 @@ class RealismAudit(LeafSystem):
     def _sample(self, context, state) -> EventStatus:
         objects = value_or_none(self._objects, context)
         person = self._person(context) if self.scene.body is not None else None
-        if person is None if self.scene.body is not None else objects is None:
+        if self._nothing_yet(person, objects):
             return EventStatus.DidNothing()
         record = Recorded(
             earlier=self._recorded(context),
@@ -122,6 +122,13 @@ class RealismAudit(LeafSystem):
         )
         state.get_mutable_abstract_state(self._record).set_value(record)
         return EventStatus.Succeeded()
+
+    def _nothing_yet(self, person: PersonPose | None, objects) -> bool:
+        """Before the person's first pose (in a cell with one) or the objects' first status
+        (in a cell without)."""
+        if self.scene.body is not None:
+            return person is None
+        return objects is None
 
     def _person(self, context) -> PersonPose | None:
         """The person's pose (None before their first: nothing to record yet)."""

@@ -145,8 +145,8 @@ def _had_a_move(times: np.ndarray, robot_modes: list) -> np.ndarray:
     not idle): a stop costs production only then. A robot whose tree waited the whole run
     was "stopped 100 % of the run" with the person beside it, as if they held it up (#26)."""
     changes = np.array([t for t, _ in robot_modes])
+    # busy[k]: from the k-th change on (busy[0]: before the first, when nothing was known)
     busy = np.array([False] + [mode != IDLE for _, mode in robot_modes])
-    """Whether it was busy from each change on (and not before the first)."""
     return busy[np.searchsorted(changes, times, side="right")]
 
 
