@@ -5,8 +5,9 @@ controller and RobotMotion; the kinematic person (HumanActor); the Workpieces; t
 SafetyMonitor; one BehaviorTreeSystem per agent; SceneGraph; and, when asked, a Meshcat
 visualizer with the ReplayRecorder that replay.html is made from. Each part is present when
 the scenario asks for it: no `human:` section, no person and no monitor; no workpiece types,
-no Workpieces; no `trees:`, no behavior trees. Which tree commands which actor, and the
-names of every port and system, come from `hrc_drake.wiring`.
+no Workpieces (and with neither, no realism audit); no `trees:`, no behavior trees. Which
+tree commands which actor, and the names of every port and system, come from
+`hrc_drake.wiring`.
 
 One SceneGraph, the world scene named `scene_graph`: a kinematic mirror of the robot and
 cell (posed from the plant's state), the person and the workpieces. The safety monitor,
@@ -19,7 +20,8 @@ Command inputs that no tree drives are exported as `<system>.<port>` (e.g.
 Outputs are exported by name: `robot_state`, `robot_status`, `robot_desired_state`,
 `robot_desired_acceleration`,
 `query_object`, `body_poses`, and when present `human_status`, `workpieces_status`,
-`safety_status`, `safety_signals`, `realism` (the person's realism audit),
+`safety_status`, `safety_signals`, `realism` (the realism audit: the person's and the
+objects', or the objects' alone in a cell without a person),
 `<agent>_tree_status`, `<agent>_task_events`.
 
 Whoever needs more of the station than its exported ports (the runner's loggers and tree
@@ -43,7 +45,7 @@ from hrc_drake.evaluation.replay_sensors import draw_sensors
 from hrc_drake.human.clip_files import clip_catalog
 from hrc_drake.human.navigation import cell_navigation, cell_obstacles
 from hrc_drake.iisy import TCP_FRAME, VARIANTS
-from hrc_drake.scenario import Scenario
+from hrc_drake.scenario import HumanConfig, Scenario
 from hrc_drake.seeding import stream
 from hrc_drake.station import add_station_models, make_dynamic_plant, model_parser
 from hrc_drake.systems.adapters import add_human_hands
@@ -297,22 +299,20 @@ def _add_sensors(builder, scene_graph, mirror, human_plant, safety, scenario):
 
 
 def _add_audit(builder, scene_graph, mirror, human, human_plant, workpieces, scenario):
-    """The realism audit of the person, sampled at every `audit_every`-th of the person's
-    poses."""
-    if human is None:
+    """The realism audit, sampled at every `audit_every`-th of the person's poses; in a cell
+    without a person, of the objects alone (at a default person's rate), when it has any."""
+    if human is None and workpieces is None:
         return None
     solids = workpieces.cell.solids() if workpieces is not None else {}
     return add_realism_audit(
         builder,
         scene_graph,
         mirror,
-        human_plant,
-        human_plant.GetModelInstanceByName(HUMAN_MODEL),
         human,
+        human_plant,
         workpieces,
         solids,
-        period=human.period * scenario.human.audit_every,
-        stride_time=human.stride_time,
+        period=(scenario.human or HumanConfig()).audit_period,
     )
 
 

@@ -1,8 +1,10 @@
 """RealismAudit: records the person and the objects during the run; its `realism` output
-is the realism audit of what it recorded, worked out when it is read (after the run).
+is the realism audit of what it recorded, worked out when it is read (after the run). In a
+cell with objects and no person it records the objects alone, and audits what the robot
+holds (a part it sets into another went unmeasured in a robot-only cell, #26).
 
-Inputs: `human_status` (HumanStatus), `human_positions` (the person's plant's joint
-positions) and `workpieces_status` (optional). Output `realism`
+Inputs: `human_status` (HumanStatus) and `human_positions` (the person's plant's joint
+positions), in a cell with a person, and `workpieces_status` (optional). Output `realism`
 (hrc_drake.evaluation.realism.AuditState), from state only. A periodic unrestricted update
 keeps one sample (references to the immutable statuses and a copy of the joint positions);
 its period is a multiple of the person's (`human.audit_every`), so every sample is one of
@@ -27,13 +29,27 @@ from pydrake.systems.framework import EventStatus, LeafSystem
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.ports import message_value, value_or_none
-from hrc_drake.safety.geometry import bounding_segment, human_parts
 from hrc_drake.scene_geometry import static_geometry
-from hrc_drake.wiring import REALISM_AUDIT
+from hrc_drake.systems.audited_body import AuditedBody
+from hrc_drake.wiring import HUMAN_MODEL, REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid, moved
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
 
 HOLDING_HANDS = {LEFT_HAND: ("left",), RIGHT_HAND: ("right",), BOTH_HANDS: SIDES}
+
+
+@dataclass(frozen=True, eq=False)
+class PersonPose:
+    """The person at a sampled instant."""
+
+    pose_time: float
+    """When the person took the pose (their last update)."""
+    pelvis: tuple[float, float]
+    walking: bool
+    hands: dict[str, tuple[float, ...]]
+    """Each hand's grasp point (x, y, z, then its orientation) by side."""
+    positions: np.ndarray
+    """The person's plant's joint positions, which the world scene poses the person from."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,16 +60,10 @@ class Recorded:
 
     earlier: "Recorded | None"
     time: float
-    pose_time: float
-    """When the person took the pose (their last update)."""
-    pelvis: tuple[float, float]
-    walking: bool
-    hands: dict[str, tuple[float, ...]]
-    """Each hand's grasp point (x, y, z, then its orientation) by side."""
-    positions: np.ndarray
-    """The person's plant's joint positions, which the world scene poses the person from."""
     objects: tuple
     """The objects' statuses (hrc_drake.workpieces.messages.ObjectStatus)."""
+    person: PersonPose | None
+    """None in a cell without a person."""
 
     def __deepcopy__(self, memo):
         return self
@@ -77,14 +87,18 @@ class Recorded:
 class RealismAudit(LeafSystem):
     """Records the person and the objects at the audit's rate (see the module docstring)."""
 
-    def __init__(self, scene: "AuditScene", period: float, stride_time: float):
+    def __init__(self, scene: "AuditScene", period: float, stride_time: float | None):
         super().__init__()
         self.period = period
         self.scene = scene
         self._stride_time = stride_time
-        self._last_audit: tuple[Recorded | None, AuditState] = (None, AuditState())
-        self._human = self.DeclareAbstractInputPort("human_status", message_value())
-        self._positions = self.DeclareVectorInputPort("human_positions", scene.num_positions)
+        self._blank = AuditState(person=scene.body is not None)
+        self._last_audit: tuple[Recorded | None, AuditState] = (None, self._blank)
+        if scene.body is not None:
+            self._human = self.DeclareAbstractInputPort("human_status", message_value())
+            self._positions = self.DeclareVectorInputPort(
+                "human_positions", scene.body.num_positions
+            )
         self._objects = self.DeclareAbstractInputPort("workpieces_status", message_value())
         self._record = self.DeclareAbstractState(message_value())
         self.DeclarePeriodicUnrestrictedUpdateEvent(period, 0.0, self._sample)
@@ -96,22 +110,38 @@ class RealismAudit(LeafSystem):
         )
 
     def _sample(self, context, state) -> EventStatus:
-        status = value_or_none(self._human, context)
-        if status is None or not status.left_hand:
-            return EventStatus.DidNothing()
         objects = value_or_none(self._objects, context)
+        person = self._person(context) if self.scene.body is not None else None
+        if self._nothing_yet(person, objects):
+            return EventStatus.DidNothing()
         record = Recorded(
             earlier=self._recorded(context),
             time=context.get_time(),
+            objects=objects.objects if objects is not None else (),
+            person=person,
+        )
+        state.get_mutable_abstract_state(self._record).set_value(record)
+        return EventStatus.Succeeded()
+
+    def _nothing_yet(self, person: PersonPose | None, objects) -> bool:
+        """Before the person's first pose (in a cell with one) or the objects' first status
+        (in a cell without)."""
+        if self.scene.body is not None:
+            return person is None
+        return objects is None
+
+    def _person(self, context) -> PersonPose | None:
+        """The person's pose (None before their first: nothing to record yet)."""
+        status = value_or_none(self._human, context)
+        if status is None or not status.left_hand:
+            return None
+        return PersonPose(
             pose_time=status.time,
             pelvis=tuple(status.base_pose[:2]),
             walking=status.state == "MOVEMENT",
             hands={"left": status.left_hand, "right": status.right_hand},
             positions=self._positions.Eval(context).copy(),
-            objects=objects.objects if objects is not None else (),
         )
-        state.get_mutable_abstract_state(self._record).set_value(record)
-        return EventStatus.Succeeded()
 
     def _recorded(self, context) -> "Recorded | None":
         """The record so far (None before the first sample: the state starts as the message
@@ -125,7 +155,7 @@ class RealismAudit(LeafSystem):
         record = self._recorded(context)
         last, audit = self._last_audit
         if record is None or last is None or not record.holds(last):
-            last, audit = None, AuditState()
+            last, audit = None, self._blank
         for recorded in record.since(last) if record is not None else ():
             audit = audited(audit, self.scene.sample(recorded), self._stride_time)
         self._last_audit = (record, audit)
@@ -134,60 +164,32 @@ class RealismAudit(LeafSystem):
 
 class AuditScene:
     """The world scene's geometry in a context of the audit's own, posed as at a recorded
-    sample: the cell's static geometry as it stands, the person from their joint positions,
-    the objects from their statuses."""
+    sample: the cell's static geometry as it stands, the person (`body`, None without one)
+    from their joint positions, the objects from their statuses."""
 
-    def __init__(self, scene_graph, mirror, human_plant, human_instance, workpieces, solids):
+    def __init__(self, scene_graph, mirror, body: AuditedBody | None, workpieces, solids):
         inspector = scene_graph.model_inspector()
         self._scene_graph = scene_graph
         self._inspector = inspector
         self._mirror = mirror
-        self._plant = human_plant
+        self.body = body
         self._workpieces = workpieces
-        self.num_positions = human_plant.num_positions()
-        self._contexts = None
-        parts = human_parts(human_plant, inspector, human_instance)
-        self._regions = {part.geometry: part.name for part in parts}
-        self._geometries = [part.geometry for part in parts]
+        self._scene = None
         self._static = static_geometry(mirror, inspector)
         self._solids = dict(solids)
         self._object_radii = {name: _bounding_radius(solid) for name, solid in self._solids.items()}
-        bounds = [bounding_segment(inspector.GetShape(g)) for g in self._geometries]
-        self._radii = np.array([radius for _, _, radius in bounds])
-        self._bodies = sorted({self._body_of(g) for g in self._geometries})
-        """The person's bodies that carry collision geometry, by index."""
-        self._rows = [self._bodies.index(self._body_of(g)) for g in self._geometries]
-        self._ends = np.array(
-            [
-                self._in_body(g, np.column_stack(b[:2]))
-                for g, b in zip(self._geometries, bounds, strict=True)
-            ]
-        )
-        """Each region's bounding segment's ends in its body's frame, as the columns of a
-        3 × 2 matrix."""
-        self._soles = {}
-        for side in SIDES:
-            foot = human_plant.GetBodyByName(f"{side}_foot", human_instance)
-            (geometry,) = human_plant.GetCollisionGeometriesForBody(foot)
-            length, _, height = inspector.GetShape(geometry).size()
-            heel_and_toe = [[-length / 2, length / 2], [0.0, 0.0], [-height / 2, -height / 2]]
-            row = self._bodies.index(foot.index())
-            self._soles[side] = (row, self._in_body(geometry, np.array(heel_and_toe)))
         self._last = (None, None, None)
         """(joint positions, objects, what the scene showed) of the last sample posed."""
         self._objects_posed = None
 
-    def _body_of(self, geometry):
-        return self._plant.GetBodyFromFrameId(self._inspector.GetFrameId(geometry)).index()
-
-    def _in_body(self, geometry, points: np.ndarray) -> np.ndarray:
-        """Points (3 × k) of the geometry's frame in its body's."""
-        return _transformed(self._inspector.GetPoseInFrame(geometry), points)
-
     def sample(self, recorded: Recorded) -> Sample:
-        """What the audit sees of the recorded instant."""
+        """What the audit sees of the recorded instant (without a person, only what the
+        robot holds in the cell or another object)."""
+        person = recorded.person
+        static_depths, object_depths, sole_points = (
+            self._seen(recorded) if person is not None else ((), (), {})
+        )
         held = [o for o in recorded.objects if o.holder in PERSON_HOLDERS]
-        static_depths, object_depths, sole_points = self._seen(recorded)
         return Sample(
             time=recorded.time,
             static_depths=static_depths,
@@ -196,8 +198,8 @@ class AuditScene:
             hand_gaps=tuple(gap for o in held for gap in self._hand_gaps(o, recorded)),
             tilts=tuple((_tilt(o.pose), f"{o.type} {o.id}") for o in held),
             sole_points=sole_points,
-            pelvis=(recorded.pose_time, *recorded.pelvis),
-            walking=recorded.walking,
+            pelvis=(person.pose_time, *person.pelvis) if person is not None else None,
+            walking=person is not None and person.walking,
         )
 
     def _seen(self, recorded: Recorded) -> tuple:
@@ -205,34 +207,27 @@ class AuditScene:
         objects stay as they were (the objects' statuses are the same tuple while no object
         moves)."""
         positions, objects, seen = self._last
-        if objects is not recorded.objects or not np.array_equal(positions, recorded.positions):
-            bodies = self._posed_person(recorded.positions)
+        current = recorded.person.positions
+        if objects is not recorded.objects or not np.array_equal(positions, current):
+            bodies = self._posed_person(current)
             free = [o for o in recorded.objects if o.holder not in PERSON_HOLDERS]
             seen = (
                 self._static_depths(),
                 self._object_depths(bodies, recorded, free),
-                self._sole_points(bodies),
+                self.body.sole_points(bodies),
             )
-            self._last = (recorded.positions, recorded.objects, seen)
+            self._last = (current, recorded.objects, seen)
         return seen
 
     def _posed_person(self, positions: np.ndarray) -> np.ndarray:
         """Poses the person in the scene; returns their bodies' world poses (n × 3 × 4)."""
-        if self._contexts is None:
-            self._contexts = self._new_contexts()
-        scene, plant = self._contexts
-        self._plant.SetPositions(plant, positions)
-        self._fix_poses(
-            scene,
-            self._plant.get_source_id(),
-            self._plant.get_geometry_pose_output_port().Eval(plant),
-        )
-        poses = self._plant.get_body_poses_output_port().Eval(plant)
-        return np.array([poses[b].GetAsMatrix34() for b in self._bodies])
+        geometry, bodies = self.body.posed(positions)
+        self._fix_poses(self._scene_context(), self.body.source_id, geometry)
+        return bodies
 
     def _query(self, objects=None):
         """The scene's query object (with `objects`, a sample's objects placed first)."""
-        scene, _ = self._contexts
+        scene = self._scene_context()
         if objects is not None and objects is not self._objects_posed:
             self._fix_poses(scene, self._workpieces.source_id, self._object_poses(objects))
             self._objects_posed = objects
@@ -248,9 +243,11 @@ class AuditScene:
                 poses.set_value(self._inspector.GetFrameId(o.geometry_id), o.pose)
         return poses
 
-    def _new_contexts(self):
-        """The scene's context with the cell posed (the mirror's default pose: the static
-        geometry does not move) and the objects parked, and the person's plant's context."""
+    def _scene_context(self):
+        """The scene's context, made at its first use with the cell posed (the mirror's
+        default pose: the static geometry does not move) and the objects parked."""
+        if self._scene is not None:
+            return self._scene
         scene = self._scene_graph.CreateDefaultContext()
         mirror = self._mirror.CreateDefaultContext()
         poses = self._mirror.get_geometry_pose_output_port().Eval(mirror)
@@ -261,7 +258,8 @@ class AuditScene:
             self._scene_graph.collision_filter_manager(scene).Apply(
                 CollisionFilterDeclaration().AllowBetween(self._workpieces.geometry_set(), static)
             )
-        return scene, self._plant.CreateDefaultContext()
+        self._scene = scene
+        return scene
 
     def _fix_poses(self, scene_context, source, poses: FramePoseVector) -> None:
         self._scene_graph.get_source_pose_port(source).FixValue(scene_context, poses)
@@ -269,11 +267,12 @@ class AuditScene:
     def _static_depths(self) -> tuple:
         """The person's regions in the cell's static geometry (objects are filtered out of
         these contact queries, so where they are does not matter here)."""
+        regions = self.body.regions
         depths = []
         for pair in self._query().ComputePointPairPenetration():
             for own, other in ((pair.id_A, pair.id_B), (pair.id_B, pair.id_A)):
-                if own in self._regions and other in self._static:
-                    depths.append((pair.depth, f"{self._regions[own]} in {self._static[other]}"))
+                if own in regions and other in self._static:
+                    depths.append((pair.depth, f"{regions[own]} in {self._static[other]}"))
         return tuple(depths)
 
     def _object_depths(self, bodies: np.ndarray, recorded: Recorded, objects) -> tuple:
@@ -281,22 +280,22 @@ class AuditScene:
         near = [o for o in objects if o.geometry_id is not None]
         if not near:
             return ()
-        posed = bodies[self._rows]
-        ends = np.einsum("nij,njk->nki", posed[:, :, :3], self._ends) + posed[:, None, :, 3]
+        body = self.body
+        ends = body.segment_ends(bodies)
         centers = np.array([o.pose.translation() for o in near])
-        reach = self._radii[:, None] + np.array([self._object_radii[o.type] for o in near])
+        reach = body.radii[:, None] + np.array([self._object_radii[o.type] for o in near])
         close = _point_segment_distances(centers, ends[:, 0], ends[:, 1]) <= reach
         if not close.any():
             return ()
         query = self._query(recorded.objects)
         depths = []
         for i, k in zip(*np.nonzero(close), strict=True):
-            obj, geometry = near[k], self._geometries[i]
+            obj, geometry = near[k], body.geometries[i]
             distance = query.ComputeSignedDistancePairClosestPoints(
                 geometry, obj.geometry_id
             ).distance
             if distance < 0:
-                depths.append((-distance, f"{self._regions[geometry]} in {obj.type} {obj.id}"))
+                depths.append((-distance, f"{body.regions[geometry]} in {obj.type} {obj.id}"))
         return tuple(depths)
 
     def _carried_depths(self, recorded: Recorded) -> tuple:
@@ -330,8 +329,9 @@ class AuditScene:
         """Each holding hand's distance to the object's surface, both at the time of the
         person's pose (the object's pose moved back to it along its velocity)."""
         solid = self._solids[obj.type]
-        X_OW = moved(obj.pose, obj.velocity, recorded.pose_time - recorded.time).inverse()
-        hands = recorded.hands
+        person = recorded.person
+        X_OW = moved(obj.pose, obj.velocity, person.pose_time - recorded.time).inverse()
+        hands = person.hands
         return [
             (
                 abs(solid.signed_distance_to(X_OW @ np.array(hands[side][:3]))),
@@ -339,21 +339,6 @@ class AuditScene:
             )
             for side in HOLDING_HANDS[obj.holder]
         ]
-
-    def _sole_points(self, bodies: np.ndarray) -> dict[str, np.ndarray]:
-        points = {}
-        for side, (row, heel_and_toe) in self._soles.items():
-            heel, toe = (bodies[row, :, :3] @ heel_and_toe + bodies[row, :, 3:]).T
-            points[f"{side}_heel"] = heel
-            points[f"{side}_toe"] = toe
-        return points
-
-
-def _transformed(X, points: np.ndarray) -> np.ndarray:
-    """X @ points (3 × k) in numpy: RigidTransform's own @ passes through pydrake's Python
-    shape-matching wrapper, a fifth of the audit's time."""
-    m = X.GetAsMatrix34()
-    return m[:, :3] @ points + m[:, 3:]
 
 
 def _tilt(X_WO) -> float:
@@ -376,23 +361,21 @@ def _point_segment_distances(points, starts, ends) -> np.ndarray:
 
 
 def add_realism_audit(
-    builder,
-    scene_graph,
-    mirror,
-    human_plant,
-    human_instance,
-    human,
-    workpieces,
-    solids,
-    period,
-    stride_time,
+    builder, scene_graph, mirror, human, human_plant, workpieces, solids, period
 ) -> RealismAudit:
-    """Adds the audit named `realism_audit`, recording the person and the workpieces (when
-    there are any), and auditing them in the world scene's geometry."""
-    scene = AuditScene(scene_graph, mirror, human_plant, human_instance, workpieces, solids)
+    """Adds the audit named `realism_audit`, recording the person (`human` and their
+    `human_plant`, None without one) and the workpieces (when there are any), and auditing
+    them in the world scene's geometry."""
+    body, stride_time = None, None
+    if human is not None:
+        instance = human_plant.GetModelInstanceByName(HUMAN_MODEL)
+        body = AuditedBody(human_plant, scene_graph.model_inspector(), instance)
+        stride_time = human.stride_time
+    scene = AuditScene(scene_graph, mirror, body, workpieces, solids)
     audit = builder.AddNamedSystem(REALISM_AUDIT, RealismAudit(scene, period, stride_time))
-    builder.Connect(human.GetOutputPort("human_status"), audit.GetInputPort("human_status"))
-    builder.Connect(human.GetOutputPort("human_positions"), audit.GetInputPort("human_positions"))
+    if human is not None:
+        for port in ("human_status", "human_positions"):
+            builder.Connect(human.GetOutputPort(port), audit.GetInputPort(port))
     if workpieces is not None:
         builder.Connect(
             workpieces.GetOutputPort("workpieces_status"), audit.GetInputPort("workpieces_status")

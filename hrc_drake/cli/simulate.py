@@ -265,16 +265,17 @@ def _margin_line(margin: dict) -> str:
 
 
 def _stopped_line(utilisation: dict) -> list[str]:
-    """A hint when the robot stood stopped for most of the run: where the person stood
-    then (a person who waits there for the robot keeps it stopped: a user's cell stood
-    still 95 % of its run, and the summary gave no hint why)."""
+    """A hint when the robot stood stopped with a move to make for most of the run: where
+    the person stood then (a person who waits there for the robot keeps it stopped: a user's
+    cell stood still 95 % of its run, and the summary gave no hint why). Stopped with
+    nothing to do, it lost nothing, and nothing is said."""
     place = utilisation.get("stopped_with_person_at")
     if utilisation.get("stopped", 0.0) < MOSTLY_STOPPED or place is None:
         return []
     return [
-        f"the robot was stopped {100 * utilisation['stopped']:.0f} % of the run, the person "
-        f"near it, most of that time at ({place[0]:.2f}, {place[1]:.2f}): a person who waits "
-        "there for the robot keeps it stopped"
+        f"the robot was stopped {100 * utilisation['stopped']:.0f} % of the run with a move "
+        f"to make, the person near it, most of that time at ({place[0]:.2f}, {place[1]:.2f}): "
+        "a person who waits there for the robot keeps it stopped"
     ]
 
 

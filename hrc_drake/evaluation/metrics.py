@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from hrc_drake.messages import TaskEvent
+from hrc_drake.motion.messages import IDLE
 from hrc_drake.safety.log import signal
 from hrc_drake.safety.messages import ContactRecord, SafetyStatus, ViolationEpisode
 from hrc_drake.safety.ssm import ZONES
@@ -116,14 +117,19 @@ def _contact(record: ContactRecord) -> dict:
     }
 
 
-def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: float) -> dict:
-    """Fractions of the run the robot moved, waited (still, not stopped) or was stopped, and
-    where the person stood most of the time it was stopped (`stopped_with_person_at`)."""
+def utilisation_metrics(
+    times: np.ndarray, signals: np.ndarray, moving_speed: float, robot_modes: list
+) -> dict:
+    """Fractions of the run the robot moved, waited (still, and not stopped with a move to
+    make) or was stopped by the safety function with a move under way or pending, and where
+    the person stood most of the time it was stopped (`stopped_with_person_at`).
+    `robot_modes` are RobotMotion's (time, mode) changes."""
     if times.size < 2:
         return {}
     dt = np.diff(times)
     moving = signal(signals, "robot_speed")[:-1] > moving_speed
-    stopped = (signal(signals, "zone")[:-1] == ZONES.index("stopped")) & ~moving
+    held = signal(signals, "zone")[:-1] == ZONES.index("stopped")
+    stopped = held & ~moving & _had_a_move(times[:-1], robot_modes)
     total = dt.sum()
     fractions = {
         "moving": rounded(dt[moving].sum() / total),
@@ -132,6 +138,16 @@ def utilisation_metrics(times: np.ndarray, signals: np.ndarray, moving_speed: fl
     }
     place = _most_stood_at(dt, stopped, signals)
     return fractions if place is None else {**fractions, "stopped_with_person_at": place}
+
+
+def _had_a_move(times: np.ndarray, robot_modes: list) -> np.ndarray:
+    """At each of `times`, whether the robot had a move under way or pending (its mode was
+    not idle): a stop costs production only then. A robot whose tree waited the whole run
+    was "stopped 100 % of the run" with the person beside it, as if they held it up (#26)."""
+    changes = np.array([t for t, _ in robot_modes])
+    # busy[k]: from the k-th change on (busy[0]: before the first, when nothing was known)
+    busy = np.array([False] + [mode != IDLE for _, mode in robot_modes])
+    return busy[np.searchsorted(changes, times, side="right")]
 
 
 def _most_stood_at(dt: np.ndarray, when: np.ndarray, signals: np.ndarray) -> list | None:

@@ -1,4 +1,6 @@
-"""The realism audit: does the person move like a person in this cell?
+"""The realism audit: does the person move like a person in this cell, and do the objects
+stay out of the cell and of each other? In a cell without a person only the objects' part
+(what the robot holds) is measured, and the report says the person's measures were not.
 
 Sampled at the person's update rate during the run, it keeps the worst of each of these
 (docs/realism.md gives the published figures behind the limits):
@@ -48,6 +50,9 @@ LIMITS = {
     "foot_slip": 0.01,
 }
 """What a realistic run stays within (m, or degrees for the tilt); docs/realism.md."""
+NO_PERSON = "no person in this cell"
+"""The report's `realism.person` in a cell without one: the person's measures are absent,
+not zero and within their limits."""
 PELVIS_SPEED_SWING = 0.15
 """Largest believable swing of the pelvis speed within a stride (fraction of its mean)."""
 
@@ -102,6 +107,8 @@ class AuditState:
     pelvis: tuple[float, float, float] | None = None
     stride: tuple[tuple[float, float], ...] = ()
     """(time, pelvis speed) since the current stride began."""
+    person: bool = True
+    """False in a cell without a person: only the objects' measures mean anything."""
 
     def __deepcopy__(self, memo):
         """Immutable: Drake's state copies can share it."""
@@ -172,13 +179,17 @@ def _walked(state: AuditState, sample: Sample, stride_time: float) -> AuditState
 
 
 def realism_metrics(state: AuditState | None) -> dict:
-    """The report's `realism` section (empty without a person)."""
+    """The report's `realism` section (empty without a person or objects; the objects'
+    measures and `person` saying there is none, without a person)."""
     if state is None:
         return {}
 
     def worst(w: Worst, what: str) -> dict:
         return {"max": rounded(w.value), "time": rounded(w.time), what: w.what}
 
+    if not state.person:
+        carried = worst(state.carried_penetration, "where")
+        return {"penetration_carried": carried, "person": NO_PERSON}
     variations = np.array(state.stride_variations)
     return {
         "penetration_static": worst(state.static_penetration, "where"),
@@ -194,6 +205,11 @@ def realism_metrics(state: AuditState | None) -> dict:
             "variation_max": rounded(variations.max()) if len(variations) else 0.0,
         },
     }
+
+
+def audits_a_person(metrics: dict) -> bool:
+    """Whether the report's `realism` section measured a person (not only objects)."""
+    return metrics.get("person") != NO_PERSON
 
 
 MEASURES = {
@@ -265,15 +281,17 @@ def _amount(value: float, unit: str, decimals: int) -> str:
 
 def realism_checks(metrics: dict) -> list[Check]:
     """Every measure of the report's `realism` section against its limit (none without a
-    person)."""
-    if not metrics:
-        return []
+    person or objects; the objects' alone without a person)."""
     checks = []
     for name, limit in LIMITS.items():
+        if name not in metrics:
+            continue
         worst = metrics[name]
         what = next(v for k, v in worst.items() if k not in ("max", "time"))
         checks.append(Check(name, worst["max"], limit, f"{what} at {worst['time']:.1f} s"))
-    pelvis = metrics["pelvis_speed"]
+    pelvis = metrics.get("pelvis_speed")
+    if pelvis is None:
+        return checks
     strides = f"worst of {pelvis['strides']} strides of steady walking"
     if not pelvis["strides"]:
         strides = "no stride of steady walking to measure it on"
@@ -291,10 +309,10 @@ def over_limits(metrics: dict) -> list[Check]:
 
 def realism_verdict(metrics: dict) -> list[str]:
     """The audit's verdict in a line (and one more line per further measure over its
-    limit); none without a person. A measure the run had nothing to measure on is named as
-    such, not counted within the limits (a packing cell of our own walked 25 m in short
-    walks round corners, no stride of steady walking, and was "within its limits (7
-    measures)")."""
+    limit); none without a person or objects. A measure the run had nothing to measure on
+    is named as such, not counted within the limits (a packing cell of our own walked 25 m
+    in short walks round corners, no stride of steady walking, and was "within its limits
+    (7 measures)"), and so are the person's in a cell without one."""
     checks = realism_checks(metrics)
     if not checks:
         return []
@@ -302,9 +320,12 @@ def realism_verdict(metrics: dict) -> list[str]:
     unmeasured = "".join(
         f"; not measured: {MEASURES[c.measure][0]} ({c.where})" for c in checks if not c.measured
     )
+    if not audits_a_person(metrics):
+        unmeasured += f"; not measured: the person's measures ({NO_PERSON})"
     over = over_limits(metrics)
     if not over:
-        return [f"within its limits ({len(measured)} measures){unmeasured}"]
+        counted = f"{len(measured)} measure{'s' if len(measured) != 1 else ''}"
+        return [f"within its limits ({counted}){unmeasured}"]
     first = f"{len(over)} of {len(measured)} measures over their limits; worst: {over[0]}"
     return [first + unmeasured, *(f"also: {check}" for check in over[1:])]
 

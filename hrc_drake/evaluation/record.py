@@ -90,7 +90,8 @@ class RunRecord:
     safety_status: SafetyStatus | None
     """the monitor's status at the end of the run (its totals)"""
     realism: AuditState | None
-    """the person's realism audit at the end of the run"""
+    """the realism audit at the end of the run (the objects' alone without a person; None
+    with neither a person nor objects)"""
     events: list[TaskEvent]
     """every tree's task events, by time"""
     event_names: tuple[str, ...]

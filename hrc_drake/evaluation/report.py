@@ -34,7 +34,7 @@ from hrc_drake.evaluation.replay import write_replay
 from hrc_drake.evaluation.run_report import write_run_html
 from hrc_drake.evaluation.timeline import plot_heatmap, plot_timeline
 from hrc_drake.safety.log import log_of, write_safety_log
-from hrc_drake.wiring import HUMAN_MODEL, VISUAL_PREFIX
+from hrc_drake.wiring import HUMAN_MODEL, ROBOT, VISUAL_PREFIX
 
 
 @dataclass
@@ -88,7 +88,9 @@ def _signal_metrics(record: RunRecord) -> dict:
         record.safety_parts,
     )
     return {
-        "utilisation": {"robot": utilisation_metrics(times, signals, moving_speed)},
+        "utilisation": {
+            "robot": utilisation_metrics(times, signals, moving_speed, record.states.get(ROBOT, []))
+        },
         "person": person_metrics(times, signals),
         "margin": margin,
         "sensing": sensing_metrics(

@@ -7,7 +7,12 @@ from pathlib import Path
 
 from hrc_drake.evaluation.html import html_table, page, verdict
 from hrc_drake.evaluation.metrics import flatten
-from hrc_drake.evaluation.realism import over_limits, realism_rows, realism_verdict
+from hrc_drake.evaluation.realism import (
+    audits_a_person,
+    over_limits,
+    realism_rows,
+    realism_verdict,
+)
 
 SUMMARY_DEPTH = 2
 """Tree nodes down to this depth (the tree's top loop and its activities) are summarised..."""
@@ -24,7 +29,8 @@ def write_run_html(path: Path, metrics: dict, files: dict[str, Path], sections: 
     parts = [f"<h1>Run: {escape(title)}</h1>"]
     realism = metrics.get("realism") or {}
     if realism:
-        said = "The person's realism audit: " + "; ".join(realism_verdict(realism))
+        audit = "The person's realism audit" if audits_a_person(realism) else "The realism audit"
+        said = f"{audit}: " + "; ".join(realism_verdict(realism))
         parts.append(verdict(said, bool(over_limits(realism)), "realism-verdict"))
     if "replay" in files:
         parts.append(f'<p><a href="{files["replay"].name}">Replay (Meshcat)</a></p>')

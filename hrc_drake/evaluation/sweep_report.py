@@ -1,6 +1,6 @@
 """The aggregate report of a sweep: per grid point, safety and productivity first (how many
 runs broke ISO/TS 15066, the least margins and separations, stops, output), how many runs
-the person's realism audit failed, then the distributions of every numeric metric, the
+the realism audit failed, then the distributions of every numeric metric, the
 worst seeds (replayable), failures, and last, folded, the behaviour trees' statistics.
 
 A metric that counts what happened (a task event, a tree node's ticks) is absent from a
@@ -44,7 +44,7 @@ COUNTED = ("tasks.events.", "tasks.throughput_per_hour.", "bt.")
 SECTIONS = (
     ("Safety", ("margin.", "safety.")),
     ("Productivity", ("tasks.", "utilisation.", "person.")),
-    ("The person's realism", ("realism.",)),
+    ("Realism", ("realism.",)),
     ("The robot", ("robot.",)),
 )
 """The report's metric tables in the order a reader wants them; other metrics follow, and
@@ -114,8 +114,9 @@ def group_summary(rows: list[dict]) -> dict:
 
 
 def realism_counts(rows: list[dict]) -> dict:
-    """How many runs had a person to audit, how many of them went over the realism audit's
-    limits, and how many runs each measure was over its limit in."""
+    """How many runs had a person or objects to audit (a robot-only cell's objects count),
+    how many of them went over the realism audit's limits, and how many runs each measure was
+    over its limit in."""
     audited = [r["metrics"]["realism"] for r in rows if r["metrics"].get("realism")]
     measures: dict[str, int] = {}
     for realism in audited:
@@ -227,7 +228,7 @@ def _verdict(point: str, group: dict, element_id: str) -> str:
 
 
 def group_verdict(point: str, group: dict) -> str:
-    """One grid point's verdict on safety and on the person's realism, in a line."""
+    """One grid point's verdict on safety and on the realism audit, in a line."""
     runs, violating, realism = group["runs"], group["violating_runs"], group["realism"]
     said = [
         f"{violating} of {runs} runs violate ISO/TS 15066 (a safety margin below 0)"
@@ -237,9 +238,9 @@ def group_verdict(point: str, group: dict) -> str:
     if realism["audited"]:
         over, audited = realism["over_limits"], realism["audited"]
         said.append(
-            f"{over} of {audited} runs over the person's realism limits ({_measures(realism)})"
+            f"{over} of {audited} runs over the realism audit's limits ({_measures(realism)})"
             if over
-            else f"all {audited} runs within the person's realism limits"
+            else f"all {audited} runs within the realism audit's limits"
         )
     return f"{point or 'as written'}: " + "; ".join(said)
 
@@ -278,7 +279,7 @@ def _headline_table(groups: dict[str, dict]) -> str:
         rate = f"tasks.throughput_per_hour.{event}"
         rows.append([f"{event} per run", *(_cell(g, metric) for g in groups.values())])
         rows.append([f"{event} per hour", *(_cell(g, rate) for g in groups.values())])
-    rows.append(["runs over the person's realism limits", *map(_realism_cell, groups.values())])
+    rows.append(["runs over the realism audit's limits", *map(_realism_cell, groups.values())])
     flagged = {1} if any(g["violating_runs"] for g in groups.values()) else set()
     if any(g["realism"]["over_limits"] for g in groups.values()):
         flagged.add(len(rows) - 1)
@@ -288,7 +289,7 @@ def _headline_table(groups: dict[str, dict]) -> str:
 def _realism_cell(group: dict) -> str:
     realism = group["realism"]
     if not realism["audited"]:
-        return "no person"
+        return "no person or object to audit"
     counted = f"{realism['over_limits']} of {realism['audited']}"
     return f"{counted} ({_measures(realism)})" if realism["over_limits"] else counted
 

@@ -82,6 +82,12 @@ class HumanConfig:
     """The scenario's own motion clips: .bvh or .json files (relative to the scenario file),
     which trees play by their file names."""
 
+    @property
+    def audit_period(self) -> float:
+        """s between the realism audit's samples (a cell without a person audits its objects
+        at a default person's)."""
+        return self.period * self.audit_every
+
     def size(self) -> tuple[float, float]:
         """Height (m) and mass (kg) of the person."""
         if self.percentile is None:

@@ -2,7 +2,6 @@
 through a run and again at its end, it is the audit of the whole run, the same as read only
 at the end (the samples already audited are carried on, never counted twice)."""
 
-import numpy as np
 from pydrake.systems.analysis import Simulator
 
 from hrc_drake.builder import build_diagram
@@ -37,7 +36,7 @@ def test_an_audit_read_as_the_run_goes_is_the_audit_read_at_its_end():
 def _record(times) -> Recorded | None:
     record = None
     for t in times:
-        record = Recorded(record, t, t, (0.0, 0.0), False, {}, np.zeros(1), ())
+        record = Recorded(record, t, (), None)
     return record
 
 

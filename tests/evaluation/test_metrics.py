@@ -21,6 +21,7 @@ from hrc_drake.evaluation.timeline import (
     timeline_figure,
 )
 from hrc_drake.messages import TaskEvent
+from hrc_drake.motion.messages import IDLE, MOVING
 from hrc_drake.safety.messages import (
     SIGNALS,
     ContactRecord,
@@ -41,6 +42,8 @@ def signals(**columns) -> np.ndarray:
 
 
 TIMES = np.arange(5) * 1.0
+BUSY = [(0.0, MOVING)]
+"""RobotMotion's mode over the run: a move under way throughout."""
 ROBOT = signals(
     robot_speed=[0.5, 0.5, 0.0, 0.0, 0.0],
     zone=[ZONES.index(z) for z in ("free", "free", "stopped", "free", "free")],
@@ -49,12 +52,26 @@ ROBOT = signals(
 
 def test_robot_utilisation_splits_the_run():
     # intervals of 1 s: moving, moving, stopped, waiting
-    assert utilisation_metrics(TIMES, ROBOT, 0.01) == {
+    assert utilisation_metrics(TIMES, ROBOT, 0.01, BUSY) == {
         "moving": 0.5,
         "waiting": 0.25,
         "stopped": 0.25,
         "stopped_with_person_at": [0.0, 0.0],
     }
+
+
+def test_a_robot_stopped_with_nothing_to_do_waits():
+    """Stopped by the monitor while idle (its tree waiting), the robot lost nothing: that
+    time is waiting, not stopped; stopped while a move was under way, it is stopped."""
+    idle_then_busy = [(0.0, IDLE), (2.5, MOVING)]
+    assert utilisation_metrics(TIMES, ROBOT, 0.01, [(0.0, IDLE)]) == {
+        "moving": 0.5,
+        "waiting": 0.5,
+        "stopped": 0.0,
+    }
+    run = signals(robot_speed=[0.0] * 5, zone=[ZONES.index("stopped")] * 5)
+    metrics = utilisation_metrics(TIMES, run, 0.01, idle_then_busy)
+    assert (metrics["waiting"], metrics["stopped"]) == (0.75, 0.25)
 
 
 def test_where_the_person_stood_while_the_robot_was_stopped_is_where_they_stood_longest():
@@ -66,7 +83,7 @@ def test_where_the_person_stood_while_the_robot_was_stopped_is_where_they_stood_
         person_x=[1.0, 1.05, 1.1, 3.0, 3.05, 0.0, 0.0],
         person_y=[0.5, 0.55, 0.5, 2.0, 2.0, 0.0, 0.0],
     )
-    metrics = utilisation_metrics(np.arange(7) * 1.0, run, 0.01)
+    metrics = utilisation_metrics(np.arange(7) * 1.0, run, 0.01, BUSY)
     assert metrics["stopped"] == pytest.approx(5 / 6)
     assert metrics["stopped_with_person_at"] == [1.05, 0.517]
 
@@ -100,7 +117,7 @@ def test_absent_sources_give_empty_sections():
     assert safety_metrics(None, 0.01) == {}
     assert task_metrics([], 10.0) == {"events": {}, "throughput_per_hour": {}}
     assert bt_metrics(None) == {}
-    assert utilisation_metrics(np.zeros(0), signals(zone=[]), 0.01) == {}
+    assert utilisation_metrics(np.zeros(0), signals(zone=[]), 0.01, []) == {}
 
 
 def test_safety_section_from_final_status():

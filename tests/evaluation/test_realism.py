@@ -21,7 +21,7 @@ from hrc_drake.evaluation.realism import (
 )
 from hrc_drake.human.walking import travel
 from hrc_drake.scenario import HumanConfig, load_scenario, overridden
-from hrc_drake.systems.realism_audit import Recorded
+from hrc_drake.systems.realism_audit import PersonPose, Recorded
 from hrc_drake.wiring import REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid
 from hrc_drake.workpieces.messages import BOTH_HANDS, ROBOT_HOLDER
@@ -184,16 +184,14 @@ def test_a_carried_box_in_another_box_or_in_the_bench_is_found_inside_it():
 
     def carried_at(x: float, z: float, holder: str = BOTH_HANDS) -> dict:
         held = replace(taken, pose=RigidTransform([x, 3.77, z]), holder=holder, support=None)
-        recorded = Recorded(
-            None,
-            0.05,
+        person = PersonPose(
             0.05,
             (0.0, 0.0),
             False,
             {"left": np.zeros(7), "right": np.zeros(7)},
             audit.GetInputPort("human_positions").Eval(context).copy(),
-            (*others, held),
         )
+        recorded = Recorded(None, 0.05, (*others, held), person)
         state = audited(AuditState(), audit.scene.sample(recorded), STRIDE)
         return realism_metrics(state)["penetration_carried"]
 

@@ -76,7 +76,7 @@ def test_the_sweep_leads_with_its_verdict_safety_and_productivity(sweep_page):
     verdict = sweep_page.locator("#verdict-0")
     assert verdict.inner_text() == (
         "as written: 1 of 4 runs violate ISO/TS 15066 (a safety margin below 0); 2 of 4 runs "
-        "over the person's realism limits (carried_tilt_deg in 1, foot_slip in 2, "
+        "over the realism audit's limits (carried_tilt_deg in 1, foot_slip in 2, "
         "penetration_static in 1)"
     )
     assert background(verdict) == RED
@@ -93,7 +93,7 @@ def test_the_sweep_leads_with_its_verdict_safety_and_productivity(sweep_page):
     assert headline["runs that violate ISO/TS 15066"] == ["1 of 4"]
     assert headline["safety margin (m)"] == ["0.2 [-0.07, 0.29] (3 of 4 runs)"]
     assert headline["inspect_conveyor per run"] == ["0 [0, 0.85]"]
-    assert headline["runs over the person's realism limits"] == [
+    assert headline["runs over the realism audit's limits"] == [
         "2 of 4 (carried_tilt_deg in 1, foot_slip in 2, penetration_static in 1)"
     ]
 

@@ -3,6 +3,9 @@ limits, or the measure farthest beyond its limit with what, where and when), swe
 aggregates that count a run without an event as 0 and say over how many runs a figure is,
 and how many runs of a sweep broke the standard or the realism limits."""
 
+import json
+from pathlib import Path
+
 import pytest
 
 from hrc_drake.cli.simulate import key_metrics
@@ -229,3 +232,16 @@ def test_a_robot_stopped_most_of_the_run_says_where_the_person_stood(tmp_path, h
     stopped = float(hint.split("stopped ")[1].split(" %")[0])
     assert stopped > 70, hint
     assert "the person near it, most of that time at (0.60, -0.10)" in hint
+
+
+def test_a_robot_stopped_with_nothing_to_do_gets_no_hint(hrc_drake, tmp_path):
+    """The robot's tree waits the whole run while the person stands beside it: the monitor
+    holds it stopped, but it lost nothing. The summary said it "was stopped 100 % of the
+    run" because of the person (#26)."""
+    cell = Path(__file__).parent / "cells" / "robot_waits" / "cell.yaml"
+    status, out, err = hrc_drake("run", cell, "--out", tmp_path / "run")
+    assert status == 0, err
+    assert "stopped 10.0 s" in out  # the monitor's own figure: it did hold the robot
+    assert "the robot was stopped" not in out
+    report = json.loads((tmp_path / "run" / "report.json").read_text())
+    assert report["utilisation"]["robot"] == {"moving": 0.0, "waiting": 1.0, "stopped": 0.0}
