@@ -26,11 +26,11 @@ from pydrake.common.value import AbstractValue
 from pydrake.geometry import CollisionFilterDeclaration, FramePoseVector, GeometrySet
 from pydrake.systems.framework import EventStatus, LeafSystem
 
+from hrc_drake.evaluation.audited_body import AuditedBody
 from hrc_drake.evaluation.realism import AuditState, Sample, audited
 from hrc_drake.human.skeleton import SIDES
 from hrc_drake.ports import message_value, value_or_none
 from hrc_drake.scene_geometry import static_geometry
-from hrc_drake.systems.audited_body import AuditedBody
 from hrc_drake.wiring import HUMAN_MODEL, REALISM_AUDIT
 from hrc_drake.workpieces.geometry import Solid, moved
 from hrc_drake.workpieces.messages import BOTH_HANDS, LEFT_HAND, PERSON_HOLDERS, RIGHT_HAND
