@@ -139,7 +139,8 @@ class Detours:
                 continue
             needed = width + _shift_to_open(a, b, across)
             if needed > width:
-                found.append(((a.name, b.name), width, needed, across.interpolate(0.5, True)))
+                middle = across.interpolate(0.5, normalized=True)
+                found.append(((a.name, b.name), width, needed, middle))
         return max(found, key=lambda gap: gap[2] - gap[1], default=None)
 
 
