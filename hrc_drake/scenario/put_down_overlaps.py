@@ -9,9 +9,11 @@ How the tool took the part is not known before a run (a target without a rotatio
 the tool free to turn, and the run turns what it holds by quarter turns to fit beside
 the objects, hrc_drake.motion.planner), so a put-down is said only where the part lies
 inside the object whichever way either of them is turned. Nor is it said where what lies
-there may be gone: an object a NextObject of the tree may find (its area not known or
-holding the object), or a put-down no NextObject surely run since finds there; or where
-the tree's way there is not known (a choice, a loop's earlier rounds, a script's pose)."""
+there may be gone: an object the tree may look for (a NextObject or CountObjects whose
+area is not known or holds it; a CountObjects is how a tree waits for a place to be
+cleared), or may remove or move (any DespawnObject or MoveObject), at the start or since
+the put-down; or where the tree's way there is not known (a choice, a loop's earlier
+rounds, a script's pose)."""
 
 import math
 from collections.abc import Iterator
@@ -24,7 +26,7 @@ import numpy as np
 from hrc_drake.areas import Area
 from hrc_drake.bt import TreeNode
 from hrc_drake.known_values import Known, step_of
-from hrc_drake.nodes.objects import NextObject
+from hrc_drake.nodes.objects import CountObjects, DespawnObject, MoveObject, NextObject
 from hrc_drake.nodes.robot import RobotRelease, tool_pose
 from hrc_drake.scenario.cell_findings import InitialObject
 from hrc_drake.scenario.located import Finding
@@ -40,6 +42,9 @@ HEADING_STEP = math.radians(1.0)
 """The headings a part whose turn is not known is tried at, this far apart."""
 HEADINGS = np.arange(0.0, math.pi, HEADING_STEP)
 """A half turn of them: a box's outline (and a cylinder's polygon) turned by one is the same."""
+TAKERS = NextObject | CountObjects | DespawnObject | MoveObject
+"""Nodes after which an object may be gone: those that look for it in an area (the tree
+takes it, or waits for it to be taken), and those that remove or move an object."""
 UPRIGHT = 1e-6
 """How far from 1 the cosine of a solid's tilt may be and still be judged by its outline."""
 
@@ -87,18 +92,18 @@ def overlap_findings(
     or left by an earlier put-down (`resolve`: a Pose to the scenario's, None when it names
     no location; `solids`: each object type's shape; `areas`: the scenario's)."""
     parents = parents_of(nodes)
-    finders = [n for n in nodes if isinstance(n, NextObject)]
-    may_find = partial(_may_find, known, areas)
+    takers = [n for n in nodes if isinstance(n, TAKERS)]
+    may_take = partial(_may_take, known, areas)
     at_start = [
         lying
         for obj in initial
         if (lying := _lying_at_start(obj)) is not None
-        and not any(may_find(finder, lying.centre) for finder in finders)
+        and not any(may_take(taker, lying.centre) for taker in takers)
     ]
     put_downs = _PutDowns(parents, known, resolve, solids)
     for release in put_downs.releases(nodes):
         move, kind = put_downs.of[id(release)]
-        there = at_start + put_downs.left_before(release, may_find)
+        there = at_start + put_downs.left_before(release, may_take)
         value, part = put_downs.placed(release)
         found = _deepest_inside(part, there) if part is not None else None
         if found is not None:
@@ -148,15 +153,15 @@ class _PutDowns:
         centre = target.translation() + [0, 0, -solid.height / 2]
         return Lying("", solid, centre, HEADINGS)
 
-    def left_before(self, release: TreeNode, may_find) -> list[Lying]:
-        """The parts the put-downs that surely ran before `release` left, but those a
-        NextObject that may have run since may find (`may_find(finder, centre)`)."""
+    def left_before(self, release: TreeNode, may_take) -> list[Lying]:
+        """The parts the put-downs that surely ran before `release` left, but those a node
+        that may have run since may take away (`may_take(node, centre)`)."""
         left = []
         for earlier in self.nodes:
             if last_before(release, self.parents, partial(_is, earlier)) is not earlier:
                 continue
             value, part = self.placed(earlier)
-            if part is not None and not self._found_since(earlier, release, may_find, part):
+            if part is not None and not self._taken_since(earlier, release, may_take, part):
                 move, kind = self.of[id(earlier)]
                 label = f"the {kind} put down at {_written(value, move)}"
                 left.append(Lying(label, part.solid, part.centre, part.headings))
@@ -171,18 +176,24 @@ class _PutDowns:
             return None, None
         return values[0], self.part(kind, values[0])
 
-    def _found_since(self, earlier: TreeNode, release: TreeNode, may_find, part: Lying) -> bool:
-        """Whether a NextObject that may have run after `earlier` and before `release` may
-        find what `earlier` left (`part`)."""
-        before = {id(n) for n in all_before(earlier, self.parents, NextObject)}
-        since = all_before(release, self.parents, NextObject)
-        return any(may_find(f, part.centre) for f in since if id(f) not in before)
+    def _taken_since(self, earlier: TreeNode, release: TreeNode, may_take, part: Lying) -> bool:
+        """Whether a node that may have run after `earlier` and before `release` may take
+        away what `earlier` left (`part`)."""
+        before = {id(n) for n in all_before(earlier, self.parents, _taker)}
+        since = all_before(release, self.parents, _taker)
+        return any(may_take(n, part.centre) for n in since if id(n) not in before)
 
 
-def _may_find(known: dict, areas: dict[str, Area], finder: TreeNode, centre) -> bool:
-    """Whether the NextObject `finder` may find an object whose centre is at `centre`: one
-    of its known areas holds it, or its area is not known."""
-    given = known.get((id(finder), "area"), ())
+def _taker(node: TreeNode) -> bool:
+    return isinstance(node, TAKERS)
+
+
+def _may_take(known: dict, areas: dict[str, Area], node: TreeNode, centre) -> bool:
+    """Whether `node` (one of TAKERS) may take away an object whose centre is at `centre`:
+    it looks in an area that holds it or is not known, or it removes or moves an object."""
+    if not isinstance(node, NextObject | CountObjects):
+        return True
+    given = known.get((id(node), "area"), ())
     names = [a.value.name if isinstance(a.value, AreaRef) else None for a in given]
     if not names or any(n not in areas for n in names):
         return True

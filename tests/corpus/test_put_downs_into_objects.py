@@ -137,6 +137,22 @@ TURNED = (
 as the run turns it."""
 
 
+CLEARED = (
+    (
+        "cell.yaml",
+        "areas:\n",
+        "areas:\n  pallet: [[0.3, -0.8], [1.1, -0.8], [1.1, 0.4], [0.3, 0.4]]\n",
+    ),
+    (
+        "robot.xml",
+        '<SubTree ID="Stack" slot="slot_6"/>',
+        '<CountObjects area="pallet" filter="" count="{n}"/><SubTree ID="Stack" slot="slot_6"/>',
+    ),
+)
+"""The tree counts the cartons on the pallet before slot_6: it may wait for it to be cleared
+(by the person), so what the put-downs before left is not known to lie there."""
+
+
 @pytest.mark.parametrize(
     "source, changes, written_out",
     [
@@ -144,8 +160,15 @@ as the run turns it."""
         (PALLETIZING, (), True),
         (BESIDE, (), False),
         (BESIDE, (TURNED,), False),
+        (PALLETIZING, (SLOT_6_LOW, *CLEARED), False),
     ],
-    ids=["the pattern", "the pattern written out", "a carton beside another", "fits turned"],
+    ids=[
+        "the pattern",
+        "the pattern written out",
+        "a carton beside another",
+        "fits turned",
+        "the pallet may be cleared",
+    ],
 )
 def test_cartons_set_down_touching_are_not_judged(
     tmp_path, hrc_drake, source, changes, written_out
