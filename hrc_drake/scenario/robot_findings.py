@@ -16,6 +16,7 @@ from hrc_drake.scenario.cell_findings import CellScene
 from hrc_drake.scenario.found_targets import found_reach_findings
 from hrc_drake.scenario.known_poses import resolved
 from hrc_drake.scenario.located import Finding, Locator
+from hrc_drake.scenario.put_down_overlaps import overlap_findings
 from hrc_drake.scenario.reach_from_stand import point_text
 from hrc_drake.scenario.robot_put_downs import (
     carried_configuration_findings,
@@ -82,11 +83,17 @@ class RobotChecks:
             yield finding
 
     def put_downs(self, tree, agent, inputs) -> Iterator[Finding]:
-        """Parts the robot lets go of inside the cell's fixed geometry, and moves it cannot
-        make with the part it holds (hrc_drake.scenario.robot_put_downs)."""
+        """Parts the robot lets go of inside the cell's fixed geometry or an object lying
+        there (hrc_drake.scenario.put_down_overlaps), and moves it cannot make with the part
+        it holds (hrc_drake.scenario.robot_put_downs)."""
         known = {(id(node), port): values for node, port, values in inputs}
         nodes, resolve = tree.node_list, partial(resolved, agent)
         yield from put_down_findings(nodes, known, resolve, self.solids, self.scene, self.at.read)
+        areas = {name: self.scenario.area(name) for name in self.scenario.areas}
+        objects = self.scene.objects
+        yield from overlap_findings(
+            nodes, known, resolve, self.solids, objects, areas, self.at.read
+        )
         if self.robot_placed:
             yield from carried_move_findings(
                 nodes, known, resolve, self._carried_reach, self.at.read

@@ -49,13 +49,20 @@ def put_downs(nodes: list[TreeNode], known: dict) -> Iterator[tuple[TreeNode, st
     known in the tree."""
     parents = parents_of(nodes)
     for release in (n for n in nodes if isinstance(n, RobotRelease)):
-        move = last_before(release, parents, _kind(RobotMove | RobotMoveLinear))
-        grip = last_before(release, parents, RobotGrip)
-        if not (isinstance(move, TreeNode) and isinstance(grip, TreeNode)):
-            continue
-        kind = _gripped_type(grip, parents, known)
+        move, kind = put_down_of(release, parents, known) or (None, None)
         for value in known.get((id(move), "target"), ()) if kind else ():
             yield move, kind, value
+
+
+def put_down_of(release: TreeNode, parents: dict, known: dict) -> tuple[TreeNode, str] | None:
+    """(the last move before `release`, the type of what it lets go of) when the move, the
+    grip before it and the finder before that grip are known in the tree."""
+    move = last_before(release, parents, _kind(RobotMove | RobotMoveLinear))
+    grip = last_before(release, parents, RobotGrip)
+    if not (isinstance(move, TreeNode) and isinstance(grip, TreeNode)):
+        return None
+    kind = _gripped_type(grip, parents, known)
+    return (move, kind) if kind else None
 
 
 def carried_moves(

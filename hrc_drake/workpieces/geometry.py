@@ -135,10 +135,11 @@ def overlaps(
 
 
 def edge_normals(polygon: np.ndarray) -> np.ndarray:
-    """Unit normals (n, 2) of a polygon's edges, the edge from vertex i to i + 1 first."""
-    edges = np.concatenate([polygon[1:], polygon[:1]]) - polygon
-    normals = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
-    return normals / np.linalg.norm(normals, axis=1, keepdims=True)
+    """Unit normals (n, 2) of a polygon's edges, the edge from vertex i to i + 1 first (of
+    each of a stack of polygons (..., n, 2): validate turns a part through many headings)."""
+    edges = np.roll(polygon, -1, axis=-2) - polygon
+    normals = np.stack([-edges[..., 1], edges[..., 0]], axis=-1)
+    return normals / np.linalg.norm(normals, axis=-1, keepdims=True)
 
 
 def twist_between(X0: RigidTransform, X1: RigidTransform, dt: float) -> SpatialVelocity:
