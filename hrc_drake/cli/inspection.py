@@ -81,14 +81,15 @@ def _diagram(args) -> int:
 
 
 def _validate(args) -> int:
-    """The scenario loads (its first mistake is one line), then every finding that needs no
-    simulation, one line each; exit status 2 when there is any. `--set` checks the scenario
-    as a run with the same `--set` would have it (a person of another size: #26)."""
+    """The scenario loads (its first mistake is one line; the safety sensors' mistakes are
+    findings, all at once), then every finding that needs no simulation, one line each;
+    exit status 2 when there is any. `--set` checks the scenario as a run with the same
+    `--set` would have it (a person of another size: #26)."""
     from hrc_drake.scenario import load_scenario, resolve_scenario_path
     from hrc_drake.scenario.findings import findings
 
     overrides, _ = single_sets(args, "validate", "validate one value at a time")
-    scenario = load_scenario(args.scenario, overrides)
+    scenario = load_scenario(args.scenario, overrides, sensors=False)
     found = findings(scenario, resolve_scenario_path(args.scenario))
     person = scenario.human.survey_person() if scenario.human is not None else ""
     if person:

@@ -136,9 +136,13 @@ FIELD_RULES: dict[str, Rule] = {
 mapping). A new field with a range gets its line here; YAML and `--set` both meet it."""
 
 
-def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
+def scenario_problems(
+    scenario: Scenario, directory: Path, sensors: bool = True
+) -> Iterator[Problem]:
     """Everything the schema cannot say, first problem first: finite numbers, the field
-    rules above, then the sections' own checks. Tree files are made absolute on the way."""
+    rules above, then the sections' own checks. Tree files are made absolute on the way.
+    `sensors=False` leaves the safety sensors out (validate lists all of theirs at once,
+    hrc_drake.scenario.findings)."""
     yield from _value_problems(scenario, ())
     for pattern, rule in FIELD_RULES.items():
         for names, value in _values_at(scenario, pattern.split(".")):
@@ -151,8 +155,8 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     yield from _prefixed("cell", cell)
     yield from _station_problems(scenario)
     yield from _prefixed("workpieces", problems(scenario.workpieces))
-    latency = scenario.robot.motion.period
-    yield from _prefixed("safety", sensor_problems(scenario.safety, scenario.station, latency))
+    if sensors:
+        yield from safety_sensor_problems(scenario)
     if scenario.human is not None and len(scenario.human.start) != 3:
         yield ("human", "start"), "needs [x, y, yaw_deg]"
     if scenario.human is not None:
@@ -160,12 +164,20 @@ def scenario_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     yield from _prefixed("trees", _resolve_tree_files(directory, scenario.trees))
     yield from tree_problems(scenario)
     if scenario.falsify is not None:
-        yield from _falsify_problems(scenario, directory)
+        yield from _falsify_problems(scenario, directory, sensors)
 
 
-def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
+def safety_sensor_problems(scenario: Scenario) -> Iterator[Problem]:
+    """The problems of `safety.sensors` in the scenario's cell, with the robot's command
+    period."""
+    latency = scenario.robot.motion.period
+    yield from _prefixed("safety", sensor_problems(scenario.safety, scenario.station, latency))
+
+
+def _falsify_problems(scenario: Scenario, directory: Path, sensors: bool) -> Iterator[Problem]:
     """The search space's own mistakes, then every range end and choice checked like the
-    bound field's value in the file (with the first problem it causes)."""
+    bound field's value in the file (with the first problem it causes; the safety sensors'
+    only with `sensors` or where the parameter binds a field their checks read)."""
     kind_of = partial(field_kind, Scenario)
     found = list(_prefixed("falsify", search_problems(scenario.falsify, kind_of)))
     yield from found
@@ -182,8 +194,18 @@ def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
             except InputError as error:  # the bound field is not in the scenario
                 yield (*where, "bind"), str(error).removeprefix("--set ")
                 break
-            for _, message in itertools.islice(scenario_problems(changed, directory), 1):
+            checked = scenario_problems(changed, directory, sensors or _moves_sensors(parameter))
+            for _, message in itertools.islice(checked, 1):
                 yield (*where, *names), f"{parameter.bind}={value}: {message}"
+
+
+_SENSOR_INPUTS = {"safety", "robot", "cell"}
+"""The sections the safety sensors' checks read (`safety_sensor_problems`): a search that
+binds a field of one may make the sensors fail where the scenario's own do not."""
+
+
+def _moves_sensors(parameter) -> bool:
+    return parameter.bind.split(".")[0] in _SENSOR_INPUTS
 
 
 def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:

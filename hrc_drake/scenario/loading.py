@@ -44,14 +44,19 @@ def resolve_scenario_path(name_or_path: str) -> Path:
 
 
 def load_scenario(
-    name_or_path: str | Path, overrides: Overrides = (), options: dict[str, str] | None = None
+    name_or_path: str | Path,
+    overrides: Overrides = (),
+    options: dict[str, str] | None = None,
+    sensors: bool = True,
 ) -> Scenario:
     """Reads and checks a scenario; raises InputError with file, line and field.
 
     `overrides` ((dotted field, value), ...) are layered over the file before the checks,
     so a value from the command line is checked exactly like one from the file; `options`
     names how the user gave a field (e.g. {"seed": "--seed -1"}), default `--set
-    field=value`.
+    field=value`. `sensors=False` loads a scenario whose safety sensors cannot work, so
+    that validate lists all their findings (hrc_drake.scenario.findings) instead of the
+    first.
     """
     path = resolve_scenario_path(str(name_or_path))
     text = read_text(path, "scenario file")
@@ -66,7 +71,7 @@ def load_scenario(
     scenario = overridden(scenario, overrides)
     given = {name: f"--set {name}={value}" for name, value in overrides} | (options or {})
     where = _Where(path, root, given)
-    for names, message in scenario_problems(scenario, path.parent):
+    for names, message in scenario_problems(scenario, path.parent, sensors):
         raise where.error(names, message)
     return scenario
 

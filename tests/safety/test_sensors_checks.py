@@ -199,3 +199,40 @@ def test_validate_exits_2_with_one_line(tmp_path):
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1 and "Traceback" not in result.stderr
     assert f"{path}:{line}: safety.sensors.scanners.front.height:" in result.stderr
+
+
+def test_validate_lists_every_sensor_mistake_at_once(tmp_path):
+    """A scan plane too high and a range the fields reach beyond: two lines from one
+    validate, each with its line and field, where loading for a run refuses the first."""
+    path, line = edited(
+        tmp_path, "height: 0.3\n        range: 9.0", "height: 1.2\n        range: 2.0"
+    )
+    result = subprocess.run(
+        [sys.executable, "-m", "hrc_drake.cli", "validate", str(path)],
+        capture_output=True,
+        text=True,
+    )
+    assert result.returncode == 2
+    fields = re.findall(rf"hrc-drake: error: {re.escape(str(path))}:(\d+): (\S+):", result.stderr)
+    assert (str(line), "safety.sensors.scanners.front.height") in fields, result.stderr
+    assert "safety.sensors.scanners.front.fields[0].protective" in {f for _, f in fields}
+    assert error_of(path).startswith(f"{path}:{line}: safety.sensors.scanners.front.height:")
+
+
+def test_validate_checks_the_fields_at_each_robot_a_search_may_choose(tmp_path):
+    """validate lists the sensors' own findings apart from loading, yet a search's choice of
+    a bigger robot, whose longer stop the fields do not cover, is still one line naming the
+    choice (as a run of the search refuses it)."""
+    anchor = "    side: {bind: parameters.visit_area"
+    search = "    robot: {bind: robot.variant, choices: [lbr_iisy3_r760, lbr_iisy11_r1300]}\n"
+    path, line = edited(tmp_path, anchor, search + anchor)
+    result = subprocess.run(
+        [sys.executable, "-m", "hrc_drake.cli", "validate", str(path)],
+        capture_output=True,
+        text=True,
+    )
+    assert result.returncode == 2
+    assert result.stderr.startswith(
+        f"hrc-drake: error: {path}:{line}: falsify.parameters.robot.choices[1]: "
+        "robot.variant=lbr_iisy11_r1300: too small for ISO 13855's minimum distance"
+    ), result.stderr
