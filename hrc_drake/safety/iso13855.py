@@ -9,6 +9,10 @@ and the heights a detection zone may have (SI units: m, s, m/s).
   capability d up to 40 mm (at least 0), with K = 2000 mm/s where S is at most 500 mm, else
   K = 1600 mm/s and S at least 500 mm; C = 850 mm above 40 mm (reaching through with the
   arm), with K = 1600 mm/s.
+- A light curtain against whole-body access (clause 6.2): its lowest beam at most 300 mm
+  above the floor (else a person crawls under it), its highest at least 900 mm (else one
+  steps or reaches over it: Table 1, C_RO for reaching over a detection zone, has no upper
+  edge below 900 mm).
 - Parallel approach (a horizontal laser scanner, clause 6.3): K = 1600 mm/s and
   C = 1200 mm − 0.4 H, at least 850 mm, for a detection zone H above the floor; H is at
   most 1000 mm and at least 15 (d − 50 mm), so that a leg is detected.
@@ -41,6 +45,11 @@ FINE = 0.04
 """m: orthogonal detection capabilities up to this use C = 8 (d − 14 mm)"""
 COARSEST = 0.07
 """m: the coarsest detection capability ISO 13855's orthogonal formulas cover"""
+
+LOWEST_BEAM_AT_MOST = 0.3
+"""m: a curtain's lowest beam no higher than this, so that no one crawls under it"""
+TOP_BEAM_AT_LEAST = 0.9
+"""m: a curtain's highest beam no lower than this, so that no one steps or reaches over"""
 
 
 def horizontal_intrusion(height: float) -> float:

@@ -1,27 +1,34 @@
 """What `hrc-drake validate` can know of a scenario's safety sensors without simulating: each
-problem as (field names below `safety`, message), which the scenario loader locates in the
-file (hrc_drake.scenario.checks).
+problem as (field names below `safety`, message), which the scenario loader and validate
+locate in the file (hrc_drake.scenario.checks, hrc_drake.scenario.findings).
 
 - values: a scan plane on or below the floor or above ISO 13855's 1 m, too low for the
   detection capability (H ≥ 15 (d − 50 mm)), a response faster than a scan, fields that are
   no polygons or reach beyond the scanner's range, beams farther apart out there than the
   detection capability, no field set for full speed;
 - placement in the cell: a scanner or a light curtain's post inside the cell's geometry, a
-  light curtain's beam blocked by it;
+  light curtain's beam blocked by it, its lowest beam above 0.3 m or its highest below
+  0.9 m (ISO 13855: a person crawls under it, or steps or reaches over it);
 - the protective fields against ISO 13855's minimum distance S = K·T + C (+ Z_d): at every
-  speed level of the field sets, the fields together must hold every place a person can
-  walk to within S of the robot's reach (the reach of the variant plus the tool, about the
-  A1 axis), with T the sensor's response time, the monitor's and the command's period and
-  the robot's measured stop from that speed (hrc_drake.safety.stopping). Walking distance:
-  the cell's furniture is walked round, not through. A light curtain must stand S from the
-  reach.
+  speed level of the field sets, the fields together, each only where its scanner sees
+  past the cell's fixed geometry, must hold every place a person can walk to within S of
+  the robot's reach (the reach of the variant plus the tool, about the A1 axis), with T the
+  sensor's response time, the monitor's and the command's period and the robot's measured
+  stop from that speed (hrc_drake.safety.stopping). Walking distance: the cell's furniture
+  is walked round, not through, and so is a light curtain that stands S from the reach
+  (crossing it, a person is seen in time). A field's blind part only counts where it is a
+  way in: it reaches the walk's edge at S or lies outside every field; a blind pocket that
+  the seen field encloses is entered seen. Each such line says where a person is unseen:
+  outside every field, or behind which piece of the cell.
 
-What the scanners cannot see behind furniture and objects is not checked here: that is
-what a run shows, and what `hrc-drake falsify` searches for.
+The scenario loader refuses a scenario with the first of these; `validate` lists them all
+(hrc_drake.scenario.findings). What a scanner cannot see behind objects (they move), and a
+person who stands unseen in a blind pocket after being seen on the way in, are not checked
+here: that is what a run shows, and what `hrc-drake falsify` searches for.
 """
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -36,6 +43,8 @@ from hrc_drake.safety.iso13855 import (
     COARSEST,
     HIGHEST_HORIZONTAL,
     K_WALK,
+    LOWEST_BEAM_AT_MOST,
+    TOP_BEAM_AT_LEAST,
     horizontal_distance,
     lowest_horizontal_height,
     orthogonal_distance,
@@ -51,6 +60,8 @@ from hrc_drake.station import StationSpec
 Problem = tuple[tuple | None, str]
 WAVE_STEP = 0.05
 """m: the walking distance from the reach grows in steps of this (round the furniture)"""
+EDGE = 0.1
+"""m: a gap this close to the walk's edge at S is a way in from beyond S"""
 SEAM = 0.01
 """m: furniture is grown by this much, so that where two pieces meet (two fence panels end
 to end) no hairline gap lets the walk through"""
@@ -74,15 +85,28 @@ def sensor_problems(
         if housing:
             where = ("sensors", "scanners", name, "pose")
             yield where, f"the scanner at {_xyz(scanner.origin())} is inside {housing}"
-    for name, curtain in sensors.light_curtains.items():
-        where = ("sensors", "light_curtains", name)
-        yield from _prefixed(where, _curtain_placement(curtain, cell))
     timing = _Timing(config, StopModel.of_variant(station.variant), command_latency)
-    yield from _field_problems(sensors, cell, timing)
-    yield from _curtain_distances(sensors, cell, timing)
+    barriers = []
+    for name, curtain in sensors.light_curtains.items():
+        found = [
+            *_curtain_placement(curtain, cell),
+            *_beam_height_problems(*curtain.heights),
+            *_curtain_distance(curtain, cell, timing),
+        ]
+        yield from _prefixed(("sensors", "light_curtains", name), found)
+        if not found:
+            barriers.append(_barrier(curtain))
+    yield from _field_problems(sensors, cell, timing, tuple(barriers))
 
 
-def _prefixed(names: tuple, found: Iterator[Problem]) -> Iterator[Problem]:
+def _barrier(curtain: LightCurtain) -> Polygon:
+    """The curtain as a wall the walk from the reach goes round (crossing it, a person is
+    seen in time): thicker than a step of the walk, which would otherwise step through it
+    where it has come round a post."""
+    return LineString(curtain.ends).buffer(WAVE_STEP / 2)
+
+
+def _prefixed(names: tuple, found: Iterable[Problem]) -> Iterator[Problem]:
     return (((*names, *where), message) for where, message in found)
 
 
@@ -228,6 +252,30 @@ def _curtain_values(curtain: LightCurtain) -> Iterator[Problem]:
     yield from _positive(curtain, ("response_time",))
 
 
+def _beam_height_problems(lowest: float, highest: float) -> Iterator[Problem]:
+    """A curtain a person crawls under or steps or reaches over (ISO 13855 clause 6.2, a
+    curtain against whole-body access; Table 1 has no upper edge below 0.9 m)."""
+    if lowest > LOWEST_BEAM_AT_MOST + 1e-9:
+        yield (
+            ("heights",),
+            _beam_height("lowest", lowest, "crawls under", "at most", LOWEST_BEAM_AT_MOST),
+        )
+    if highest < TOP_BEAM_AT_LEAST - 1e-9:
+        yield (
+            ("heights",),
+            _beam_height(
+                "highest", highest, "steps or reaches over", "at least", TOP_BEAM_AT_LEAST
+            ),
+        )
+
+
+def _beam_height(beam: str, height: float, how: str, bound: str, limit: float) -> str:
+    return (
+        f"the {beam} beam is {height} m above the floor: a person {how} it (ISO 13855 puts "
+        f"it {bound} {limit} m high)"
+    )
+
+
 def _curtain_placement(curtain: LightCurtain, cell: Cell) -> Iterator[Problem]:
     for k, (x, y) in enumerate(curtain.ends):
         for height in (curtain.heights[0], curtain.heights[1]):
@@ -279,35 +327,117 @@ def scanner_distance(scanner: LaserScanner, timing: _Timing, speed: float) -> fl
     return horizontal_distance(stopping_time, scanner.height) + scanner.measurement_error
 
 
-def _field_problems(sensors: SensorsConfig, cell: Cell, timing: _Timing) -> Iterator[Problem]:
-    """At each speed level, the scanners' active protective fields together against the
-    largest S among them."""
+def _field_problems(
+    sensors: SensorsConfig, cell: Cell, timing: _Timing, barriers: tuple[Polygon, ...]
+) -> Iterator[Problem]:
+    """At each speed level, the scanners' active protective fields, each only where its
+    scanner sees past the cell's fixed geometry, together against the largest S among
+    them; the way through a light curtain that stands at its own S (`barriers`) is the
+    curtain's to guard."""
     guarded = {name: s for name, s in sensors.scanners.items() if s.fields}
     levels = sorted({f.speed for s in guarded.values() for f in s.fields}, reverse=True)
     hazard = Point(*cell.base).buffer(cell.reach)
+    shadows = {name: _shadows(scanner, cell) for name, scanner in guarded.items()}
+    hidden = {name: unary_union(list(by_blocker.values())) for name, by_blocker in shadows.items()}
     for speed in levels:
         chosen = {name: active_set(s.fields, speed) for name, s in guarded.items()}
-        fields = [_polygon(s.fields[chosen[n]].protective)[0] for n, s in guarded.items()]
-        covered = unary_union([field for field in fields if field is not None])
+        fields = {n: _polygon(s.fields[chosen[n]].protective)[0] for n, s in guarded.items()}
+        drawn = unary_union([f for f in fields.values() if f])
+        covered = unary_union([f.difference(hidden[n]) for n, f in fields.items() if f])
         name, scanner = max(guarded.items(), key=lambda i: scanner_distance(i[1], timing, speed))
         distance = scanner_distance(scanner, timing, speed)
-        required = _walkable_within(hazard, distance, tuple(cell.obstacles))
-        gap = required.difference(covered).buffer(-scanner.detection_capability / 2)
+        gap = _ways_in(hazard, distance, (*cell.obstacles, *barriers), covered, drawn, scanner)
         if not gap.is_empty:
-            point, _ = nearest_points(gap, hazard)
             where = ("sensors", "scanners", name, "fields", chosen[name], "protective")
-            yield where, _too_small(scanner, timing, speed, cell, point, hazard)
+            places = _unseen_places(gap, hazard, drawn, fields, shadows)
+            yield where, f"{_too_small(scanner, timing, speed, cell)}; {places}"
 
 
-def _too_small(scanner, timing: _Timing, speed: float, cell: Cell, point, hazard) -> str:
+def _ways_in(hazard, distance: float, obstacles: tuple, covered, drawn, scanner: LaserScanner):
+    """The places within walking distance `distance` of `hazard` that no field covers where
+    its scanner sees, wide enough for the detection capability, that are a way in: outside
+    every field `drawn`, or reaching the walk's edge at `distance` (a blind pocket that the
+    seen field encloses cannot be entered unseen: who stands in it is a run's to show)."""
+    required = _walkable_within(hazard, distance, obstacles)
+    inner = _walkable_within(hazard, max(distance - EDGE, 0.0), obstacles)
+    gap = required.difference(covered).buffer(-scanner.detection_capability / 2)
+    pieces = getattr(gap, "geoms", [gap])
+    edge = required.difference(inner)
+    return unary_union(
+        [p for p in pieces if not p.is_empty and (p.intersects(edge) or not p.within(drawn))]
+    )
+
+
+def _shadows(scanner: LaserScanner, cell: Cell) -> dict[str, Polygon]:
+    """The floor of the scanner's scan plane within its angles and range that the cell's
+    fixed geometry hides from it (beyond where its beams stop: a field drawn behind a fence
+    watches nothing there), by the name of what stops the beams."""
+    origins, directions, length = beams(scanner)
+    angles = scanner.beam_angles()
+    ranges, which = cast(origins, directions, length, cell.shapes, cell.poses, angles)
+    shadow = _fan(scanner, np.full_like(ranges, length)).difference(_fan(scanner, ranges))
+    names = np.array(cell.names + [""])[which]
+    return {
+        name: shadow.intersection(_sectors(scanner, angles[names == name]))
+        for name in sorted(set(names) - {""})
+    }
+
+
+def _fan(scanner: LaserScanner, ranges: np.ndarray) -> Polygon:
+    """The floor the scanner's beams cover out to `ranges` (per beam, at most its range)."""
+    origin = scanner.origin()[:2]
+    ends = origin + np.minimum(ranges, scanner.range)[:, None] * scanner.beam_directions()[:, :2]
+    low, high = scanner.angles_deg
+    return Polygon(ends if high - low >= 360.0 else np.vstack([origin, ends])).buffer(0)
+
+
+def _sectors(scanner: LaserScanner, angles: np.ndarray) -> Polygon:
+    """The scanner's beams at `angles` (rad), each widened to half the way to the next."""
+    origin = scanner.origin()[:2]
+    half = math.radians(scanner.resolution_deg) / 2
+    far = 2.0 * scanner.range
+    return unary_union(
+        [
+            Polygon([origin, *(origin + far * np.array([math.cos(a), math.sin(a)]) for a in ends)])
+            for ends in zip(angles - half, angles + half, strict=True)
+        ]
+    )
+
+
+def _unseen_places(gap, hazard, drawn, fields: dict, shadows: dict) -> str:
+    """Where a person walks in unseen: the place of `gap` nearest the reach outside every
+    field (`drawn`), and in each scanner's field the nearest that each piece of the cell
+    hides."""
+    places = [(gap.difference(drawn), "in no protective field")]
+    for name, by_blocker in shadows.items():
+        if fields[name] is None:
+            continue
+        places += [
+            (
+                gap.intersection(fields[name]).intersection(shadow),
+                f"in the protective field of '{name}', where the cell's {blocker} hides them "
+                "from the scanner",
+            )
+            for blocker, shadow in by_blocker.items()
+        ]
+    said = []
+    for part, why in sorted(
+        ((part, why) for part, why in places if not part.is_empty),
+        key=lambda place: place[0].distance(hazard),
+    ):
+        point, _ = nearest_points(part, hazard)
+        where = f"[{point.x:.2f}, {point.y:.2f}], {point.distance(hazard):.2f} m from the reach"
+        said.append(f"a person at {where}, is {why}")
+    return "; ".join(said) or "a person walks in where no scanner sees them"
+
+
+def _too_small(scanner, timing: _Timing, speed: float, cell: Cell) -> str:
     distance = scanner_distance(scanner, timing, speed)
     return (
         f"too small for ISO 13855's minimum distance at {speed:.0%} speed: S = K·T + C + Z_d "
         f"= {distance:.2f} m round the robot's reach ({cell.reach:.2f} m about its base), "
         f"with K {K_WALK} m/s, {timing.explain(scanner.response_time, speed)}, "
-        f"C {scanner.intrusion:.2f} m {scanner.height} m high, Z_d {scanner.measurement_error} m; "
-        f"a person at [{point.x:.2f}, {point.y:.2f}], {point.distance(hazard):.2f} m from the "
-        "reach, is in no protective field"
+        f"C {scanner.intrusion:.2f} m {scanner.height} m high, Z_d {scanner.measurement_error} m"
     )
 
 
@@ -327,19 +457,19 @@ def _walkable_within(hazard: Polygon, distance: float, obstacles: tuple[Polygon,
     return region.difference(blocked)
 
 
-def _curtain_distances(sensors: SensorsConfig, cell: Cell, timing: _Timing):
+def _curtain_distance(curtain: LightCurtain, cell: Cell, timing: _Timing) -> Iterator[Problem]:
+    """The curtain closer to the robot's reach than ISO 13855's S."""
     hazard = Point(*cell.base).buffer(cell.reach)
-    for name, curtain in sensors.light_curtains.items():
-        stopping_time = timing.stopping_time(curtain.response_time, 1.0)
-        distance = orthogonal_distance(stopping_time, curtain.resolution)
-        apart = LineString(curtain.ends).distance(hazard)
-        if apart < distance:
-            yield (
-                ("sensors", "light_curtains", name, "ends"),
-                (
-                    f"{apart:.2f} m from the robot's reach ({cell.reach:.2f} m about its base), "
-                    f"closer than ISO 13855's minimum distance S = K·T + C = {distance:.2f} m "
-                    f"({timing.explain(curtain.response_time, 1.0)}, C {curtain.intrusion:.3f} m "
-                    f"for a resolution of {curtain.resolution * 1000:g} mm)"
-                ),
-            )
+    stopping_time = timing.stopping_time(curtain.response_time, 1.0)
+    distance = orthogonal_distance(stopping_time, curtain.resolution)
+    apart = LineString(curtain.ends).distance(hazard)
+    if apart < distance:
+        yield (
+            ("ends",),
+            (
+                f"{apart:.2f} m from the robot's reach ({cell.reach:.2f} m about its base), "
+                f"closer than ISO 13855's minimum distance S = K·T + C = {distance:.2f} m "
+                f"({timing.explain(curtain.response_time, 1.0)}, C {curtain.intrusion:.3f} m "
+                f"for a resolution of {curtain.resolution * 1000:g} mm)"
+            ),
+        )
