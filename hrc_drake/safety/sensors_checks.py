@@ -358,11 +358,9 @@ def _ways_in(hazard, distance: float, obstacles: tuple, covered, drawn, scanner:
     its scanner sees, wide enough for the detection capability, that are a way in: outside
     every field `drawn`, or reaching the walk's edge at `distance` (a blind pocket that the
     seen field encloses cannot be entered unseen: who stands in it is a run's to show)."""
-    required = _walkable_within(hazard, distance, obstacles)
-    inner = _walkable_within(hazard, max(distance - EDGE, 0.0), obstacles)
+    required, edge = _walkable_within(hazard, distance, obstacles)
     gap = required.difference(covered).buffer(-scanner.detection_capability / 2)
     pieces = getattr(gap, "geoms", [gap])
-    edge = required.difference(inner)
     return unary_union(
         [p for p in pieces if not p.is_empty and (p.intersects(edge) or not p.within(drawn))]
     )
@@ -443,18 +441,22 @@ def _too_small(scanner, timing: _Timing, speed: float, cell: Cell) -> str:
 
 @lru_cache(maxsize=16)
 def _walkable_within(hazard: Polygon, distance: float, obstacles: tuple[Polygon, ...]):
-    """The floor a person can walk to within `distance` of `hazard`, round the obstacles:
-    a wave from the hazard, each step keeping only the pieces that touch the last (a step
-    across a thin fence lands in a piece of its own). Kept per process: the wave takes
-    about 0.3 s, and a scenario's falsify ranges re-check the same fields once per end."""
+    """The floor a person can walk to within `distance` of `hazard`, round the obstacles,
+    and the part of it they reach in the last EDGE (the walk's edge): a wave from the
+    hazard, each step keeping only the pieces that touch the last (a step across a thin
+    fence lands in a piece of its own). Kept per process: the wave takes a second or more,
+    and a scenario's falsify ranges re-check the same fields once per end."""
     blocked = unary_union(obstacles).buffer(SEAM)
-    region = hazard
+    region = inner = hazard
     steps = max(1, math.ceil(distance / WAVE_STEP))
-    for _ in range(steps):
+    edge_steps = math.ceil(EDGE / (distance / steps))
+    for step in range(steps):
+        if step == steps - edge_steps:
+            inner = region
         grown = region.buffer(distance / steps).difference(blocked)
         pieces = getattr(grown, "geoms", [grown])
         region = unary_union([p for p in pieces if p.intersects(region)] + [hazard])
-    return region.difference(blocked)
+    return region.difference(blocked), region.difference(inner)
 
 
 def _curtain_distance(curtain: LightCurtain, cell: Cell, timing: _Timing) -> Iterator[Problem]:

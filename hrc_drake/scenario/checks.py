@@ -164,7 +164,7 @@ def scenario_problems(
     yield from _prefixed("trees", _resolve_tree_files(directory, scenario.trees))
     yield from tree_problems(scenario)
     if scenario.falsify is not None:
-        yield from _falsify_problems(scenario, directory, sensors)
+        yield from _falsify_problems(scenario, directory)
 
 
 def safety_sensor_problems(scenario: Scenario) -> Iterator[Problem]:
@@ -174,10 +174,11 @@ def safety_sensor_problems(scenario: Scenario) -> Iterator[Problem]:
     yield from _prefixed("safety", sensor_problems(scenario.safety, scenario.station, latency))
 
 
-def _falsify_problems(scenario: Scenario, directory: Path, sensors: bool) -> Iterator[Problem]:
+def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
     """The search space's own mistakes, then every range end and choice checked like the
     bound field's value in the file (with the first problem it causes; the safety sensors'
-    only with `sensors` or where the parameter binds a field their checks read)."""
+    only where the parameter binds a field their checks read: the scenario's own are
+    checked once, and they take seconds)."""
     kind_of = partial(field_kind, Scenario)
     found = list(_prefixed("falsify", search_problems(scenario.falsify, kind_of)))
     yield from found
@@ -194,7 +195,7 @@ def _falsify_problems(scenario: Scenario, directory: Path, sensors: bool) -> Ite
             except InputError as error:  # the bound field is not in the scenario
                 yield (*where, "bind"), str(error).removeprefix("--set ")
                 break
-            checked = scenario_problems(changed, directory, sensors or _moves_sensors(parameter))
+            checked = scenario_problems(changed, directory, _moves_sensors(parameter))
             for _, message in itertools.islice(checked, 1):
                 yield (*where, *names), f"{parameter.bind}={value}: {message}"
 
