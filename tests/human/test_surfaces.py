@@ -692,8 +692,8 @@ def test_a_box_the_person_cannot_take_off_a_rack_board_is_refused_before_the_run
     over the box: `validate` said nothing (it did not look into the ForceSuccess, nor at where
     the kept-out hands close), the run played the pick with a forearm 1.8 cm in the rack and
     failed it "0.09 m from the point between the palms". Both now refuse it before anything
-    moves, saying what would go into the rack (with the elbows raised the hands close on the box; from
-    that close, the arm bringing it down over the board's edge goes into the rack)."""
+    moves, saying what would go into the rack (with the elbows raised the hands close on the
+    box; from that close, an arm bringing it down over the board's edge goes into it)."""
     scenario = load_scenario(INSERTS_ON_TOP)
     said = [f.message for f in findings(scenario, INSERTS_ON_TOP)]
     assert len(said) == 1 and "into 'rack'" in said[0], said
