@@ -536,12 +536,11 @@ def _ways_off(
         offset = way[-1]
     held = placed_pose(clip.sample(start)) + offset
     way_from, way_to = _in_chest(body, held, sides), _in_chest(body, carried, sides)
-    level = None if around is None else _level(body, carry, held, carried, around)
     zero = np.zeros_like(on_target)
     span = (start, clip.duration)
-    times, way = _way(
-        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, level=level, taken=True
-    )
+    level = None if around is None else _level(body, carry, held, carried, around)
+    way = (way_from, way_to, offset, zero, arms)
+    times, way = _way(body, clip, placed_pose, span, *way, level=level, taken=True)
     way[0], way[-1] = offset, carried - end_pose
     joined = int(out is not None)  # the drawn-out way's last key is this way's first
     ways.append((times[joined:], way[joined:]))
@@ -560,7 +559,9 @@ def _above_the_shoulders(body, q: np.ndarray, sides) -> bool:
 def _off_the_edge(body, carry: CarryArms, grasped, around) -> np.ndarray | None:
     """How far (a world vector) the object taken at `grasped` is drawn out towards the
     person, lifted CLEARANCE off what it lay on, until it and the hands are WAY_BEND clear
-    of that surface's edge (None: it lay on nothing of the cell, or cannot be)."""
+    of that surface's edge, as far as the way down may bend (2 cm clear, a box brought down
+    from a shelf's 1.6 m top board went 1.4 cm into its edge), None: it lay on nothing of
+    the cell, or cannot be."""
     furniture, heading = around
     a = _palms_midpoint(body, carry, grasped)
     around_it, lowest, _ = _held_outline(body, carry, heading)
@@ -570,7 +571,7 @@ def _off_the_edge(body, carry: CarryArms, grasped, around) -> np.ndarray | None:
     back = -np.array([np.cos(heading), np.sin(heading)])
     for distance in np.arange(OUT_STEP, OUT_MOST, OUT_STEP):
         outline = MultiPoint([a[:2] + c + distance * back for c in around_it]).convex_hull
-        if not outline.buffer(CLEARANCE).intersects(furniture.pile(support).outline):
+        if not outline.buffer(WAY_BEND).intersects(furniture.pile(support).outline):
             return np.array([*(distance * back), CLEARANCE])
     return None
 

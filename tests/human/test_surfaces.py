@@ -980,6 +980,18 @@ def test_a_box_on_a_board_at_eye_height_is_taken_and_put_there(cell):
     assert said == [], said
 
 
+@pytest.mark.parametrize("cell", ["take_man.yaml", "take_woman.yaml"])
+def test_a_box_taken_off_a_board_at_eye_height_is_carried_to_a_table(cell):
+    """The same cell, run: the person walks to the shelf, takes the box off its 1.6 m board,
+    carries it to the table and puts it there, each node once and with success, within every
+    limit of the audit (the box drawn out over the board's edge before it comes down)."""
+    report = run(load_scenario(EYE_HEIGHT_BOARD / cell))
+    for node in ("ActorMovement::3", "ActorPick::4", "ActorMovement::5", "ActorPlace::6"):
+        done = report.metrics["bt"]["human"][node]
+        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    assert_within_the_audit_limits(report.metrics["realism"])
+
+
 def test_a_refusal_is_remembered_by_its_own_run_only(monkeypatch):
     """The refusal is remembered in the person's state, in Drake's Context: a second run in
     the same process plans its own first ask."""
