@@ -43,3 +43,19 @@ def test_a_put_down_past_a_tables_edge_is_refused_by_validate_and_the_run():
     place = report.metrics["bt"]["human"]["ActorPlace::5"]
     assert place["successes"] == 0 and place["first_failure"].endswith(OFF_THE_TOP), place
     assert_within_the_audit_limits(report.metrics["realism"])
+
+
+def test_a_put_down_on_a_flow_racks_top_board_is_done_whenever_it_comes(tmp_path, hrc_drake):
+    """A user's machine-tending cell: a blank put on a flow rack's 1.4 m board. `validate`,
+    planning it from the start of its clock, said ok; the run refused it when it came
+    11.07 s in ("the right arm would go 3.2 cm into 'flow_rack'") and did it at 6.32 s:
+    the arms' correction, checked again at half steps that missed its own instants by
+    1e-16 from such a start, kept two keys side by side. It is the same whenever it
+    comes: both say it is done, within the audit's limits (the hand 0.5 cm in the rack)."""
+    cell = copied("flow_rack_top", tmp_path)
+    status, out, err = hrc_drake("validate", cell)
+    assert status == 0 and "ok (flow_rack_top" in out, err
+    report = run(load_scenario(cell))
+    place = report.metrics["bt"]["human"]["ActorPlace::6"]
+    assert place["successes"] == 1 and place["failures"] == 0, place
+    assert_within_the_audit_limits(report.metrics["realism"])
