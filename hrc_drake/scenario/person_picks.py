@@ -19,10 +19,10 @@ from pydrake.math import RigidTransform
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
-from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
+from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold, MoveCommand
 from hrc_drake.human.navigation import NoWay
 from hrc_drake.human.performer import Performer, sized_performer
-from hrc_drake.human.planning import plan_animation, plan_idle
+from hrc_drake.human.planning import plan_animation, plan_idle, plan_movement
 from hrc_drake.known_values import Known
 from hrc_drake.nodes.objects import NextObject, SpawnObject
 from hrc_drake.nodes.person import NEARBY, box_at
@@ -141,8 +141,16 @@ class PersonPicks:
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
+        origins = {
+            self._standing_at(agent, stand, obj.pose.translation())
+            for obj in taken
+            for _, _, stand in at_pick
+        }
+        came_from = origins.pop() if len(origins) == 1 else None
         gone = taken + [o for p in picks for _, o in self._lying_in(parents, way, known, p, agent)]
-        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
+        return partial(
+            self._place_problem, kind, hands, target, agent, held=held, taken=gone, came=came_from
+        )
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
@@ -168,13 +176,15 @@ class PersonPicks:
         stand: Known | None,
         held: Hold | None = None,
         taken=(),
+        came=None,
     ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
         `hands` (as `held` says, when known; else either way round as if taken facing it
         as they stand there: "" if one works), down at `target`, as the run would plan it:
         on top of the objects at the start lying there (hrc_drake.nodes.stacks; at the
         target as given, a tote put where another lay was planned inside it), but those the
-        pick may have `taken`, which are gone from where they lay; "" when they can."""
+        pick may have `taken`, which are gone from where they lay; "" when they can. They
+        stand where the carry there ends (`_carried_to`, from where they took it: `came`)."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
@@ -193,11 +203,28 @@ class PersonPicks:
         nearby = self._near(target, taken)
         problems = [
             self._planned_problem(
-                AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby), (x, y, yaw)
+                AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby),
+                (x, y, yaw) if stand is None else self._carried_to((x, y, yaw), hold, came, nearby),
             )
             for hold in holds
         ]
         return "" if "" in problems else problems[0]
+
+    def _carried_to(self, stand, hold: Hold, came, nearby) -> tuple[float, float, float]:
+        """Where a carry to `stand` (x, y, yaw) of what is held as `hold` ends, from where
+        the person took it (`came`; None: not known, a metre behind, coming straight on):
+        short of it where what the hands hold would end in what stands there, as the run
+        stops (hrc_drake.human.planning.plan_movement; a carton carried to a labelling
+        table, judged put down from the walk's target, 4.3 cm in the table: the run's carry
+        stopped 12 cm short and put it down)."""
+        x, y, yaw = stand
+        start = came or (x - math.cos(yaw), y - math.sin(yaw), yaw)
+        facing = (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+        command = MoveCommand(0, (x, y), facing, "carry", hold=hold, nearby=nearby)
+        try:
+            return plan_movement(self.performer, command, start, 0.0).final_pose
+        except Unreachable:
+            return stand
 
     def _lying_in(self, parents, way, known, pick, agent) -> list[tuple]:
         """The objects that `pick` may take the `way` the tree went, with their labels:
