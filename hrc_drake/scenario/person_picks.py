@@ -28,7 +28,7 @@ from hrc_drake.nodes.objects import NextObject, SpawnObject
 from hrc_drake.nodes.person import NEARBY, box_at
 from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace
-from hrc_drake.scenario.cell_findings import CellScene, InitialObject
+from hrc_drake.scenario.cell_findings import CellScene
 from hrc_drake.scenario.known_poses import heading, resolved
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
@@ -239,9 +239,9 @@ class PersonPicks:
             return self._numbered(known, pick)
         if not isinstance(source, NextObject | SpawnObject):
             return []
-        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         if isinstance(source, SpawnObject):
-            return self._made(known, source, agent, where)
+            return self.objects.made_by(source, known, partial(resolved, agent))
+        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         return [
             (f"{obj.label} in area '{area}' ({where})", obj)
             for area, obj in self.objects.found_by(source, known)
@@ -259,21 +259,6 @@ class PersonPicks:
             for kind, i in [obj.names[1:3]]
             if kind == "objects" and i + 1 in ids
         ]
-
-    def _made(self, known, spawn, agent, where: str) -> list[tuple]:
-        """The object `spawn` makes at each of its known poses, with its label."""
-        types = self.scenario.workpieces.types
-        made = []
-        for kind in known.get((id(spawn), "type"), ()):
-            for value in known.get((id(spawn), "pose"), ()):
-                pose = resolved(agent, value.value) if isinstance(value.value, Pose) else None
-                if kind.value in types and pose is not None:
-                    label = f"{kind.value} made at {value} ({where})"
-                    solid = Solid.of(types[kind.value])
-                    made.append(
-                        (label, InitialObject((), label, kind.value, solid, pose.to_transform()))
-                    )
-        return made
 
     def _put_down(self, parents, way, known, place, agent) -> list[tuple]:
         """What the pick before `place` may have taken, where `place` puts it down: at its
