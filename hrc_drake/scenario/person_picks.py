@@ -131,7 +131,9 @@ class PersonPicks:
         there (`at_pick`), when that is one way; held either way round when it is not (none
         lie there at the start: a part the robot's tree makes and puts there, whose drop
         into a floor bin the run refused, a user's cell); what any of `picks` (those that
-        have run before the put-down) may have taken is gone from where it lay."""
+        have run before the put-down) may have taken is gone from where it lay, and so is
+        what lay on it (the run takes only what has nothing on it: a user's full KLT, brought
+        where the robot had emptied one, was planned 7.9 cm into the parts taken off it)."""
         kind = finder_type(known, finder_of(pick, parents, way))
         if kind not in self.scenario.workpieces.types:
             return None
@@ -148,6 +150,7 @@ class PersonPicks:
         }
         came_from = origins.pop() if len(origins) == 1 else None
         gone = taken + [o for p in picks for _, o in self._lying_in(parents, way, known, p, agent)]
+        gone += [above for obj in gone for above in self.objects.lying_on(obj)]
         return partial(
             self._place_problem, kind, hands, target, agent, held=held, taken=gone, came=came_from
         )

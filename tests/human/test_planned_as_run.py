@@ -65,6 +65,16 @@ def test_a_carton_carried_to_a_table_is_judged_put_down_where_the_carry_stops(tm
     _validated_and_done(hrc_drake, cell, "ActorPlace::5")
 
 
+def test_a_klt_brought_where_an_emptied_one_lay_is_put_down_there(tmp_path, hrc_drake):
+    """A user's kitting cell: the robot takes the parts off a KLT on a table; once it is
+    empty the person takes it to the rack table and brings a full one back to where it lay.
+    `validate` planned that put-down with the parts still lying where they lay on the
+    emptied KLT, gone with it ("what the hands hold would go 7.9 cm into 'part at (-0.30,
+    0.80, 1.04)'"), and refused it; the run only takes a KLT with nothing on it. Both now
+    put it down there, within the audit's limits."""
+    _validated_and_done(hrc_drake, copied("klt_swap", tmp_path), "ActorPlace::15")
+
+
 def _validated_and_done(hrc_drake, cell, node: str) -> None:
     """`validate` says `cell` is ok, and its run does `node` once, refusing it never,
     within the audit's limits."""
