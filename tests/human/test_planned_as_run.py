@@ -55,6 +55,17 @@ def test_a_put_down_on_a_flow_racks_top_board_is_done_whenever_it_comes(tmp_path
     _validated_and_done(hrc_drake, copied("flow_rack_top", tmp_path), "ActorPlace::6")
 
 
+def test_a_tall_man_puts_a_blank_on_a_flow_racks_top_board(tmp_path, hrc_drake):
+    """The same cell with a 95th-percentile man: the 1.4 m board is below his shoulders,
+    yet both refused the put-down ("what the hands hold would go 3.0 cm into 'flow_rack'"):
+    his hand, held as it took the blank, could not rise that close to his chest, and the
+    way fell back to the straight one, through the board's edge. The palm now turns about
+    its normal on the way up (the blank stays level): both say it is done, within the
+    audit's limits."""
+    cell = copied("flow_rack_top", tmp_path).with_name("tall_man.yaml")
+    _validated_and_done(hrc_drake, cell, "ActorPlace::6")
+
+
 def test_a_carton_carried_to_a_table_is_judged_put_down_where_the_carry_stops(tmp_path, hrc_drake):
     """A user's packing cell: a 5th-percentile woman carries a carton round to a labelling
     table. `validate` judged its put-down from the place she walks to, the carton 4.3 cm
