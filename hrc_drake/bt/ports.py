@@ -36,12 +36,16 @@ class Range:
     low: float | None = None
     high: float | None = None
     above: bool = False
+    why: str = ""
+    """Said after a value it refuses, where the numbers are a convention to recall."""
 
     def problem(self, value: Any) -> str:
         items = value if isinstance(value, list) else [value]
         if all(self._holds(item) for item in items):
             return ""
         got = f"must be {self}, got {value_to_text(value)}"
+        if self.why:
+            return f"{got} ({self.why})"
         if (self.low, self.high) == (0, 1) and not isinstance(value, list) and 5 <= value <= 100:
             return f"{got} (a percentage? {value_to_text(value / 100)} is the fraction)"
         return got

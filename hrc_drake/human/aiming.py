@@ -36,6 +36,13 @@ TRUNK = (
 )
 PALM_ORIENTATION = 1.0
 """Weight of a palm's orientation reaching for a target."""
+FOREARM = 0.3
+"""m: how far behind a hand raised above the shoulders its elbow is put (`forearms_level`):
+about a forearm's length and the hand's to its grasp frame (0.26 m and 0.05 m for a
+1.75 m person)."""
+ELBOW_WEIGHT = 0.3
+"""Weight of the raised elbows' place against the hands' (1): they guide the arms' shape,
+the hands still go to their targets."""
 
 
 class Unreachable(ValueError):
@@ -219,7 +226,28 @@ def hands_on(
             return solved
     if hand_error <= tolerance:
         raise Unreachable("only reachable by stepping")
-    raise Unreachable(f"hand stays {hand_error:.2f} m from the target")
+    raise Unreachable(f"out of reach: the hand stays {hand_error:.2f} m from the target")
+
+
+def forearms_level(body: HumanBody, q: np.ndarray, hands: dict, heading: float) -> np.ndarray:
+    """q with the hands near their targets above the shoulders, each elbow raised behind its
+    hand, level with it (FOREARM back along `heading`): where the IK from the clip's pose
+    lifts them with the elbows low, the forearms rise steeply to the hands and pass through
+    the edge of the surface the targets are on (a box on a shelf's 1.6 m top board: the
+    arms 2.6-10.2 cm into the shelf, standing 0.35-0.75 m from it, a 1.75 m person). The
+    start of the IK that puts them on the targets (`hands_on` keeps near it). q as it is
+    when no target is above its shoulder."""
+    if not _overhead(body, q, hands):
+        return q
+    back = FOREARM * np.array([np.cos(heading), np.sin(heading), 0.0])
+    elbows = [
+        FrameTask(f"{side}_forearm", np.asarray(p) - back, position_weights=(ELBOW_WEIGHT,) * 3)
+        for side, (p, _) in hands.items()
+    ]
+    tasks = hand_tasks(hands, PALM_ORIENTATION, turn_in_palm=True) + elbows
+    return body.solve(
+        q, tasks + _feet_tasks(body, q), _free_joints(body, tuple(hands), False), iterations=300
+    )
 
 
 def arms_toward(body: HumanBody, q: np.ndarray, hands: dict) -> np.ndarray:

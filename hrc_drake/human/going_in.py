@@ -19,7 +19,7 @@ import numpy as np
 from hrc_drake.human.activity import Activity
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.arm_shapes import HEAD, Prisms, corners_in_world, parts_shapes
-from hrc_drake.human.clearance import NEAR, SAMPLE
+from hrc_drake.human.clearance import NEAR, SAMPLE, instants
 from hrc_drake.human.furniture import Furniture
 from hrc_drake.human.grasp import box_corners, held_corners
 from hrc_drake.human.messages import Hold
@@ -72,7 +72,7 @@ def going_in(performer: Performer, activity: Activity, start: float) -> str:
     if not furniture.pieces:
         return ""
     end = activity.end if np.isfinite(activity.end) else start
-    times = np.arange(start, end + SAMPLE / 2, SAMPLE)
+    times = instants(start, end)
     return (
         _held_going_in(performer, activity, times, PUTTING_DOWN)
         or _body_going_in(performer, activity, times)

@@ -22,10 +22,10 @@ from hrc_drake.human.clearance import (
     NEAR,
     PUSH_STEPS,
     PUSHES,
-    SAMPLE,
     TOLERANCE,
     VERIFICATIONS,
     ArmCorrection,
+    instants,
 )
 from hrc_drake.human.grasp import arm_indices
 from hrc_drake.human.skeleton import SIDES
@@ -53,7 +53,7 @@ def head_correction(body: HumanBody, furniture, pose, start: float, end: float):
     prisms = Prisms.of(furniture)
     if len(prisms.axes) == 0:
         return None
-    times = np.arange(start, end + SAMPLE / 2, SAMPLE)
+    times = instants(start, end)
     poses = np.array([pose(float(t)) for t in times])
     inside = np.flatnonzero(_head_depths(body, prisms, poses) > TOLERANCE)
     if len(inside) == 0:

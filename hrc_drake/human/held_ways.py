@@ -128,8 +128,7 @@ def _way(body, clip, placed_pose, span, *way, level=None, taken=False):
     while True:
         times = tuple(np.linspace(*span, count))
         straight = []
-        turnings = (False, True) if len(start) == 2 else (False,)
-        for crossing, turning in product(dict.fromkeys((level, None)), turnings):
+        for crossing, turning in product(dict.fromkeys((level, None)), (False, True)):
             route = _Route(
                 body, clip, placed_pose, times, start, end, trunk_from, trunk_to, crossing, taken
             )
@@ -341,8 +340,11 @@ def _held_way(route: _Route, arms: np.ndarray, turning: bool):
     """The offsets at the route's times, how far the palms' spacing strays from the
     object's on it and how far their midpoint misses the way's (the arms cannot hold the
     palms' orientation up there: over a stack in a shelf the keys were 13 cm under the way,
-    then one jumped 25 cm onto it). With `turning` two palms keep only their normals, free
-    to turn about them (the fingers down a box's sides at head height)."""
+    then one jumped 25 cm onto it). With `turning` the palms keep only their normals, free
+    to turn about them (the fingers down a box's sides at head height; one palm's object,
+    held level at the palm, does not tilt: a 95th-percentile man's hand raising a blank to
+    a flow rack's 1.4 m board, held as it took it, missed the way over the board's edge by
+    4.8 cm, and the straight way cut the edge, the blank 3.0 cm in)."""
     offsets, solved, slipped, missed = [], None, 0.0, 0.0
     for t, s in zip(route.times, route.fractions(), strict=True):
         q = route.body_at(t, s)
@@ -500,32 +502,80 @@ def carried_off(body, clip, placed_pose, hands, carry, on_target, marks, keys: "
     """Offsets of a clip that takes an object and carries it off in the carry posture:
     `keys` up to the grasp, then the way into the carry posture, over what stands on it
     (`around`: the furniture and the person's heading). From under a board (a shelf's) the
-    object is first drawn out, level, the body still bent as it took it."""
-    approach_time, _, hold_end = marks
+    object is first drawn out, level, the body still bent as it took it; off a surface above
+    the shoulders, out over the surface's edge (`_off_the_edge`), and then straight down:
+    carried at the height of a shelf's 1.6 m top board back to above the chest, a box left
+    the arms unable to hold it (the palms' spacing 5-7 cm off its width)."""
     sides = tuple(hands)
-    grasped = placed_pose(clip.sample(hold_end)) + on_target
+    grasped = placed_pose(clip.sample(marks[2])) + on_target
+    carried = carry.over(placed_pose(clip.sample(clip.duration)))
+    out = _out_from_under(body, carry, grasped, carried, around)
+    over = out is None and _above_the_shoulders(body, grasped, sides)
+    if over:
+        out = _off_the_edge(body, carry, grasped, around)
+    taken = (body, clip, placed_pose, carry, on_target, marks, sides, grasped, carried)
+    ways = _ways_off(*taken, None if over else around, out)
+    for k, (times, way) in enumerate(ways):
+        _add_way(keys, times, way, joined=k > 0)
+    return keys.motion(sides, (marks[0], clip.duration))
+
+
+def _ways_off(
+    body, clip, placed_pose, carry, on_target, marks, sides, grasped, carried, around, out
+):
+    """The (times, offsets) of the ways of `carried_off`: drawn out by `out` (None: not)
+    and into the carry posture, over what stands on that way (`around`; None: straight,
+    drawn out over the edge of what it lay on), each on from the last one's last key."""
+    hold_end = marks[2]
     end_pose = placed_pose(clip.sample(clip.duration))
-    carried = carry.over(end_pose)
     arms = arm_indices(body, sides)
-    start, offset, out = hold_end, on_target, _out_from_under(body, carry, grasped, carried, around)
+    start, offset, ways = hold_end, on_target, []
     if out is not None:
         start = hold_end + OUT_SHARE * (clip.duration - hold_end)
         times, way = _drawn_out(body, clip, placed_pose, (hold_end, start), grasped, out, sides)
         way[0] = on_target
-        _add_way(keys, times, way)
+        ways.append((times, way))
         offset = way[-1]
     held = placed_pose(clip.sample(start)) + offset
     way_from, way_to = _in_chest(body, held, sides), _in_chest(body, carried, sides)
-    level = _level(body, carry, held, carried, around)
     zero = np.zeros_like(on_target)
     span = (start, clip.duration)
-    times, way = _way(
-        body, clip, placed_pose, span, way_from, way_to, offset, zero, arms, level=level, taken=True
-    )
+    level = None if around is None else _level(body, carry, held, carried, around)
+    way = (way_from, way_to, offset, zero, arms)
+    times, way = _way(body, clip, placed_pose, span, *way, level=level, taken=True)
     way[0], way[-1] = offset, carried - end_pose
     joined = int(out is not None)  # the drawn-out way's last key is this way's first
-    _add_way(keys, times[joined:], way[joined:], joined=bool(joined))
-    return keys.motion(sides, (approach_time, clip.duration))
+    ways.append((times[joined:], way[joined:]))
+    return ways
+
+
+def _above_the_shoulders(body, q: np.ndarray, sides) -> bool:
+    """Whether the hands are above their shoulders at q."""
+    return all(
+        body.frame_pose(f"{side}_hand_grasp", q).translation()[2]
+        > body.frame_pose(f"{side}_upper_arm", q).translation()[2]
+        for side in sides
+    )
+
+
+def _off_the_edge(body, carry: CarryArms, grasped, around) -> np.ndarray | None:
+    """How far (a world vector) the object taken at `grasped` is drawn out towards the
+    person, lifted CLEARANCE off what it lay on, until it and the hands are WAY_BEND clear
+    of that surface's edge, as far as the way down may bend (2 cm clear, a box brought down
+    from a shelf's 1.6 m top board went 1.4 cm into its edge), None: it lay on nothing of
+    the cell, or cannot be."""
+    furniture, heading = around
+    a = _palms_midpoint(body, carry, grasped)
+    around_it, lowest, _ = _held_outline(body, carry, heading)
+    support = furniture.support(a - [0.0, 0.0, lowest - CLEARANCE / 2])
+    if support is None:
+        return None
+    back = -np.array([np.cos(heading), np.sin(heading)])
+    for distance in np.arange(OUT_STEP, OUT_MOST, OUT_STEP):
+        outline = MultiPoint([a[:2] + c + distance * back for c in around_it]).convex_hull
+        if not outline.buffer(WAY_BEND).intersects(furniture.pile(support).outline):
+            return np.array([*(distance * back), CLEARANCE])
+    return None
 
 
 def _add_way(keys: "Keys", times, way, joined: bool = False) -> None:

@@ -23,7 +23,7 @@ over a surface's edge, withdrawing) are hrc_drake.human.hand_ways, with an objec
 
 import numpy as np
 
-from hrc_drake.human.aiming import AimedMotion, Unreachable, hands_on, offset_to
+from hrc_drake.human.aiming import AimedMotion, Unreachable, forearms_level, hands_on, offset_to
 from hrc_drake.human.body import HumanBody
 from hrc_drake.human.clip import Clip
 from hrc_drake.human.furniture import Furniture
@@ -120,6 +120,14 @@ def _resting(
     return solved, hands
 
 
+def _raised(body: HumanBody, q: np.ndarray, hands: dict, furniture: Furniture, heading: float):
+    """q with the forearms level behind hands aimed at a surface of the cell above the
+    shoulders (`forearms_level`), where they reach over its edge."""
+    if all(furniture.support(position) is None for position, _ in hands.values()):
+        return q
+    return forearms_level(body, q, hands, heading)
+
+
 def _lowest(body: HumanBody, q: np.ndarray, side: str) -> float:
     """The height of the `side` hand's lowest point at q."""
     X = body.frame_pose(f"{side}_hand_grasp", q)
@@ -158,7 +166,9 @@ def aim_clip(
         raise Unreachable(f"target {distance:.2f} m away, out of reach without walking")
     reaching = clip.name == "reach"
     floors = _floors(body, furniture, hands, reaching)
-    on_target, hands = _resting(body, at_event, hands, floors, level)
+    on_target, hands = _resting(
+        body, _raised(body, at_event, hands, furniture, heading), hands, floors, level
+    )
     on_target = on_target - at_event
     approach_time = APPROACH_AT * event
     putting_down = carry is not None and not takes

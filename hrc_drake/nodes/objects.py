@@ -7,7 +7,7 @@ key `type` is the object type and other keys are attributes (`defective=true`).
 """
 
 from hrc_drake.areas import Area
-from hrc_drake.bt import InputPort, OneOf, OutputPort, Status, SyncActionNode
+from hrc_drake.bt import InputPort, OneOf, OutputPort, Range, Status, SyncActionNode
 from hrc_drake.bt.ports import value_to_text
 from hrc_drake.messages import ResultLog
 from hrc_drake.nodes.command import CommandNode
@@ -31,6 +31,11 @@ def matches(obj: wp.ObjectStatus, wanted: dict[str, str]) -> bool:
         if actual is None or value_to_text(actual) != value:
             return False
     return True
+
+
+OBJECT_ID = Range(wp.FIRST_ID, why="objects are numbered from 1: the scenario's in their order")
+"""The object ids a port takes: a user's `object_id="0"`, meant as the first object, failed its
+pick 123 times in a run that validate had passed."""
 
 
 class ObjectsNode(SyncActionNode):
@@ -109,7 +114,7 @@ class ObjectAttribute(ObjectsNode):
     """Reads one attribute of an object (its `type` too); FAILURE if either is unknown."""
 
     ports = (
-        InputPort("object_id", int),
+        InputPort("object_id", int, accepts=OBJECT_ID),
         InputPort("attribute", str),
         OutputPort("value", str),
     )
@@ -195,7 +200,7 @@ class SpawnObject(WorkpiecesCommandNode):
 class DespawnObject(WorkpiecesCommandNode):
     """Removes an object from the simulation (e.g. when it leaves the cell)."""
 
-    ports = (InputPort("object_id", int),)
+    ports = (InputPort("object_id", int, accepts=OBJECT_ID),)
 
     def command(self, seq: int):
         return wp.Despawn(seq, self.get_input("object_id"))
@@ -207,7 +212,7 @@ class MoveObject(WorkpiecesCommandNode):
     held."""
 
     ports = (
-        InputPort("object_id", int),
+        InputPort("object_id", int, accepts=OBJECT_ID),
         InputPort("pose", Pose, description="where its centre goes, and which way it faces"),
     )
 

@@ -12,6 +12,7 @@ from hrc_drake.bt import InputPort, OneOf, Status
 from hrc_drake.human import messages as human
 from hrc_drake.human.grasp import grasp_hands, hold_of, object_center_in_holder
 from hrc_drake.messages import RUNNING, SUCCEEDED
+from hrc_drake.nodes.objects import OBJECT_ID
 from hrc_drake.nodes.person import HOLDERS, PersonCommandNode, grasp_of
 from hrc_drake.nodes.stacks import on_top_of_what_lies_there
 from hrc_drake.tree_types import Pose
@@ -181,7 +182,7 @@ class ActorPick(TargetedAction):
     """Picks up an object (table or floor clip by its height) into the hand(s); fails at once
     while the hands hold something."""
 
-    ports = (InputPort("object_id", int), HAND_PORT)
+    ports = (InputPort("object_id", int, accepts=OBJECT_ID), HAND_PORT)
     contact_event = "grasp"
 
     def on_start(self) -> Status:
@@ -245,7 +246,9 @@ class ActorReach(TargetedAction):
 
     ports = (
         InputPort("target", Pose, description="point to reach"),
-        InputPort("object_id", int, default=None, description="an object to square up"),
+        InputPort(
+            "object_id", int, default=None, description="an object to square up", accepts=OBJECT_ID
+        ),
         InputPort("place", Pose, default=None, description="where that object is set down"),
     )
 
@@ -274,7 +277,7 @@ class ActorHandOver(TargetedAction):
     it) or gives what the hands hold to the robot's cup (`give`)."""
 
     ports = (
-        InputPort("object_id", int),
+        InputPort("object_id", int, accepts=OBJECT_ID),
         InputPort(
             "direction", str, default="take", description="take or give", accepts=TAKE_OR_GIVE
         ),

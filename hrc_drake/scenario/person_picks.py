@@ -19,16 +19,16 @@ from pydrake.math import RigidTransform
 from hrc_drake.human.aiming import Unreachable
 from hrc_drake.human.going_in import going_in
 from hrc_drake.human.grasp import grasp_hands, hold_of
-from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold
+from hrc_drake.human.messages import AnimateCommand, Box, Grasp, Hold, MoveCommand
 from hrc_drake.human.navigation import NoWay
 from hrc_drake.human.performer import Performer, sized_performer
-from hrc_drake.human.planning import plan_animation, plan_idle
+from hrc_drake.human.planning import plan_animation, plan_idle, plan_movement
 from hrc_drake.known_values import Known
 from hrc_drake.nodes.objects import NextObject, SpawnObject
 from hrc_drake.nodes.person import NEARBY, box_at
 from hrc_drake.nodes.stacks import on_top_of
 from hrc_drake.nodes.targeted import TABLE_HEIGHT, ActorPlace
-from hrc_drake.scenario.cell_findings import CellScene, InitialObject
+from hrc_drake.scenario.cell_findings import CellScene
 from hrc_drake.scenario.known_poses import heading, resolved
 from hrc_drake.scenario.located import Finding, Locator
 from hrc_drake.scenario.reach_from_stand import point_text, reach_findings
@@ -131,7 +131,9 @@ class PersonPicks:
         there (`at_pick`), when that is one way; held either way round when it is not (none
         lie there at the start: a part the robot's tree makes and puts there, whose drop
         into a floor bin the run refused, a user's cell); what any of `picks` (those that
-        have run before the put-down) may have taken is gone from where it lay."""
+        have run before the put-down) may have taken is gone from where it lay, and so is
+        what lay on it (the run takes only what has nothing on it: a user's full KLT, brought
+        where the robot had emptied one, was planned 7.9 cm into the parts taken off it)."""
         kind = finder_type(known, finder_of(pick, parents, way))
         if kind not in self.scenario.workpieces.types:
             return None
@@ -141,8 +143,17 @@ class PersonPicks:
             self._held_as(obj, agent, hands, stand) for obj in taken for _, _, stand in at_pick
         }
         held = holds.pop() if len(holds) == 1 else None
+        origins = {
+            self._standing_at(agent, stand, obj.pose.translation())
+            for obj in taken
+            for _, _, stand in at_pick
+        }
+        came_from = origins.pop() if len(origins) == 1 else None
         gone = taken + [o for p in picks for _, o in self._lying_in(parents, way, known, p, agent)]
-        return partial(self._place_problem, kind, hands, target, agent, held=held, taken=gone)
+        gone += [above for obj in gone for above in self.objects.lying_on(obj)]
+        return partial(
+            self._place_problem, kind, hands, target, agent, held=held, taken=gone, came=came_from
+        )
 
     def _held_as(self, obj, agent, hands: str, stand: Known | None) -> Hold:
         """How `hands` hold `obj` once taken from `stand` (its extents along the person's
@@ -168,13 +179,15 @@ class PersonPicks:
         stand: Known | None,
         held: Hold | None = None,
         taken=(),
+        came=None,
     ) -> str:
         """Why the person standing at `stand` cannot put an object of type `kind`, held in
         `hands` (as `held` says, when known; else either way round as if taken facing it
         as they stand there: "" if one works), down at `target`, as the run would plan it:
         on top of the objects at the start lying there (hrc_drake.nodes.stacks; at the
         target as given, a tote put where another lay was planned inside it), but those the
-        pick may have `taken`, which are gone from where they lay; "" when they can."""
+        pick may have `taken`, which are gone from where they lay; "" when they can. They
+        stand where the carry there ends (`_carried_to`, from where they took it: `came`)."""
         x, y, yaw = self._standing_at(agent, stand, target)
         shape = self.scenario.workpieces.types[kind]
         _, _, size = box_at(RigidTransform(), shape.shape, shape.size)
@@ -193,11 +206,28 @@ class PersonPicks:
         nearby = self._near(target, taken)
         problems = [
             self._planned_problem(
-                AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby), (x, y, yaw)
+                AnimateCommand(0, clip, target=target, hold=hold, nearby=nearby),
+                (x, y, yaw) if stand is None else self._carried_to((x, y, yaw), hold, came, nearby),
             )
             for hold in holds
         ]
         return "" if "" in problems else problems[0]
+
+    def _carried_to(self, stand, hold: Hold, came, nearby) -> tuple[float, float, float]:
+        """Where a carry to `stand` (x, y, yaw) of what is held as `hold` ends, from where
+        the person took it (`came`; None: not known, a metre behind, coming straight on):
+        short of it where what the hands hold would end in what stands there, as the run
+        stops (hrc_drake.human.planning.plan_movement; a carton carried to a labelling
+        table, judged put down from the walk's target, 4.3 cm in the table: the run's carry
+        stopped 12 cm short and put it down)."""
+        x, y, yaw = stand
+        start = came or (x - math.cos(yaw), y - math.sin(yaw), yaw)
+        facing = (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+        command = MoveCommand(0, (x, y), facing, "carry", hold=hold, nearby=nearby)
+        try:
+            return plan_movement(self.performer, command, start, 0.0).final_pose
+        except Unreachable:
+            return stand
 
     def _lying_in(self, parents, way, known, pick, agent) -> list[tuple]:
         """The objects that `pick` may take the `way` the tree went, with their labels:
@@ -212,9 +242,9 @@ class PersonPicks:
             return self._numbered(known, pick)
         if not isinstance(source, NextObject | SpawnObject):
             return []
-        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         if isinstance(source, SpawnObject):
-            return self._made(known, source, agent, where)
+            return self.objects.made_by(source, known, partial(resolved, agent))
+        where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         return [
             (f"{obj.label} in area '{area}' ({where})", obj)
             for area, obj in self.objects.found_by(source, known)
@@ -232,21 +262,6 @@ class PersonPicks:
             for kind, i in [obj.names[1:3]]
             if kind == "objects" and i + 1 in ids
         ]
-
-    def _made(self, known, spawn, agent, where: str) -> list[tuple]:
-        """The object `spawn` makes at each of its known poses, with its label."""
-        types = self.scenario.workpieces.types
-        made = []
-        for kind in known.get((id(spawn), "type"), ()):
-            for value in known.get((id(spawn), "pose"), ()):
-                pose = resolved(agent, value.value) if isinstance(value.value, Pose) else None
-                if kind.value in types and pose is not None:
-                    label = f"{kind.value} made at {value} ({where})"
-                    solid = Solid.of(types[kind.value])
-                    made.append(
-                        (label, InitialObject((), label, kind.value, solid, pose.to_transform()))
-                    )
-        return made
 
     def _put_down(self, parents, way, known, place, agent) -> list[tuple]:
         """What the pick before `place` may have taken, where `place` puts it down: at its

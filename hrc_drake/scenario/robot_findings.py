@@ -11,6 +11,7 @@ from functools import cached_property, partial
 from hrc_drake.known_values import Known
 from hrc_drake.motion.planner import MotionPlanner
 from hrc_drake.motion.reach import configuration_problem, reach_problem
+from hrc_drake.nodes.objects import SpawnObject
 from hrc_drake.nodes.robot import RobotMoveLinear, tool_pose
 from hrc_drake.scenario.cell_findings import CellScene
 from hrc_drake.scenario.found_targets import found_reach_findings
@@ -106,18 +107,26 @@ class RobotChecks:
         """Targets made from the objects a NextObject can find that the robot cannot reach
         (hrc_drake.scenario.found_targets)."""
         known = {(id(node), port): values for node, port, values in inputs}
-        finds = partial(self._finds, known)
         resolve = partial(resolved, agent)
+        made = [
+            obj
+            for spawn in tree.node_list
+            if isinstance(spawn, SpawnObject)
+            for _, obj in self.objects.made_by(spawn, known, resolve)
+        ]
+        finds = partial(self._finds, known, made)
         return found_reach_findings(
             tree.node_list, known, finds, resolve, self._found_reach, self.at.node
         )
 
-    def _finds(self, known, finder) -> list[tuple[str, Pose]]:
-        """(label, centre as its `pose` gives it) of each object at the start that the
-        NextObject `finder` can find (`StartObjects.found_by`)."""
+    def _finds(self, known, made, finder) -> list[tuple[str, Pose]]:
+        """(label, centre as its `pose` gives it) of each object at the start, or `made` by
+        the tree's SpawnObjects at a known pose, that the NextObject `finder` can find
+        (`StartObjects.found_by`): a user's machine made its parts where the robot could not
+        reach, and validate said ok."""
         return [
             (f"{obj.label} in area '{area}' at {point_text(centre)}", Pose(tuple(centre)))
-            for area, obj in self.objects.found_by(finder, known)
+            for area, obj in self.objects.found_by(finder, known, made=made)
             for centre in [[float(v) for v in obj.pose.translation()]]
         ]
 

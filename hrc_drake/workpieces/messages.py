@@ -23,6 +23,10 @@ from pydrake.multibody.math import SpatialVelocity
 
 from hrc_drake.messages import ResultLog
 
+FIRST_ID = 1
+"""The id of the first object: the scenario's `workpieces.objects` in their order, then
+what the trees make."""
+
 ROBOT_HOLDER = "robot"
 """The robot's vacuum cup as a holder of objects."""
 LEFT_HAND = "left_hand"

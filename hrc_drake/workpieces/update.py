@@ -18,7 +18,7 @@ command, and every object at rest on something, a belt's queue included.
 from hrc_drake.messages import newer_commands
 from hrc_drake.workpieces.commands import execute
 from hrc_drake.workpieces.layouts import initial_placements
-from hrc_drake.workpieces.messages import WorkpiecesCommand
+from hrc_drake.workpieces.messages import FIRST_ID, WorkpiecesCommand
 from hrc_drake.workpieces.settling import remove_past_belt_ends, settle
 from hrc_drake.workpieces.step import Step
 from hrc_drake.workpieces.world import LAYOUT_STREAM, Sampled, Workcell, World
@@ -66,4 +66,4 @@ def still(
 
 
 def _empty_world() -> World:
-    return World(0.0, {}, 1, {}, {}, {})
+    return World(0.0, {}, FIRST_ID, {}, {}, {})

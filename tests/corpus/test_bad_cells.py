@@ -619,16 +619,15 @@ CASES = {
             A_SHELF_FRONT,
         ],
     ),
-    "a put-down into a shelf from where the tote carried there is in its board": person(
+    "a put-down past a shelf board's back edge of the tote carried there": person(
         '<ActorAnimation animation_name="wave"/>',
         '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
         '<ActorMovement target="table_front"/><ActorPick object_id="{t}"/>'
-        '<ActorMovement target="shelf_front"/><ActorPlace target="3.0;0.6;0.676"/>',
+        '<ActorMovement target="shelf_front"/><ActorPlace target="3.0;0.8;0.676"/>',
         (
-            "port 'target': '3.0;0.6;0.676' at (3.00, 0.60, 0.68), put down where the person "
+            "port 'target': '3.0;0.8;0.676' at (3.00, 0.80, 0.68), put down where the person "
             "stands (location 'shelf_front', ActorMovement at ",
-            "): what the hands hold would go ",
-            " cm into 'shelf' 0.0 s in",
+            "): where it is put is 5.0 cm off the top of 'shelf', nothing but the floor under it",
         ),
         "ActorPlace",
         changes=[

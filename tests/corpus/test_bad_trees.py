@@ -114,6 +114,16 @@ CASES = {
         ("port 'velocity': must be within 0..1, got 100 (a percentage? 1 is the fraction)",),
         'velocity="100"',
     ),
+    "an object numbered from 0": Case(  # a user's pick of object "0" failed 123 times
+        T,
+        MOVE,
+        f'{MOVE}<DespawnObject object_id="0"/>',
+        (
+            "port 'object_id': must be at least 1, got 0 (objects are numbered from 1: the "
+            "scenario's in their order)",
+        ),
+        "DespawnObject",
+    ),
     "a SubTree literal out of the range of the port it reaches": Case(
         T,
         '<SubTree ID="Reach" at="pick_spot"/>\n    </Sequence>\n  </BehaviorTree>\n'

@@ -93,3 +93,28 @@ def test_the_parts_a_move_cannot_reach_are_one_line_at_the_move(tmp_path, hrc_dr
     )
     status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
     assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)
+
+
+def test_a_part_the_tree_makes_where_the_robot_cannot_reach_is_named_at_the_move(
+    tmp_path, hrc_drake
+):
+    """A user's machine made its parts with a SpawnObject at a location 0.4 m too far from
+    the robot: validate judged only the parts lying there at the start (none), said ok, and
+    the run failed the RobotMove 4 times. The part it makes is judged as one lying there."""
+    made = '<SpawnObject type="part" pose="0.0;1.0;0.93" object_id="{made}"/>' + TAKE
+    case = Case(
+        "robot.xml",
+        MOVE,
+        MOVE + made,
+        (
+            "/RobotMove::",
+            "port 'target': {grasp} from part made at '0.0;1.0;0.93' (SpawnObject at ",
+            "in area 'table' at (0.00, 1.00, 0.93) made by OffsetPose (robot.xml:",
+            ") at (0.00, 1.00, 0.96): out of reach with the tool pointing down: 1.00 m from "
+            "its base axis",
+        ),
+        '<RobotMove target="{grasp}"/>',
+        {"scenario.yaml": scenario(far="[0.2, 0.42, 0.93]")},  # both parts within reach
+    )
+    status, _, err = hrc_drake("validate", write_workspace(tmp_path, case))
+    assert_one_line_error(status, err, expected_place(tmp_path, case), *case.says)

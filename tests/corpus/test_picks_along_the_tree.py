@@ -147,8 +147,9 @@ def test_each_thing_a_fallback_may_have_written_is_judged(tmp_path, hrc_drake):
 def test_a_put_down_after_a_fallback_that_found_the_object_is_judged(tmp_path, hrc_drake):
     """A user's flow-rack cell (#26): the box found and walked to in a Fallback's first
     try (else it waits), then taken and put where an arm goes into the rack. Validate
-    said nothing, the run refused the put-down; the try that found it is judged."""
-    base = CASES["a put-down into a shelf from where the tote carried there is in its board"]
+    said nothing, the run refused the put-down; the try that found it is judged (here a
+    tote put down past the board's back edge, which only the tote's size tells)."""
+    base = CASES["a put-down past a shelf board's back edge of the tote carried there"]
     find = '<NextObject area="table" filter="type=tote" object_id="{t}" pose="{at}"/>'
     walk = '<ActorMovement target="table_front"/>'
     tree = base.files[base.found_in]

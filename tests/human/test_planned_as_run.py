@@ -43,3 +43,55 @@ def test_a_put_down_past_a_tables_edge_is_refused_by_validate_and_the_run():
     place = report.metrics["bt"]["human"]["ActorPlace::5"]
     assert place["successes"] == 0 and place["first_failure"].endswith(OFF_THE_TOP), place
     assert_within_the_audit_limits(report.metrics["realism"])
+
+
+def test_a_put_down_on_a_flow_racks_top_board_is_done_whenever_it_comes(tmp_path, hrc_drake):
+    """A user's machine-tending cell: a blank put on a flow rack's 1.4 m board. `validate`,
+    planning it from the start of its clock, said ok; the run refused it when it came
+    11.07 s in ("the right arm would go 3.2 cm into 'flow_rack'") and did it at 6.32 s:
+    the arms' correction, checked again at half steps that missed its own instants by
+    1e-16 from such a start, kept two keys side by side. It is the same whenever it
+    comes: both say it is done, within the audit's limits (the hand 0.5 cm in the rack)."""
+    _validated_and_done(hrc_drake, copied("flow_rack_top", tmp_path), "ActorPlace::6")
+
+
+def test_a_tall_man_puts_a_blank_on_a_flow_racks_top_board(tmp_path, hrc_drake):
+    """The same cell with a 95th-percentile man: the 1.4 m board is below his shoulders,
+    yet both refused the put-down ("what the hands hold would go 3.0 cm into 'flow_rack'"):
+    his hand, held as it took the blank, could not rise that close to his chest, and the
+    way fell back to the straight one, through the board's edge. The palm now turns about
+    its normal on the way up (the blank stays level): both say it is done, within the
+    audit's limits."""
+    cell = copied("flow_rack_top", tmp_path).with_name("tall_man.yaml")
+    _validated_and_done(hrc_drake, cell, "ActorPlace::6")
+
+
+def test_a_carton_carried_to_a_table_is_judged_put_down_where_the_carry_stops(tmp_path, hrc_drake):
+    """A user's packing cell: a 5th-percentile woman carries a carton round to a labelling
+    table. `validate` judged its put-down from the place she walks to, the carton 4.3 cm
+    in the table, and said so at the run's start; the run's carry stopped 12 cm short,
+    where the carton keeps out of the table, and put it down within the audit's limits.
+    `validate` now plans the carry from where she took the carton, and says it is done."""
+    cell = copied("carton_to_the_label_table", tmp_path)
+    _validated_and_done(hrc_drake, cell, "ActorPlace::5")
+
+
+def test_a_klt_brought_where_an_emptied_one_lay_is_put_down_there(tmp_path, hrc_drake):
+    """A user's kitting cell: the robot takes the parts off a KLT on a table; once it is
+    empty the person takes it to the rack table and brings a full one back to where it lay.
+    `validate` planned that put-down with the parts still lying where they lay on the
+    emptied KLT, gone with it ("what the hands hold would go 7.9 cm into 'part at (-0.30,
+    0.80, 1.04)'"), and refused it; the run only takes a KLT with nothing on it. Both now
+    put it down there, within the audit's limits."""
+    _validated_and_done(hrc_drake, copied("klt_swap", tmp_path), "ActorPlace::15")
+
+
+def _validated_and_done(hrc_drake, cell, node: str) -> None:
+    """`validate` says `cell` is ok, and its run does `node` once, refusing it never,
+    within the audit's limits."""
+    status, out, err = hrc_drake("validate", cell)
+    assert status == 0 and out.rstrip().endswith(")") and ": ok (" in out, err
+    report = run(load_scenario(cell))
+    done = report.metrics["bt"]["human"][node]
+    assert done["successes"] == 1 and done["failures"] == 0, done
+    assert_within_the_audit_limits(report.metrics["realism"])

@@ -685,20 +685,21 @@ def test_a_tray_taken_off_a_rack_board_keeps_under_the_board_above():
 INSERTS_ON_TOP = Path(__file__).resolve().parent / "cells" / "inserts_on_top" / "cell.yaml"
 
 
-def test_a_box_the_arms_kept_out_of_a_rack_cannot_close_on_is_refused_before_the_run():
-    """A user's packing cell, cut down: a box of inserts on a rack's 1.6 m board, the pick in
-    a ForceSuccess so that the tree goes on without it. The forearms, kept out of the board
-    they reached over, lifted the palms 8 cm over the box: `validate` said nothing (it did not
-    look into the ForceSuccess, nor at where the kept-out hands close), the run played the
-    pick with a forearm 1.8 cm in the rack and failed it "0.09 m from the point between the
-    palms". Both now refuse it, saying why, before anything moves."""
+def test_a_box_the_person_cannot_take_off_a_rack_board_is_refused_before_the_run():
+    """A user's packing cell, cut down: a box of inserts on a rack's 1.6 m board, taken by a
+    1.75 m person 0.6 m from the rack, the pick in a ForceSuccess so that the tree goes on
+    without it. The forearms, kept out of the board they reached over, lifted the palms 8 cm
+    over the box: `validate` said nothing (it did not look into the ForceSuccess, nor at where
+    the kept-out hands close), the run played the pick with a forearm 1.8 cm in the rack and
+    failed it "0.09 m from the point between the palms". Both now refuse it before anything
+    moves, saying what would go into the rack (with the elbows raised the hands close on the
+    box; from that close, an arm bringing it down over the board's edge goes into it)."""
     scenario = load_scenario(INSERTS_ON_TOP)
     said = [f.message for f in findings(scenario, INSERTS_ON_TOP)]
-    kept_off = "the arms kept out of the cell would leave the point between the palms"
-    assert len(said) == 1 and kept_off in said[0], said
+    assert len(said) == 1 and "into 'rack'" in said[0], said
     report = run(scenario)
     pick = report.metrics["bt"]["human"]["ActorPick::4"]
-    assert pick["successes"] == 0 and kept_off in pick["first_failure"], pick
+    assert pick["successes"] == 0 and "into 'rack'" in pick["first_failure"], pick
     assert_within_the_audit_limits(report.metrics["realism"])
 
 
@@ -946,6 +947,49 @@ def test_a_tree_retrying_a_pick_the_person_cannot_make_has_it_planned_once(monke
     pick = report.metrics["bt"]["human"][pick]
     assert pick["successes"] == 0 and pick["failures"] >= 3, pick
     assert len(planned) == 1, planned
+
+
+def test_a_box_out_of_the_persons_reach_is_refused_saying_by_how_much():
+    """The box on the shelf's 1.6 m board, its grasp 1.69 m up, for a 5th-percentile woman
+    (1.52 m) 0.75 m from the shelf: out of her reach, which `validate` and the run say, and
+    by how much, not that an arm would go into the shelf."""
+    cell = TOP_BOARD / "cell.yaml"
+    scenario = load_scenario(cell)
+    said = [f.message for f in findings(scenario, cell)]
+    assert any("out of reach: the hand stays 0.11 m from the target" in m for m in said), said
+    pick = run(scenario, duration=0.5).metrics["bt"]["human"]["ActorPick::3"]
+    assert "out of reach: the hand stays 0.11 m" in pick["first_failure"], pick
+
+
+EYE_HEIGHT_BOARD = Path(__file__).resolve().parent / "cells" / "eye_height_board"
+
+
+@pytest.mark.parametrize(
+    "cell", ["take_man.yaml", "take_woman.yaml", "put_man.yaml", "put_woman.yaml"]
+)
+def test_a_box_on_a_board_at_eye_height_is_taken_and_put_there(cell):
+    """A packing cell of our own: a 50th-percentile man (0.75 m from the shelf's centre) and
+    woman (0.6 m taking, 0.7 m putting) take a box off a shelf's 1.6 m top board and carry it
+    to a table, or take one off the table and put it on that board. The arms rose to it with
+    the elbows low, the forearms steep under the hands, through the board's edge (a 1.75 m
+    person 0.35-0.75 m from the shelf: 2.6-10.2 cm in), and it was refused. The elbows rise
+    behind the hands, the forearms level over the edge, and the box is drawn out over the
+    edge before it comes down: `validate` says nothing of it."""
+    path = EYE_HEIGHT_BOARD / cell
+    said = [f.message for f in findings(load_scenario(path), path)]
+    assert said == [], said
+
+
+@pytest.mark.parametrize("cell", ["take_man.yaml", "take_woman.yaml"])
+def test_a_box_taken_off_a_board_at_eye_height_is_carried_to_a_table(cell):
+    """The same cell, run: the person walks to the shelf, takes the box off its 1.6 m board,
+    carries it to the table and puts it there, each node once and with success, within every
+    limit of the audit (the box drawn out over the board's edge before it comes down)."""
+    report = run(load_scenario(EYE_HEIGHT_BOARD / cell))
+    for node in ("ActorMovement::3", "ActorPick::4", "ActorMovement::5", "ActorPlace::6"):
+        done = report.metrics["bt"]["human"][node]
+        assert (done["successes"], done["failures"]) == (1, 0), (node, done)
+    assert_within_the_audit_limits(report.metrics["realism"])
 
 
 def test_a_refusal_is_remembered_by_its_own_run_only(monkeypatch):
