@@ -188,9 +188,10 @@ class TreeNode(ABC):
         """What is wrong with `value` as input `port` ("" when nothing): outside the port's
         declared range or words; a node type adds rules of its own (e.g. one weight per
         child). The tree builder asks it of literals, `validate` of values known before a
-        run, `get_input` of every value read from the blackboard."""
+        run, `get_input` of every value read from the blackboard. None is a port left out
+        whose default is None (an ActorReach squaring up no object): nothing to judge."""
         accepts = self.config.accepts.get(port)
-        return accepts.problem(value) if accepts is not None else ""
+        return accepts.problem(value) if accepts is not None and value is not None else ""
 
     def set_output(self, name: str, value: Any) -> bool:
         """Write output port ``name``; False when the XML leaves the port unconnected."""
