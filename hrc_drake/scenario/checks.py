@@ -195,7 +195,8 @@ def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
             except InputError as error:  # the bound field is not in the scenario
                 yield (*where, "bind"), str(error).removeprefix("--set ")
                 break
-            checked = scenario_problems(changed, directory, _moves_sensors(parameter))
+            sensors = parameter.bind.split(".")[0] in _SENSOR_INPUTS
+            checked = scenario_problems(changed, directory, sensors)
             for _, message in itertools.islice(checked, 1):
                 yield (*where, *names), f"{parameter.bind}={value}: {message}"
 
@@ -203,10 +204,6 @@ def _falsify_problems(scenario: Scenario, directory: Path) -> Iterator[Problem]:
 _SENSOR_INPUTS = {"safety", "robot", "cell"}
 """The sections the safety sensors' checks read (`safety_sensor_problems`): a search that
 binds a field of one may make the sensors fail where the scenario's own do not."""
-
-
-def _moves_sensors(parameter) -> bool:
-    return parameter.bind.split(".")[0] in _SENSOR_INPUTS
 
 
 def _prefixed(name: str, found: Iterable[Problem]) -> Iterator[Problem]:
