@@ -1,9 +1,9 @@
 """validate's checks of the person's picks and put-downs where the tree has them stand:
-the objects each pick may take (found by a NextObject, made by a SpawnObject, named by
-number, or put down by a place before it), planned as the run plans them
-(hrc_drake.human.planning) from the person at ease there, and refused where the run would
-refuse them (hrc_drake.human.going_in); the reaches too far from where they stand
-(hrc_drake.scenario.reach_from_stand).
+the objects each pick may take (found by a NextObject among those at the start and those
+put down before it, made by a SpawnObject, named by number, or put down by a place before
+it), planned as the run plans them (hrc_drake.human.planning) from the person at ease
+there, and refused where the run would refuse them (hrc_drake.human.going_in); the reaches
+too far from where they stand (hrc_drake.scenario.reach_from_stand).
 
 Longer than 300 lines: the picks and the put-downs after them share the object lookups
 and the plans made once per command and place."""
@@ -37,6 +37,7 @@ from hrc_drake.scenario.start_objects import StartObjects
 from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
     UNKNOWN,
+    all_before,
     failed_before,
     finder_of,
     held_at,
@@ -247,7 +248,21 @@ class PersonPicks:
         where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         return [
             (f"{obj.label} in area '{area}' ({where})", obj)
-            for area, obj in self.objects.found_by(source, known)
+            for area, obj in self.objects.found_by(
+                source, known, made=self._left(source, parents, way, known, agent)
+            )
+        ]
+
+    def _left(self, finder, parents, way, known, agent) -> list:
+        """The objects the put-downs that have run before `finder` leave, labelled with
+        where they lie: a NextObject finds them as it finds those at the start (an area is a
+        floor polygon: a user's KLT put on a rack's low board was found by the look for a
+        full one on the board above, and the run refused its pick, 7.0 cm into the full
+        one, which validate never judged)."""
+        return [
+            dataclasses.replace(obj, label=label)
+            for place in all_before(finder, parents, ActorPlace)
+            for label, obj in self._put_down(parents, way, known, place, agent)
         ]
 
     def _numbered(self, known, pick) -> list[tuple[str, object]]:
