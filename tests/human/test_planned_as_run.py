@@ -24,6 +24,24 @@ def test_a_small_person_by_percentile_is_planned_with_their_own_clips(tmp_path, 
     assert pick["successes"] == 0 and HEAD_IN_THE_RACK in pick["first_failure"], pick
 
 
+PALMS_OFF = "the arms kept out of the cell would leave the point between the palms 8 cm"
+
+
+def test_a_large_mans_pick_is_judged_as_it_takes_over_from_him_at_ease(tmp_path, hrc_drake):
+    """A user's kitting cell, cut down: a 95th-percentile man (1.87 m, 109 kg) takes an
+    empty KLT off a 0.9 m table. The pick's plan itself keeps out of the table, and
+    `validate` said ok; the run, taking over from him standing at ease, keeps the arms out
+    of the table on the way up and refused it every time, the palms 8 cm from the KLT.
+    `validate` now judges the pick as the run does, and says so on one line."""
+    cell = copied("klt_off_the_table_large_man", tmp_path)
+    status, _, err = hrc_drake("validate", cell)
+    assert status == 2 and len(err.strip().splitlines()) == 1, err
+    assert "node 'ActorPick::2'" in err and PALMS_OFF in err, err
+    report = run(load_scenario(cell))
+    pick = report.metrics["bt"]["human"]["ActorPick::2"]
+    assert pick["successes"] == 0 and PALMS_OFF in pick["first_failure"], pick
+
+
 OFF_THE_EDGE = CELLS / "off_the_edge" / "cell.yaml"
 OFF_THE_TOP = (
     "where it is put is 15.0 cm off the top of 'table_b', nothing but the floor under it: "
