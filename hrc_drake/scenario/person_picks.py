@@ -1,9 +1,9 @@
 """validate's checks of the person's picks and put-downs where the tree has them stand:
-the objects each pick may take (found by a NextObject, made by a SpawnObject, named by
-number, or put down by a place before it), planned as the run plans them
-(hrc_drake.human.planning) from the person at ease there, and refused where the run would
-refuse them (hrc_drake.human.going_in); the reaches too far from where they stand
-(hrc_drake.scenario.reach_from_stand).
+the objects each pick may take (found by a NextObject among those at the start and those
+put down before it, made by a SpawnObject, named by number, or put down by a place before
+it), planned as the run plans them (hrc_drake.human.planning) from the person at ease
+there, and refused where the run would refuse them (hrc_drake.human.going_in); the reaches
+too far from where they stand (hrc_drake.scenario.reach_from_stand).
 
 Longer than 300 lines: the picks and the put-downs after them share the object lookups
 and the plans made once per command and place."""
@@ -37,6 +37,7 @@ from hrc_drake.scenario.start_objects import StartObjects
 from hrc_drake.scenario.switch_ways import finder_type
 from hrc_drake.scenario.tree_ways import (
     UNKNOWN,
+    all_before,
     failed_before,
     finder_of,
     held_at,
@@ -247,7 +248,21 @@ class PersonPicks:
         where = f"{source.config.registration_id} at {source.config.file}:{source.config.line}"
         return [
             (f"{obj.label} in area '{area}' ({where})", obj)
-            for area, obj in self.objects.found_by(source, known)
+            for area, obj in self.objects.found_by(
+                source, known, made=self._left(source, parents, way, known, agent)
+            )
+        ]
+
+    def _left(self, finder, parents, way, known, agent) -> list:
+        """The objects the put-downs that have run before `finder` leave, labelled with
+        where they lie: a NextObject finds them as it finds those at the start (an area is a
+        floor polygon: a user's KLT put on a rack's low board was found by the look for a
+        full one on the board above, and the run refused its pick, 7.0 cm into the full
+        one, which validate never judged)."""
+        return [
+            dataclasses.replace(obj, label=label)
+            for place in all_before(finder, parents, ActorPlace)
+            for label, obj in self._put_down(parents, way, known, place, agent)
         ]
 
     def _numbered(self, known, pick) -> list[tuple[str, object]]:
@@ -294,8 +309,8 @@ class PersonPicks:
     def _planned_problem(self, command: AnimateCommand, stand) -> str:
         """Why the person standing at `stand` (x, y, yaw) cannot do `command`, as the run
         would plan it (refused where it goes into the furniture even with the head and arms
-        kept out, which is worked out only where the plan itself goes in); "" when they can.
-        Asked once per command and place (each way the tree goes asks again)."""
+        kept out); "" when they can. Asked once per command and place (each way the tree
+        goes asks again)."""
         key = (repr(command), tuple(stand))
         if key not in self.planned_problems:
             self.planned_problems[key] = self._plan_problem(command, stand)
@@ -305,14 +320,16 @@ class PersonPicks:
         """`_planned_problem`'s answer: the plan taking over from the person standing at
         ease there, as the run's idle has them when the command comes (from a made-up
         upright pose, arms straight down, a pick off a shelf's board came clear, and the
-        run refused it every time: the right arm 2.4 cm into the shelf, a user's cell: #26)."""
+        run refused it every time: the right arm 2.4 cm into the shelf, a user's cell: #26).
+        Judged blended even where the plan itself keeps out, as the run judges it: a 95th-
+        percentile man's pick of a KLT off a table came clear, and the run refused it 13
+        times, the arms kept out of the table as they came up from at ease leaving the
+        palms 8 cm from it (a user's kitting cell)."""
         performer = self.performer
         try:
             activity = plan_animation(performer, command, stand, 0.0)
         except Unreachable as error:
             return str(error)
-        if not going_in(performer, activity, 0.0):
-            return ""
         at_ease = plan_idle(performer, stand, 0.0, command.hold).pose(performer, 0.0)
         return going_in(performer, activity.blended_from(performer, at_ease, 0.0), 0.0)
 

@@ -24,10 +24,10 @@ class StartObjects:
         self.objects = scene.objects
 
     def found_by(self, finder, known, unknown_filter=(), made=()) -> list[tuple[str, object]]:
-        """The objects at the start, and those `made` (by a SpawnObject: `made_by`), that the
-        NextObject `finder` may find, with the name of the area each lies in (`in_area`);
-        where its filter is not known, those that `unknown_filter` (filter texts) lets
-        through."""
+        """The objects at the start, and those `made` (by a SpawnObject, `made_by`, or left
+        by a put-down), that the NextObject `finder` may find, with the name of the area
+        each lies in (`in_area`); where its filter is not known, those that `unknown_filter`
+        (filter texts) lets through."""
         filters = [wanted.value for wanted in known.get((id(finder), "filter"), ())]
         return [
             (area.value.name, obj)

@@ -37,14 +37,16 @@ was not checked)."""
 
 
 def all_before(node: TreeNode, parents: dict, kind: Kind) -> list[TreeNode]:
-    """The nodes of `kind` in the earlier children of the Sequences above `node`: they have
-    run when it starts (a tote put where an earlier pick took one from was planned on top
-    of that one, and validate said an arm would go into it, a cell of our own)."""
+    """The nodes of `kind` in the earlier children of the Sequences above `node`, through
+    the choices it is in: they have run when it starts (a tote put where an earlier pick
+    took one from was planned on top of that one, and validate said an arm would go into
+    it, a cell of our own; a KLT a Fallback's try looks for on a rack, where the Sequence
+    round it had put an empty one down, a user's kitting cell)."""
     found, child = [], node
     while (parent := parents.get(id(child))) is not None:
         if _is_sequence(parent):
             found += [n for s in _earlier_siblings(parent, child) for n in _all_of(s, kind)]
-        elif not isinstance(parent, (SubTreeNode, *RUN_ONCE)):
+        elif not (isinstance(parent, (SubTreeNode, *RUN_ONCE)) or _is_choice(parent)):
             break
         child = parent
     return found

@@ -24,6 +24,24 @@ def test_a_small_person_by_percentile_is_planned_with_their_own_clips(tmp_path, 
     assert pick["successes"] == 0 and HEAD_IN_THE_RACK in pick["first_failure"], pick
 
 
+PALMS_OFF = "the arms kept out of the cell would leave the point between the palms 8 cm"
+
+
+def test_a_large_mans_pick_is_judged_as_it_takes_over_from_him_at_ease(tmp_path, hrc_drake):
+    """A user's kitting cell, cut down: a 95th-percentile man (1.87 m, 109 kg) takes an
+    empty KLT off a 0.9 m table. The pick's plan itself keeps out of the table, and
+    `validate` said ok; the run, taking over from him standing at ease, keeps the arms out
+    of the table on the way up and refused it every time, the palms 8 cm from the KLT.
+    `validate` now judges the pick as the run does, and says so on one line."""
+    cell = copied("klt_off_the_table_large_man", tmp_path)
+    status, _, err = hrc_drake("validate", cell)
+    assert status == 2 and len(err.strip().splitlines()) == 1, err
+    assert "node 'ActorPick::2'" in err and PALMS_OFF in err, err
+    report = run(load_scenario(cell))
+    pick = report.metrics["bt"]["human"]["ActorPick::2"]
+    assert pick["successes"] == 0 and PALMS_OFF in pick["first_failure"], pick
+
+
 OFF_THE_EDGE = CELLS / "off_the_edge" / "cell.yaml"
 OFF_THE_TOP = (
     "where it is put is 15.0 cm off the top of 'table_b', nothing but the floor under it: "
@@ -95,3 +113,19 @@ def _validated_and_done(hrc_drake, cell, node: str) -> None:
     done = report.metrics["bt"]["human"][node]
     assert done["successes"] == 1 and done["failures"] == 0, done
     assert_within_the_audit_limits(report.metrics["realism"])
+
+
+def test_a_klt_put_down_in_the_area_a_later_look_searches_is_judged_taken_from_there(
+    tmp_path, hrc_drake
+):
+    """A user's kitting cell: the person puts an empty KLT on a rack's low board, then
+    looks for a full one in an area drawn round the board above. An area is a floor
+    polygon: the look found the empty one (the older), and the run refused its pick ("what
+    the hands hold would go 7.0 cm into 'klt 2'", the full one); `validate` judged only the
+    objects lying there at the start, and said ok. It now refuses the pick too, on one
+    line naming the put-down that left the KLT there."""
+    status, _, err = hrc_drake("validate", copied("klt_on_the_low_board", tmp_path))
+    lines = err.strip().splitlines()
+    assert status == 2 and len(lines) == 1, err
+    assert "node 'ActorPick::10'" in lines[0] and "put down by ActorPlace" in lines[0], err
+    assert "no way to take it from where the person stands" in lines[0], err
