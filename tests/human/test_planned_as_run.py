@@ -104,6 +104,25 @@ def test_a_klt_brought_where_an_emptied_one_lay_is_put_down_there(tmp_path, hrc_
     _validated_and_done(hrc_drake, copied("klt_swap", tmp_path), "ActorPlace::15")
 
 
+def test_a_klt_put_on_a_racks_board_under_another_keeps_under_that_board(tmp_path, hrc_drake):
+    """A user's kitting cell: an empty KLT put on a rack's 0.4 m board, under its 1.2 m
+    board, from 0.5 m in front of the rack. Carried 6.5 cm under the upper board, its way
+    down (in the chest's frame, bulging up as the trunk leans in) was let go straight, and
+    the KLT went 1.6 cm into that board's front edge; `validate` said ok. It now comes in
+    under the board, then down: both say it is done, within the audit's limits."""
+    _validated_and_done(hrc_drake, copied("klt_under_a_board", tmp_path), "ActorPlace::6")
+
+
+def test_a_klt_taken_off_a_racks_board_under_another_keeps_under_that_board(tmp_path, hrc_drake):
+    """The same cell: a KLT taken off that 0.4 m board from 0.5 m in front of the rack.
+    In the carry posture it is below the upper board, so its way up was let go straight,
+    bulging up as the trunk rose: "what the hands hold would go 6.8 cm into 'rack'", and
+    the pick was refused (with no board above, it was done). It now keeps under the board
+    until it is out: both say it is done, within the audit's limits."""
+    cell = copied("klt_under_a_board", tmp_path).with_name("taken_off.yaml")
+    _validated_and_done(hrc_drake, cell, "ActorPick::4")
+
+
 def _validated_and_done(hrc_drake, cell, node: str) -> None:
     """`validate` says `cell` is ok, and its run does `node` once, refusing it never,
     within the audit's limits."""
