@@ -139,12 +139,13 @@ def test_a_klt_put_down_in_the_area_a_later_look_searches_is_judged_taken_from_t
 ):
     """A user's kitting cell: the person puts an empty KLT on a rack's low board, then
     looks for a full one in an area drawn round the board above. An area is a floor
-    polygon: the look found the empty one (the older), and the run refused its pick ("what
-    the hands hold would go 7.0 cm into 'klt 2'", the full one); `validate` judged only the
-    objects lying there at the start, and said ok. It now refuses the pick too, on one
-    line naming the put-down that left the KLT there."""
+    polygon: the look found the empty one (the older), and the run refused its pick, where
+    `validate` had judged only the objects lying there at the start and said ok. Here the
+    empty one lies at the board's far end, out of reach of where the person stands for the
+    full one (since 7313d7b a KLT is taken from under the board above, so the user's pick
+    there works): validate refuses the pick on one line naming the put-down that left it."""
     status, _, err = hrc_drake("validate", copied("klt_on_the_low_board", tmp_path))
     lines = err.strip().splitlines()
     assert status == 2 and len(lines) == 1, err
     assert "node 'ActorPick::10'" in lines[0] and "put down by ActorPlace" in lines[0], err
-    assert "no way to take it from where the person stands" in lines[0], err
+    assert "out of reach: the hand stays" in lines[0], err
